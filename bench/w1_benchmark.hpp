@@ -1,0 +1,20 @@
+#pragma once
+// Benchmark W1: bonded fcc bar in tension (see bench/README.md for the full definition, so that
+// other codes can run the same problem).
+#include <cstddef>
+
+#include <nlohmann/json.hpp>
+
+namespace rupture::bench {
+
+struct W1Options {
+  int threads = 1;
+  std::size_t particles = 102400;  ///< scales the 64 × 20 × 20 fcc cell box
+  int steps = 1000;
+};
+
+/// Builds W1, runs it and returns one JSON object: workload, particles, bonds, steps, threads,
+/// seconds, particle_steps_per_s, bond_steps_per_s (+ broken_bonds, time_step).
+nlohmann::json runW1(const W1Options& options);
+
+}  // namespace rupture::bench

@@ -1,0 +1,26 @@
+#pragma once
+// The `rupture` command line: one function per subcommand, each returning the process exit code
+// (0 done, 1 failure, 2 invalid input).
+#include <string>
+#include <vector>
+
+namespace rupture::cli {
+
+using Args = std::vector<std::string>;
+
+int runCommand(const Args& args);
+int validateCommand(const Args& args);
+int scenariosCommand(const Args& args);
+int schemaCommand(const Args& args);
+int calibrateCommand(const Args& args);
+int benchCommand(const Args& args);
+
+/// Exit code 2 with a message on stderr.
+int usageError(const std::string& message);
+
+/// Parses "--name value" options; returns false (and prints) on a bad number.
+bool parseIntOption(const std::string& name, const std::string& text, long long min, long long max,
+                    long long& out);
+bool parseDoubleOption(const std::string& name, const std::string& text, double& out);
+
+}  // namespace rupture::cli

@@ -1,0 +1,34 @@
+#include <iostream>
+
+#include "cli/cli.hpp"
+#include "w1_benchmark.hpp"
+
+namespace rupture::cli {
+
+int benchCommand(const Args& args) {
+  if (args.empty() || args[0] != "W1")
+    return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
+                      "'; allowed: W1");
+  bench::W1Options options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
+    long long v = 0;
+    if (args[k] == "--threads") {
+      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
+      options.threads = static_cast<int>(v);
+    } else if (args[k] == "--particles") {
+      if (!parseIntOption("--particles", args[k + 1], 32, 100000000, v)) return 2;
+      options.particles = static_cast<std::size_t>(v);
+    } else if (args[k] == "--steps") {
+      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
+      options.steps = static_cast<int>(v);
+    } else {
+      return usageError("bench: unknown option '" + args[k] + "'; allowed: --threads, --particles, --steps");
+    }
+    ++k;
+  }
+  std::cout << bench::runW1(options).dump() << std::endl;
+  return 0;
+}
+
+}  // namespace rupture::cli

@@ -1,0 +1,87 @@
+// rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]
+#include <omp.h>
+
+#include <chrono>
+#include <iostream>
+
+#include "cli/cli.hpp"
+#include "cli/spec_file.hpp"
+#include "dem/calibration.hpp"
+#include "io/bonded_spec.hpp"
+
+namespace rupture::cli {
+
+int calibrateCommand(const Args& args) {
+  if (args.empty()) return usageError("calibrate: usage: rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]");
+  double targetYoung = 0, targetPoisson = 0;
+  bool haveYoung = false, havePoisson = false;
+  long long threads = 1;
+  for (std::size_t k = 1; k < args.size(); k += 2) {
+    if (k + 1 >= args.size()) return usageError("calibrate: option " + args[k] + " needs a value");
+    if (args[k] == "--target-young-modulus") {
+      if (!parseDoubleOption(args[k], args[k + 1], targetYoung)) return 2;
+      if (!(targetYoung > 0)) return usageError("calibrate: --target-young-modulus = " + args[k + 1] + "; allowed: a number > 0 (Pa)");
+      haveYoung = true;
+    } else if (args[k] == "--target-poisson-ratio") {
+      if (!parseDoubleOption(args[k], args[k + 1], targetPoisson)) return 2;
+      if (!(targetPoisson > -1 && targetPoisson < 0.5))
+        return usageError("calibrate: --target-poisson-ratio = " + args[k + 1] + "; allowed: a number in (-1, 0.5)");
+      havePoisson = true;
+    } else if (args[k] == "--threads") {
+      if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
+    } else {
+      return usageError("calibrate: unknown option '" + args[k] +
+                        "'; allowed: --target-young-modulus, --target-poisson-ratio, --threads");
+    }
+  }
+  if (haveYoung != havePoisson)
+    return usageError("calibrate: give both --target-young-modulus and --target-poisson-ratio, or neither");
+
+  nlohmann::json specJson;
+  if (int code = readSpecFile(args[0], specJson)) return code;
+  SampleSpec sampleSpec;
+  MaterialSpec material;
+  try {
+    // Only the sample and material matter here; a full scenario spec is accepted as it is.
+    const io::SpecReader root(specJson, "");
+    sampleSpec = io::parseSample(root);
+    material = io::parseMaterial(root);
+  } catch (const SpecError& e) {
+    return reportSpecError(args[0], e);
+  }
+  omp_set_num_threads(static_cast<int>(threads));
+  const auto start = std::chrono::steady_clock::now();
+  BondedSystem sample;
+  const SampleReport report = buildSample(sampleSpec, material, sample);
+  nlohmann::json out;
+  out["sample"] = {{"elements", report.elements},
+                   {"bonds", report.bonds},
+                   {"mean_coordination", report.meanCoordination},
+                   {"porosity", report.porosity}};
+  if (haveYoung) {
+    try {
+      const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson);
+      out["beam"] = {{"young_modulus", fit.beam.youngModulus},
+                     {"poisson_ratio", fit.beam.poissonRatio},
+                     {"radius_ratio", fit.beam.radiusRatio}};
+      out["achieved"] = {{"young_modulus", fit.achieved.youngModulus},
+                         {"poisson_ratio", fit.achieved.poissonRatio},
+                         {"converged", fit.achieved.converged}};
+      out["target"] = {{"young_modulus", targetYoung}, {"poisson_ratio", targetPoisson}};
+      out["evaluations"] = fit.evaluations;
+    } catch (const CalibrationError& e) {
+      return usageError(std::string("calibrate: ") + e.what());
+    }
+  } else {
+    const ElasticProperties measured = measureElasticProperties(sample, sampleSpec);
+    out["young_modulus"] = measured.youngModulus;
+    out["poisson_ratio"] = measured.poissonRatio;
+    out["converged"] = measured.converged;
+    out["relaxation_steps"] = measured.steps;
+  }
+  out["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << out.dump() << std::endl;
+  return 0;
+}
+
+}  // namespace rupture::cli

@@ -1,0 +1,51 @@
+// rupture: run, validate and inspect scenarios; calibrate beams; benchmark the engine.
+#include <iostream>
+
+#include "cli/cli.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: rupture <command> [options]
+
+commands:
+  run SPEC.json -o RUN.h5 [--threads N]   run a scenario, write one HDF5 file (+ .xdmf2 sidecar),
+                                          print the summary as JSON
+  validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
+  scenarios                               list the scenarios
+  schema SCENARIO                         print a scenario's JSON Schema
+  calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]
+                                          measure (or fit the beams to) macroscopic E and nu
+  bench W1 [--threads N] [--particles N] [--steps N]
+                                          run a benchmark, print one JSON line
+
+exit codes: 0 done, 1 failure, 2 invalid input
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace rupture::cli;
+  Args args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::cout << "rupture " << RUPTURE_VERSION << "\n";
+    return 0;
+  }
+  const std::string command = args[0];
+  const Args rest(args.begin() + 1, args.end());
+  try {
+    if (command == "run") return runCommand(rest);
+    if (command == "validate") return validateCommand(rest);
+    if (command == "scenarios") return scenariosCommand(rest);
+    if (command == "schema") return schemaCommand(rest);
+    if (command == "calibrate") return calibrateCommand(rest);
+    if (command == "bench") return benchCommand(rest);
+  } catch (const std::exception& e) {
+    std::cerr << "rupture " << command << ": " << e.what() << "\n";
+    return 1;
+  }
+  return usageError("unknown command '" + command + "'; see rupture --help");
+}

@@ -1,0 +1,69 @@
+#include "core/bond_store.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace rupture {
+
+std::size_t BondStore::add(const ParticleStore& p, std::size_t a, std::size_t b) {
+  if (a > b) std::swap(a, b);  // order by index (= id) so both ends agree on the bond's sense
+  const double dx = p.x[b] - p.x[a], dy = p.y[b] - p.y[a], dz = p.z[b] - p.z[a];
+  const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+  i.push_back(static_cast<std::int32_t>(a));
+  j.push_back(static_cast<std::int32_t>(b));
+  restLength.push_back(length);
+  n0x.push_back(dx / length);
+  n0y.push_back(dy / length);
+  n0z.push_back(dz / length);
+  intact.push_back(1.0);
+  return i.size() - 1;
+}
+
+void BondStore::finalize(std::size_t particleCount) {
+  const std::size_t n = size();
+  for (auto* v : {&fjx, &fjy, &fjz, &tix, &tiy, &tiz, &tjx, &tjy, &tjz, &equivalentStress})
+    v->assign(n, 0.0);
+  incidenceStart.assign(particleCount + 1, 0);
+  for (std::size_t b = 0; b < n; ++b) {
+    ++incidenceStart[i[b] + 1];
+    ++incidenceStart[j[b] + 1];
+  }
+  for (std::size_t k = 0; k < particleCount; ++k) incidenceStart[k + 1] += incidenceStart[k];
+  incidence.assign(2 * n, 0);
+  std::vector<std::int32_t> cursor(incidenceStart.begin(), incidenceStart.end() - 1);
+  for (std::size_t b = 0; b < n; ++b) {  // ascending b: a fixed summation order per particle
+    incidence[cursor[i[b]]++] = static_cast<std::int32_t>(2 * b);
+    incidence[cursor[j[b]]++] = static_cast<std::int32_t>(2 * b + 1);
+  }
+}
+
+void BondStore::remap(const std::vector<std::int32_t>& newIndex) {
+  std::size_t m = 0;
+  for (std::size_t b = 0; b < size(); ++b) {
+    const std::int32_t a = newIndex[i[b]], c = newIndex[j[b]];
+    if (a < 0 || c < 0) continue;
+    i[m] = a; j[m] = c;
+    restLength[m] = restLength[b];
+    n0x[m] = n0x[b]; n0y[m] = n0y[b]; n0z[m] = n0z[b];
+    intact[m] = intact[b];
+    ++m;
+  }
+  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact}) v->resize(m);
+  i.resize(m);
+  j.resize(m);
+}
+
+std::size_t BondStore::intactCount() const {
+  std::size_t n = 0;
+  for (double v : intact) n += v > 0.5;
+  return n;
+}
+
+std::vector<int> BondStore::coordination(std::size_t particleCount) const {
+  std::vector<int> z(particleCount, 0);
+  for (std::size_t b = 0; b < size(); ++b)
+    if (intact[b] > 0.5) { ++z[i[b]]; ++z[j[b]]; }
+  return z;
+}
+
+}  // namespace rupture

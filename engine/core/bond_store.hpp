@@ -1,0 +1,45 @@
+#pragma once
+// Contiguous bond arrays (structure of arrays). A bond joins particle indices i < j and keeps its
+// reference state: rest length L0 and unit direction n0 (i -> j) at creation. Orientations are the
+// identity when bonds are created, so the body-frame tangent of both ends is n0 itself.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/particle_store.hpp"
+
+namespace rupture {
+
+struct BondStore {
+  std::vector<std::int32_t> i, j;
+  std::vector<double> restLength;      ///< L0 (m)
+  std::vector<double> n0x, n0y, n0z;   ///< reference direction i -> j
+  std::vector<double> intact;          ///< 1 intact, 0 broken (a factor, so the kernel has no branch)
+
+  // Written by the force kernel each step: force on j (force on i is its opposite), torques on i, j.
+  std::vector<double> fjx, fjy, fjz;
+  std::vector<double> tix, tiy, tiz;
+  std::vector<double> tjx, tjy, tjz;
+  std::vector<double> equivalentStress;  ///< Rankine σ_eq at the last evaluation (Pa)
+
+  // Particle -> bond incidence (CSR), built once after the bonds: entries are 2·b + end (0: i, 1: j).
+  std::vector<std::int32_t> incidenceStart, incidence;
+
+  std::size_t size() const { return i.size(); }
+
+  /// Adds a bond between particles a and b in their current configuration (rest state).
+  std::size_t add(const ParticleStore& particles, std::size_t a, std::size_t b);
+
+  /// Sizes the per-step outputs and builds the incidence lists; call after the last add().
+  void finalize(std::size_t particleCount);
+
+  /// Renumbers particle indices after ParticleStore::compact and drops bonds touching removed particles.
+  void remap(const std::vector<std::int32_t>& newIndex);
+
+  std::size_t intactCount() const;
+
+  /// Number of intact bonds per particle.
+  std::vector<int> coordination(std::size_t particleCount) const;
+};
+
+}  // namespace rupture

@@ -1,0 +1,55 @@
+#include "core/particle_store.hpp"
+
+#include <numbers>
+
+namespace rupture {
+
+std::size_t ParticleStore::add(double px, double py, double pz, double r) {
+  x.push_back(px); y.push_back(py); z.push_back(pz);
+  for (auto* v : {&vx, &vy, &vz, &fx, &fy, &fz, &qx, &qy, &qz, &wx, &wy, &wz, &tx, &ty, &tz})
+    v->push_back(0.0);
+  qw.push_back(1.0);
+  radius.push_back(r);
+  mass.push_back(0.0);
+  inertia.push_back(0.0);
+  fixedDofs.push_back(0);
+  return x.size() - 1;
+}
+
+std::vector<std::int32_t> ParticleStore::compact(const std::vector<std::uint8_t>& keep) {
+  std::vector<std::int32_t> newIndex(size(), -1);
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < size(); ++k)
+    if (keep[k]) newIndex[k] = static_cast<std::int32_t>(n++);
+  auto squeeze = [&](auto& field) {
+    std::size_t m = 0;
+    for (std::size_t k = 0; k < field.size(); ++k)
+      if (keep[k]) field[m++] = field[k];
+    field.resize(m);
+  };
+  for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &qw, &qx, &qy, &qz, &wx, &wy, &wz, &tx,
+                  &ty, &tz, &radius, &mass, &inertia})
+    squeeze(*v);
+  squeeze(fixedDofs);
+  return newIndex;
+}
+
+void ParticleStore::setMassFromDensity(double elementDensity, double thickness2d) {
+  constexpr double pi = std::numbers::pi;
+  for (std::size_t k = 0; k < size(); ++k) {
+    const double r = radius[k];
+    if (dimension == 2) {
+      mass[k] = elementDensity * pi * r * r * thickness2d;
+      inertia[k] = 0.5 * mass[k] * r * r;
+    } else {
+      mass[k] = elementDensity * 4.0 / 3.0 * pi * r * r * r;
+      inertia[k] = 0.4 * mass[k] * r * r;
+    }
+  }
+}
+
+void ParticleStore::clearLoads() {
+  for (auto* v : {&fx, &fy, &fz, &tx, &ty, &tz}) std::fill(v->begin(), v->end(), 0.0);
+}
+
+}  // namespace rupture

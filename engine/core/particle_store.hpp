@@ -1,0 +1,49 @@
+#pragma once
+// Structure-of-arrays storage for rigid particles (2D disks or 3D spheres).
+// Particles are never reordered after a sample is built, so a particle's index is its id:
+// bonds and snapshots can refer to indices without a tag/rtag map.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rupture {
+
+/// Degrees of freedom whose velocity is prescribed by a scenario instead of integrated.
+enum FixedDof : std::uint8_t {
+  kFixX = 1,
+  kFixY = 2,
+  kFixZ = 4,
+  kFixRotation = 8,
+};
+
+struct ParticleStore {
+  int dimension = 3;  ///< 2: motion in the x-y plane, rotation about z only
+
+  // Kinematics (m, m/s, unit quaternion, rad/s) and accumulated loads (N, N·m).
+  std::vector<double> x, y, z;
+  std::vector<double> vx, vy, vz;
+  std::vector<double> fx, fy, fz;
+  std::vector<double> qw, qx, qy, qz;
+  std::vector<double> wx, wy, wz;
+  std::vector<double> tx, ty, tz;
+
+  // Constant properties: radius (m), mass (kg), moment of inertia (kg·m²).
+  std::vector<double> radius, mass, inertia;
+  std::vector<std::uint8_t> fixedDofs;  ///< bit set of FixedDof
+
+  std::size_t size() const { return x.size(); }
+
+  /// Appends a particle at rest with identity orientation; mass and inertia are set later.
+  std::size_t add(double px, double py, double pz, double r);
+
+  /// Keeps only the particles with keep[k] != 0, in order; returns old index -> new index (-1 if removed).
+  std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
+
+  /// Sets mass and inertia from a material density (kg/m³) and each particle's volume
+  /// (sphere 4/3 π R³; in 2D a disk π R² × thickness). Inertia: 2/5 m R² (sphere), 1/2 m R² (disk).
+  void setMassFromDensity(double elementDensity, double thickness2d);
+
+  void clearLoads();
+};
+
+}  // namespace rupture

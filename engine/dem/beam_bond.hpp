@@ -1,0 +1,154 @@
+#pragma once
+// Cohesive beam bond (André, Iordanoff, Charles, Néauport, CMAME 213–216, 2012): each bonded pair
+// is joined by a cylindrical Euler–Bernoulli beam of Young's modulus E_μ, Poisson ratio ν_μ and
+// radius r_μ = radius_ratio × (R_i + R_j)/2, clamped at both element centres, carrying axial force,
+// shear force, bending moments and torsion. Failure: Rankine equivalent stress (damage/rankine.hpp).
+//
+// Corotational kinematics (physics-reference §1.3–1.4): n = current chord direction i -> j, L its
+// length; a_k = R(q_k) n0 is the beam tangent carried by end k. The bending rotation of end k is the
+// rotation vector taking n onto a_k, φ_k = angle(n, a_k) · unit(n × a_k). The twist ψ is the
+// twist about n of the relative rotation q_j q_i* (swing–twist decomposition).
+// Energy (clamped–clamped beam):
+//   U = ½ k_ax (L − L0)² + (2 E I / L0)(φ_i² + φ_i·φ_j + φ_j²) + ½ (G J / L0) ψ²
+// Loads (−∂U; the shear force uses 1/(L0 L) so that moments balance exactly about the chord):
+//   F_j = −(E S / L0)(L − L0) n + (6 E I / (L0 L)) (φ_i + φ_j) × n,     F_i = −F_j
+//   T_i = −(2 E I / L0)(2 φ_i + φ_j) + (G J / L0) ψ n
+//   T_j = −(2 E I / L0)(φ_i + 2 φ_j) − (G J / L0) ψ n
+// Section: S = π r², I = π r⁴/4, J = π r⁴/2.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/fast_math.hpp"
+#include "damage/rankine.hpp"
+
+namespace rupture {
+
+/// Microscopic beam parameters (SI). Validated once in engine/io (bonded spec parsing).
+struct BeamParameters {
+  double youngModulus = 0;   ///< E_μ (Pa)
+  double poissonRatio = 0.3; ///< ν_μ (1); enters only through G_μ = E_μ / (2(1 + ν_μ))
+  double radiusRatio = 0.3;  ///< r_μ / R_DE (1), R_DE = mean radius of the two elements
+  double failureStress = 0;  ///< σ_f (Pa), Rankine threshold; <= 0 or infinity: unbreakable
+
+  double shearModulus() const { return youngModulus / (2.0 * (1.0 + poissonRatio)); }
+};
+
+/// Section constants of one beam.
+struct BeamSection {
+  double radius, area, secondMoment, polarMoment;
+  static BeamSection of(const BeamParameters& p, double radiusI, double radiusJ) {
+    const double r = p.radiusRatio * 0.5 * (radiusI + radiusJ);
+    const double r2 = r * r;
+    constexpr double pi = std::numbers::pi;
+    return {r, pi * r2, 0.25 * pi * r2 * r2, 0.5 * pi * r2 * r2};
+  }
+};
+
+/// Everything one evaluation of the law produces.
+struct BeamResponse {
+  double fjx, fjy, fjz;  ///< force on j (N)
+  double tix, tiy, tiz;  ///< torque on i (N·m)
+  double tjx, tjy, tjz;  ///< torque on j (N·m)
+  double equivalentStress;  ///< Rankine σ_eq (Pa)
+  double energy;            ///< stored elastic energy U (J)
+  double axialForce;        ///< N, tension positive (N)
+  double twist;             ///< ψ (rad)
+};
+
+/// Rotates v by the unit quaternion (w, ux, uy, uz): v' = v + w t + u × t with t = 2 u × v.
+[[gnu::always_inline]] inline void rotateByQuaternion(double w, double ux, double uy, double uz, double vx, double vy,
+                               double vz, double& ox, double& oy, double& oz) {
+  const double tx = 2.0 * (uy * vz - uz * vy);
+  const double ty = 2.0 * (uz * vx - ux * vz);
+  const double tz = 2.0 * (ux * vy - uy * vx);
+  ox = vx + w * tx + (uy * tz - uz * ty);
+  oy = vy + w * ty + (uz * tx - ux * tz);
+  oz = vz + w * tz + (ux * ty - uy * tx);
+}
+
+/// Bending rotation vector taking the chord n onto the end tangent a (both unit vectors).
+[[gnu::always_inline]] inline void bendingRotation(double nx, double ny, double nz, double ax, double ay, double az,
+                            double& px, double& py, double& pz) {
+  const double cx = ny * az - nz * ay, cy = nz * ax - nx * az, cz = nx * ay - ny * ax;
+  const double s = std::sqrt(cx * cx + cy * cy + cz * cz);
+  const double c = nx * ax + ny * ay + nz * az;
+  const double angle = atan2Branchless(s, c);
+  // For an unbent end s = 0 and c = 0: the floor on s avoids 0/0 and gives φ = 0.
+  const double scale = angle / (s > 1e-300 ? s : 1e-300);
+  px = cx * scale; py = cy * scale; pz = cz * scale;
+}
+
+/// Evaluates the beam law for one bond. d = x_j − x_i (m); q = (w, x, y, z) orientations.
+/// Inline and branch-free so that the bond loop vectorises.
+[[gnu::always_inline]] inline BeamResponse beamResponse(const BeamParameters& p, double radiusI, double radiusJ,
+                                 double restLength, double n0x, double n0y, double n0z,
+                                 double dx, double dy, double dz,
+                                 double qiw, double qix, double qiy, double qiz,
+                                 double qjw, double qjx, double qjy, double qjz) {
+  const BeamSection sec = BeamSection::of(p, radiusI, radiusJ);
+  const double invL0 = 1.0 / restLength;
+  const double kAxial = p.youngModulus * sec.area * invL0;
+  const double kBend = 2.0 * p.youngModulus * sec.secondMoment * invL0;
+  const double kTwist = p.shearModulus() * sec.polarMoment * invL0;
+
+  const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double invL = 1.0 / length;
+  const double nx = dx * invL, ny = dy * invL, nz = dz * invL;
+
+  // End tangents carried by each element, then the bending rotations relative to the chord.
+  double aix, aiy, aiz, ajx, ajy, ajz;
+  rotateByQuaternion(qiw, qix, qiy, qiz, n0x, n0y, n0z, aix, aiy, aiz);
+  rotateByQuaternion(qjw, qjx, qjy, qjz, n0x, n0y, n0z, ajx, ajy, ajz);
+  double pix, piy, piz, pjx, pjy, pjz;
+  bendingRotation(nx, ny, nz, aix, aiy, aiz, pix, piy, piz);
+  bendingRotation(nx, ny, nz, ajx, ajy, ajz, pjx, pjy, pjz);
+
+  // Twist: relative rotation q_rel = q_j q_i*, twist angle ψ = 2 atan2(v_rel·n, w_rel) with
+  // w_rel >= 0 (q and −q are the same rotation).
+  const double rw = qjw * qiw + qjx * qix + qjy * qiy + qjz * qiz;
+  const double rx = -qjw * qix + qjx * qiw - qjy * qiz + qjz * qiy;
+  const double ry = -qjw * qiy + qjx * qiz + qjy * qiw - qjz * qix;
+  const double rz = -qjw * qiz - qjx * qiy + qjy * qix + qjz * qiw;
+  const double sign = std::copysign(1.0, rw);
+  const double twist = 2.0 * atan2Branchless(sign * (rx * nx + ry * ny + rz * nz), sign * rw);
+
+  const double stretch = length - restLength;
+  const double axialForce = kAxial * stretch;
+  const double sumX = pix + pjx, sumY = piy + pjy, sumZ = piz + pjz;
+  const double shear = 3.0 * kBend * invL;  // 6 E I / (L0 L)
+
+  BeamResponse r;
+  r.fjx = -axialForce * nx + shear * (sumY * nz - sumZ * ny);
+  r.fjy = -axialForce * ny + shear * (sumZ * nx - sumX * nz);
+  r.fjz = -axialForce * nz + shear * (sumX * ny - sumY * nx);
+  const double twistMoment = kTwist * twist;
+  r.tix = -kBend * (2.0 * pix + pjx) + twistMoment * nx;
+  r.tiy = -kBend * (2.0 * piy + pjy) + twistMoment * ny;
+  r.tiz = -kBend * (2.0 * piz + pjz) + twistMoment * nz;
+  const double bjx = -kBend * (pix + 2.0 * pjx), bjy = -kBend * (piy + 2.0 * pjy),
+               bjz = -kBend * (piz + 2.0 * pjz);
+  r.tjx = bjx - twistMoment * nx;
+  r.tjy = bjy - twistMoment * ny;
+  r.tjz = bjz - twistMoment * nz;
+
+  // Outer-fibre stresses (physics-reference §1.5): largest end bending moment, torsion.
+  const double bix = r.tix - twistMoment * nx, biy = r.tiy - twistMoment * ny,
+               biz = r.tiz - twistMoment * nz;
+  const double momentI2 = bix * bix + biy * biy + biz * biz;
+  const double momentJ2 = bjx * bjx + bjy * bjy + bjz * bjz;
+  const double bendingMoment = std::sqrt(momentI2 > momentJ2 ? momentI2 : momentJ2);
+  const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
+  const double shearStress = std::fabs(twistMoment) * sec.radius / sec.polarMoment;
+  r.equivalentStress = rankineEquivalentStress(normalStress, shearStress);
+
+  const double phiI2 = pix * pix + piy * piy + piz * piz, phiJ2 = pjx * pjx + pjy * pjy + pjz * pjz;
+  const double phiIJ = pix * pjx + piy * pjy + piz * pjz;
+  r.energy = 0.5 * kAxial * stretch * stretch + kBend * (phiI2 + phiIJ + phiJ2) +
+             0.5 * kTwist * twist * twist;
+  r.axialForce = axialForce;
+  r.twist = twist;
+  return r;
+}
+
+}  // namespace rupture

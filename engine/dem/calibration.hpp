@@ -1,0 +1,57 @@
+#pragma once
+// Calibration of the cohesive beams (André et al. 2012, §4; physics-reference §1.6).
+//
+// Measurement: a quasi-static uniaxial tension on a built sample. Every element starts on the
+// affine field u = ε (x − x_c) e_x − ν₀ ε (y − y_c) e_y (− ν₀ ε (z − z_c) e_z), the faces X_min and
+// X_max are then held in x (free laterally), and Cundall-damped dynamics relaxes the interior to
+// equilibrium (no failure, no contact). Then
+//   E = σ̄ / ε with σ̄ = ½(F_Xmin + F_Xmax)/S (S = L_y × t in 2D with t = R_DE, L_y × L_z in 3D),
+//   ν = −ε_lat / ε with ε_lat the least-squares slope of u_y(y) (and u_z(z), averaged, in 3D).
+// Fit: ν_M depends almost only on the beam radius ratio (decreasing), E_M is linear in E_μ: find the
+// radius ratio for the target ν by bracketing and regula falsi, then rescale E_μ by E_target / E_M.
+#include <stdexcept>
+#include <string>
+
+#include "dem/bonded_system.hpp"
+#include "dem/sample_builder.hpp"
+#include "dem/sample_spec.hpp"
+
+namespace rupture {
+
+struct ElasticProperties {
+  double youngModulus = 0;  ///< Pa
+  double poissonRatio = 0;  ///< 1
+  std::size_t steps = 0;    ///< relaxation steps used
+  bool converged = false;
+};
+
+struct CalibrationOptions {
+  double strain = 1e-4;        ///< imposed ε (1)
+  double damping = 0.7;        ///< Cundall local damping γ
+  double timeStepSafety = 0.3; ///< quasi-static: no wave accuracy needed
+  double tolerance = 2e-5;     ///< relative change of E and ν between checks to stop
+  std::size_t maxSteps = 400000;
+};
+
+/// Thrown when a target cannot be reached (the message names the option and the reachable range).
+class CalibrationError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Measures E and ν of a built sample (the system is copied; the original is untouched).
+ElasticProperties measureElasticProperties(const BondedSystem& sample, const SampleSpec& spec,
+                                           const CalibrationOptions& options = {});
+
+struct BeamFit {
+  BeamParameters beam;          ///< fitted E_μ and radius ratio (ν_μ and σ_f kept)
+  ElasticProperties achieved;   ///< re-measured with the fitted beams
+  int evaluations = 0;          ///< number of tension tests run
+};
+
+/// Fits the beam Young's modulus and radius ratio so that the sample reaches targetYoung (Pa) and
+/// targetPoisson. Throws CalibrationError if ν is out of reach for radius ratios in [0.02, 1].
+BeamFit fitBeamParameters(const BondedSystem& sample, const SampleSpec& spec, double targetYoung,
+                          double targetPoisson, const CalibrationOptions& options = {});
+
+}  // namespace rupture

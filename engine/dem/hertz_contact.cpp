@@ -1,0 +1,162 @@
+#include "dem/hertz_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rupture {
+
+namespace {
+
+struct PairLoad {
+  double fx, fy, fz;  // force on i
+  double tix, tiy, tiz, tkx, tky, tkz;
+  bool active;
+};
+
+// Hertz–Coulomb load on i from k (see header); torques from the friction force at the contact point.
+inline PairLoad pairLoad(const ContactParameters& c, const ParticleStore& p, std::int32_t i,
+                         std::int32_t k) {
+  PairLoad out{};
+  const double dx = p.x[k] - p.x[i], dy = p.y[k] - p.y[i], dz = p.z[k] - p.z[i];
+  const double d2 = dx * dx + dy * dy + dz * dz;
+  const double reach = p.radius[i] + p.radius[k];
+  if (d2 >= reach * reach || d2 == 0.0) return out;
+  const double d = std::sqrt(d2);
+  const double nx = dx / d, ny = dy / d, nz = dz / d;
+  const double overlap = reach - d;
+  const double rStar = p.radius[i] * p.radius[k] / reach;
+  const double eStar = c.youngModulus / (2.0 * (1.0 - c.poissonRatio * c.poissonRatio));
+  const double mStar = p.mass[i] * p.mass[k] / (p.mass[i] + p.mass[k]);
+  const double sqrtRd = std::sqrt(rStar * overlap);
+  const double kTangent = 2.0 * eStar * sqrtRd;
+  const double damping = 2.0 * c.dampingRatio * std::sqrt(mStar * kTangent);
+
+  // Relative velocity of k's surface point with respect to i's, at the contact point.
+  const double ri = p.radius[i], rk = p.radius[k];
+  const double vix = p.vx[i] + (p.wy[i] * nz - p.wz[i] * ny) * ri;
+  const double viy = p.vy[i] + (p.wz[i] * nx - p.wx[i] * nz) * ri;
+  const double viz = p.vz[i] + (p.wx[i] * ny - p.wy[i] * nx) * ri;
+  const double vkx = p.vx[k] - (p.wy[k] * nz - p.wz[k] * ny) * rk;
+  const double vky = p.vy[k] - (p.wz[k] * nx - p.wx[k] * nz) * rk;
+  const double vkz = p.vz[k] - (p.wx[k] * ny - p.wy[k] * nx) * rk;
+  const double rvx = vkx - vix, rvy = vky - viy, rvz = vkz - viz;
+  const double vn = rvx * nx + rvy * ny + rvz * nz;  // < 0 when approaching
+  const double normal = std::max(0.0, 4.0 / 3.0 * eStar * sqrtRd * overlap - damping * vn);
+
+  const double vtx = rvx - vn * nx, vty = rvy - vn * ny, vtz = rvz - vn * nz;
+  const double vt = std::sqrt(vtx * vtx + vty * vty + vtz * vtz);
+  const double friction = vt > 0 ? std::min(c.friction * normal, damping * vt) / vt : 0.0;
+  const double ftx = friction * vtx, fty = friction * vty, ftz = friction * vtz;  // drags i along
+
+  out.fx = -normal * nx + ftx;
+  out.fy = -normal * ny + fty;
+  out.fz = -normal * nz + ftz;
+  // Torque on i: (R_i n) × F_t; on k: (−R_k n) × (−F_t) = R_k n × F_t.
+  out.tix = ri * (ny * ftz - nz * fty);
+  out.tiy = ri * (nz * ftx - nx * ftz);
+  out.tiz = ri * (nx * fty - ny * ftx);
+  out.tkx = rk * (ny * ftz - nz * fty);
+  out.tky = rk * (nz * ftx - nx * ftz);
+  out.tkz = rk * (nx * fty - ny * ftx);
+  out.active = true;
+  return out;
+}
+
+bool bonded(const BondStore& bonds, std::int32_t i, std::int32_t k) {
+  for (std::int32_t s = bonds.incidenceStart[i]; s < bonds.incidenceStart[i + 1]; ++s) {
+    const std::int32_t b = bonds.incidence[s] >> 1;
+    if (bonds.intact[b] > 0.5 && (bonds.i[b] == k || bonds.j[b] == k)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool HertzContact::needsRebuild(const ParticleStore& p) const {
+  if (!m_listValid || m_x0.size() != p.size()) return true;
+  const double limit2 = 0.25 * m_skin * m_skin;
+  bool moved = false;
+#pragma omp parallel for reduction(|| : moved) schedule(static)
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
+    moved = moved || (dx * dx + dy * dy + dz * dz > limit2);
+  }
+  return moved;
+}
+
+void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
+  const std::size_t n = p.size();
+  double maxRadius = 0, meanRadius = 0;
+  for (double r : p.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
+  meanRadius /= std::max<std::size_t>(n, 1);
+  m_skin = 0.3 * meanRadius;
+  m_cells.build(p, 2.0 * maxRadius + m_skin);
+
+  std::vector<std::vector<std::int32_t>> perParticle(n);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto i = static_cast<std::int32_t>(a);
+    m_cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
+      if (k == i) return;
+      const double dx = p.x[k] - p.x[a], dy = p.y[k] - p.y[a], dz = p.z[k] - p.z[a];
+      const double reach = p.radius[a] + p.radius[k] + m_skin;
+      if (dx * dx + dy * dy + dz * dz < reach * reach && !bonded(bonds, i, k))
+        perParticle[a].push_back(k);
+    });
+    std::sort(perParticle[a].begin(), perParticle[a].end());  // fixed order: determinism
+  }
+  m_start.assign(n + 1, 0);
+  for (std::size_t a = 0; a < n; ++a) m_start[a + 1] = m_start[a] + perParticle[a].size();
+  m_neighbors.resize(m_start[n]);
+  for (std::size_t a = 0; a < n; ++a)
+    std::copy(perParticle[a].begin(), perParticle[a].end(), m_neighbors.begin() + m_start[a]);
+  m_x0 = p.x; m_y0 = p.y; m_z0 = p.z;
+  m_brokenPairs.clear();
+  m_listValid = true;
+}
+
+void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
+  if (!m_params.enabled || p.size() == 0) return;
+  if (needsRebuild(p)) rebuild(p, bonds);
+  const std::size_t n = p.size();
+  // Full list: each particle sums the loads it receives; no two threads write the same particle.
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s) {
+      const PairLoad l = pairLoad(m_params, p, static_cast<std::int32_t>(a), m_neighbors[s]);
+      if (!l.active) continue;
+      p.fx[a] += l.fx; p.fy[a] += l.fy; p.fz[a] += l.fz;
+      p.tx[a] += l.tix; p.ty[a] += l.tiy; p.tz[a] += l.tiz;
+    }
+  }
+  // Pairs whose bond broke since the last rebuild: few, handled serially on both particles.
+  for (const Pair& pair : m_brokenPairs) {
+    const PairLoad l = pairLoad(m_params, p, pair.i, pair.j);
+    if (!l.active) continue;
+    p.fx[pair.i] += l.fx; p.fy[pair.i] += l.fy; p.fz[pair.i] += l.fz;
+    p.tx[pair.i] += l.tix; p.ty[pair.i] += l.tiy; p.tz[pair.i] += l.tiz;
+    p.fx[pair.j] -= l.fx; p.fy[pair.j] -= l.fy; p.fz[pair.j] -= l.fz;
+    p.tx[pair.j] += l.tkx; p.ty[pair.j] += l.tky; p.tz[pair.j] += l.tkz;
+  }
+}
+
+double HertzContact::energy(const ParticleStore& p) const {
+  if (!m_params.enabled || !m_listValid) return 0.0;
+  const double eStar = m_params.youngModulus / (2.0 * (1.0 - m_params.poissonRatio * m_params.poissonRatio));
+  auto pairEnergy = [&](std::int32_t i, std::int32_t k) {
+    const double dx = p.x[k] - p.x[i], dy = p.y[k] - p.y[i], dz = p.z[k] - p.z[i];
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double overlap = p.radius[i] + p.radius[k] - d;
+    if (overlap <= 0) return 0.0;
+    const double rStar = p.radius[i] * p.radius[k] / (p.radius[i] + p.radius[k]);
+    return 8.0 / 15.0 * eStar * std::sqrt(rStar) * std::pow(overlap, 2.5);
+  };
+  double e = 0;
+  for (std::size_t a = 0; a < p.size(); ++a)
+    for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s)
+      if (static_cast<std::int32_t>(a) < m_neighbors[s]) e += pairEnergy(static_cast<std::int32_t>(a), m_neighbors[s]);
+  for (const Pair& pair : m_brokenPairs) e += pairEnergy(pair.i, pair.j);
+  return e;
+}
+
+}  // namespace rupture

@@ -1,0 +1,58 @@
+#pragma once
+// Contact between elements that are not held by an intact bond (fragments after failure, or pairs
+// that come into contact): Hertz normal force, a viscous normal term and Coulomb friction.
+//   δ = R_i + R_k − d > 0,  R* = R_i R_k / (R_i + R_k),  E* = E / (2 (1 − ν²))
+//   F_n = (4/3) E* √R* δ^{3/2} + c_n δ̇,   c_n = 2 ζ √(m* k_n),  k_n = 2 E* √(R* δ)  (tangent stiffness)
+//   F_t = −min(μ F_n, c_n |v_t|) v_t/|v_t|   (Coulomb limit, viscous regularisation: no history)
+// The normal force never pulls (F_n >= 0). Energy stored: (8/15) E* √R* δ^{5/2}.
+// Neighbour search: cell list and a Verlet list with a skin, rebuilt when a particle has moved more
+// than half the skin; pairs whose bond breaks between rebuilds join the list at once.
+#include <cstdint>
+#include <vector>
+
+#include "core/bond_store.hpp"
+#include "core/cell_list.hpp"
+#include "core/particle_store.hpp"
+
+namespace rupture {
+
+struct ContactParameters {
+  double youngModulus = 0;    ///< E of the elements (Pa)
+  double poissonRatio = 0.3;  ///< ν (1)
+  double friction = 0.3;      ///< Coulomb coefficient μ (1)
+  double dampingRatio = 0.1;  ///< ζ (1), fraction of critical damping of the normal contact
+  bool enabled = true;
+};
+
+class HertzContact {
+public:
+  explicit HertzContact(ContactParameters p = {}) : m_params(p) {}
+  const ContactParameters& parameters() const { return m_params; }
+  void setParameters(const ContactParameters& p) { m_params = p; m_listValid = false; }
+
+  /// Adds contact forces and torques on every particle (after the bond loads were gathered).
+  void addForces(ParticleStore& p, const BondStore& bonds);
+
+  /// Call when bond b broke: its pair becomes a contact candidate immediately.
+  void onBondBroken(std::int32_t i, std::int32_t j) { m_brokenPairs.push_back({i, j}); }
+
+  /// Elastic energy stored in the current contacts (J).
+  double energy(const ParticleStore& p) const;
+
+  std::size_t candidatePairs() const { return m_neighbors.size() / 2 + m_brokenPairs.size(); }
+
+private:
+  void rebuild(const ParticleStore& p, const BondStore& bonds);
+  bool needsRebuild(const ParticleStore& p) const;
+
+  ContactParameters m_params;
+  bool m_listValid = false;
+  double m_skin = 0;
+  CellList m_cells;
+  std::vector<std::int32_t> m_start, m_neighbors;     // full list: both (i, k) and (k, i)
+  std::vector<double> m_x0, m_y0, m_z0;               // positions at the last rebuild
+  struct Pair { std::int32_t i, j; };
+  std::vector<Pair> m_brokenPairs;                    // since the last rebuild
+};
+
+}  // namespace rupture

@@ -1,0 +1,212 @@
+#include "dem/sample_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include "core/cell_list.hpp"
+
+namespace rupture {
+
+namespace {
+
+constexpr double kTargetFraction2D = 0.84;  // just below random close packing of polydisperse disks
+constexpr double kTargetFraction3D = 0.58;
+constexpr double kOverlapTolerance = 1e-2;  // × mean radius; the bonds take their rest state after it
+constexpr int kMaxRelaxationSweeps = 1500;  // residual overlaps are harmless: bonds take their rest state after
+
+double elementVolume(int dimension, double r) {
+  return dimension == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
+}
+
+/// Jacobi relaxation of overlaps between elements and with the box walls; returns the largest
+/// remaining overlap divided by the mean radius.
+double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double meanRadius) {
+  const std::size_t n = p.size();
+  const double maxRadius = *std::max_element(p.radius.begin(), p.radius.end());
+  std::vector<double> dx(n), dy(n), dz(n);
+  CellList cells;
+  double worst = 0;
+  for (int sweep = 0; sweep < kMaxRelaxationSweeps; ++sweep) {
+    cells.build(p, 2.0 * maxRadius);
+    worst = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst)
+    for (std::size_t a = 0; a < n; ++a) {
+      double mx = 0, my = 0, mz = 0;
+      const double ra = p.radius[a];
+      cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
+        if (static_cast<std::size_t>(k) == a) return;
+        const double ex = p.x[a] - p.x[k], ey = p.y[a] - p.y[k], ez = p.z[a] - p.z[k];
+        const double d = std::sqrt(ex * ex + ey * ey + ez * ez);
+        const double overlap = ra + p.radius[k] - d;
+        if (overlap <= 0) return;
+        worst = std::max(worst, overlap);
+        // Each element moves away by 35 % of the overlap: under-relaxed Jacobi, which converges
+        // near jamming where a full half-overlap push oscillates.
+        const double push = 0.35 * overlap / std::max(d, 1e-12 * ra);
+        mx += push * ex; my += push * ey; mz += push * ez;
+      });
+      // Walls: the element must lie inside the box.
+      auto wall = [&](double c, double length, double& m) {
+        if (c + m < ra) { worst = std::max(worst, ra - c); m = ra - c; }
+        if (c + m > length - ra) { worst = std::max(worst, c - (length - ra)); m = length - ra - c; }
+      };
+      wall(p.x[a], box[0], mx);
+      wall(p.y[a], box[1], my);
+      if (p.dimension == 3) wall(p.z[a], box[2], mz);
+      dx[a] = mx; dy[a] = my; dz[a] = mz;
+    }
+    if (worst < kOverlapTolerance * meanRadius) break;
+    for (std::size_t a = 0; a < n; ++a) {
+      p.x[a] += dx[a]; p.y[a] += dy[a]; p.z[a] += dz[a];
+    }
+  }
+  return worst / meanRadius;
+}
+
+void bondNeighbours(BondedSystem& system, double gap) {
+  ParticleStore& p = system.particles;
+  const double maxRadius = *std::max_element(p.radius.begin(), p.radius.end());
+  const double factor = 1.0 + 0.5 * gap;
+  CellList cells;
+  cells.build(p, 2.0 * maxRadius * factor);
+  for (std::size_t a = 0; a < p.size(); ++a)
+    cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
+      if (static_cast<std::size_t>(k) <= a) return;
+      const double ex = p.x[k] - p.x[a], ey = p.y[k] - p.y[a], ez = p.z[k] - p.z[a];
+      const double reach = (p.radius[a] + p.radius[k]) * factor;
+      if (ex * ex + ey * ey + ez * ez < reach * reach) system.bonds.add(p, a, k);
+    });
+}
+
+std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::mt19937_64& rng) {
+  std::vector<Pore> pores;
+  if (s.porosity <= 0) return pores;
+  std::uniform_real_distribution<double> radiusDraw(s.poreRadius[0], s.poreRadius[1]);
+  double volume = 0;
+  while (volume < poreVolumeTarget) {
+    const double r = radiusDraw(rng);
+    bool placed = false;
+    for (int attempt = 0; attempt < 20000 && !placed; ++attempt) {
+      Pore pore{{0, 0, 0}, r};
+      for (int a = 0; a < s.dimension; ++a)
+        pore.centre[a] = std::uniform_real_distribution<double>(r, s.size[a] - r)(rng);
+      placed = true;
+      for (const Pore& q : pores) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += (pore.centre[a] - q.centre[a]) * (pore.centre[a] - q.centre[a]);
+        if (d2 < (r + q.radius) * (r + q.radius)) { placed = false; break; }
+      }
+      if (placed) pores.push_back(pore);
+    }
+    if (!placed)
+      throw std::runtime_error("sample.porosity: could not place the pores without overlap (" +
+                               std::to_string(pores.size()) + " placed); lower the porosity or the pore radii");
+    volume += elementVolume(s.dimension, r);
+  }
+  return pores;
+}
+
+}  // namespace
+
+SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system) {
+  system = BondedSystem{};
+  ParticleStore& p = system.particles;
+  p.dimension = s.dimension;
+  std::mt19937_64 rng(s.seed);
+  SampleReport report;
+
+  double boxVolume = s.size[0] * s.size[1] * (s.dimension == 3 ? s.size[2] : 1.0);
+  const double target = s.dimension == 2 ? kTargetFraction2D : kTargetFraction3D;
+  std::uniform_real_distribution<double> radiusDraw(s.elementRadius * (1.0 - s.radiusDispersion),
+                                                    s.elementRadius * (1.0 + s.radiusDispersion));
+  double solid = 0;
+  while (solid < target * boxVolume) {
+    const double r = radiusDraw(rng);
+    double c[3] = {0, 0, 0};
+    for (int a = 0; a < s.dimension; ++a)
+      c[a] = std::uniform_real_distribution<double>(std::min(r, 0.5 * s.size[a]),
+                                                    std::max(s.size[a] - r, 0.5 * s.size[a]))(rng);
+    p.add(c[0], c[1], c[2], r);
+    solid += elementVolume(s.dimension, r);
+  }
+  report.packingFraction = solid / boxVolume;
+  double meanRadius = 0;
+  for (double r : p.radius) meanRadius += r;
+  meanRadius /= static_cast<double>(p.size());
+  report.relaxationOverlap = relaxOverlaps(p, s.size, meanRadius);
+
+  bondNeighbours(system, s.bondGap);
+
+  // Masses from the dense packing: the dense sample has the bulk density.
+  report.thickness = s.dimension == 2 ? s.elementRadius : 0.0;
+  report.elementDensity = m.density * boxVolume / solid;
+  p.setMassFromDensity(report.elementDensity, report.thickness);
+
+  // Pores: for each element, the smallest common scale s_i of the pore radii that would swallow
+  // its centre; removing the elements with s_i < scale gives a porosity that grows with scale.
+  report.pores = placePores(s, s.porosity * boxVolume, rng);
+  std::vector<std::uint8_t> keep(p.size(), 1);
+  if (!report.pores.empty()) {
+    std::vector<double> swallowScale(p.size(), 1e300);
+    for (std::size_t k = 0; k < p.size(); ++k)
+      for (const Pore& pore : report.pores) {
+        const double ex = p.x[k] - pore.centre[0], ey = p.y[k] - pore.centre[1], ez = p.z[k] - pore.centre[2];
+        swallowScale[k] = std::min(swallowScale[k], std::sqrt(ex * ex + ey * ey + ez * ez) / pore.radius);
+      }
+    // The largest scale keeping pores apart and inside the box.
+    double maxScale = 1.5;
+    for (std::size_t a = 0; a < report.pores.size(); ++a) {
+      const Pore& pa = report.pores[a];
+      for (int ax = 0; ax < s.dimension; ++ax)
+        maxScale = std::min({maxScale, pa.centre[ax] / pa.radius, (s.size[ax] - pa.centre[ax]) / pa.radius});
+      for (std::size_t b = a + 1; b < report.pores.size(); ++b) {
+        const Pore& pb = report.pores[b];
+        double d2 = 0;
+        for (int ax = 0; ax < 3; ++ax) d2 += (pa.centre[ax] - pb.centre[ax]) * (pa.centre[ax] - pb.centre[ax]);
+        maxScale = std::min(maxScale, std::sqrt(d2) / (pa.radius + pb.radius));
+      }
+    }
+    std::vector<std::size_t> order(p.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return swallowScale[a] < swallowScale[b] || (swallowScale[a] == swallowScale[b] && a < b);
+    });
+    const double wanted = s.porosity * solid;
+    double removed = 0, scale = 0;
+    for (std::size_t n = 0; n < order.size(); ++n) {
+      const std::size_t k = order[n];
+      if (swallowScale[k] >= maxScale) break;
+      const double v = elementVolume(s.dimension, p.radius[k]);
+      // Stop where the removed volume is closest to the target.
+      if (removed + v > wanted && (removed + v - wanted) > (wanted - removed)) break;
+      removed += v;
+      keep[k] = 0;
+      scale = swallowScale[k];
+    }
+    // Report pores at the radius that was actually carved (just above the last swallowed centre).
+    for (Pore& pore : report.pores) pore.radius *= scale;
+    report.porosity = removed / solid;
+  }
+  // Drop the pore elements, then any element left with no bond (it would float free).
+  auto newIndex = p.compact(keep);
+  system.bonds.remap(newIndex);
+  std::vector<std::uint8_t> bonded(p.size(), 0);
+  for (std::size_t b = 0; b < system.bonds.size(); ++b) bonded[system.bonds.i[b]] = bonded[system.bonds.j[b]] = 1;
+  if (std::find(bonded.begin(), bonded.end(), 0) != bonded.end()) {
+    newIndex = p.compact(bonded);
+    system.bonds.remap(newIndex);
+  }
+
+  system.beam = m.beam;
+  system.contact.setParameters(m.contact);
+  system.initialize();
+  report.elements = p.size();
+  report.bonds = system.bonds.size();
+  report.meanCoordination = p.size() ? 2.0 * static_cast<double>(report.bonds) / static_cast<double>(p.size()) : 0.0;
+  return report;
+}
+
+}  // namespace rupture

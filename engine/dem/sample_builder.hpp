@@ -1,0 +1,44 @@
+#pragma once
+// Builds a bonded sample: a dense random packing of polydisperse disks (2D) or spheres (3D) in a
+// box, beams between neighbours, then pores. Seeded and reproducible.
+//
+// Packing: "collective rearrangement": radii are drawn uniformly in R·[1 − d, 1 + d] until the
+// solid fraction reaches a target just below random close packing (0.84 in 2D, 0.58 in 3D), centres
+// are placed at random, and overlaps are relaxed (Jacobi sweeps with a cell list, walls included)
+// until the largest overlap is below 1 % of the mean radius. Pairs closer than
+// (R_i + R_j)(1 + gap/2) are bonded, with the beam rest state taken in that configuration.
+// Pores: radii uniform in [r_min, r_max] until their volume reaches the target porosity, placed
+// at random inside the box without overlap, then all scaled by one common factor (found by
+// bisection, typically within a few % of 1) so that the volume of the elements whose centres fall
+// inside a pore matches the porosity; those elements are removed, then any element left without bonds.
+// Masses: the element density is set so that the dense packing has the material's bulk density
+// (ρ_el = ρ V_box / Σ V_i); in 2D an element is a disk of thickness t = R_DE (the section S = L × R_DE
+// of the seed's eq. 4).
+#include <array>
+#include <vector>
+
+#include "dem/bonded_system.hpp"
+#include "dem/sample_spec.hpp"
+
+namespace rupture {
+
+struct Pore {
+  std::array<double, 3> centre;
+  double radius;
+};
+
+struct SampleReport {
+  std::size_t elements = 0, bonds = 0;
+  double meanCoordination = 0;     ///< 2 × bonds / elements
+  double packingFraction = 0;      ///< solid fraction of the dense packing (before pores)
+  double porosity = 0;             ///< achieved: removed element volume / dense element volume
+  double thickness = 0;            ///< out-of-plane thickness used in 2D (m); 0 in 3D
+  double elementDensity = 0;       ///< ρ_el (kg/m³)
+  double relaxationOverlap = 0;    ///< largest residual overlap after packing / mean radius
+  std::vector<Pore> pores;
+};
+
+/// Fills `system` (particles, bonds, beam and contact parameters) from the spec and initialises it.
+SampleReport buildSample(const SampleSpec& sample, const MaterialSpec& material, BondedSystem& system);
+
+}  // namespace rupture

@@ -1,0 +1,105 @@
+#include "io/bonded_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rupture::io {
+
+namespace {
+// Guard against specs that would build an absurd number of elements (and exhaust memory).
+constexpr double kMaxElements = 5e6;
+}  // namespace
+
+SampleSpec parseSample(const SpecReader& root) {
+  SampleSpec s;
+  s.dimension = static_cast<int>(root.integer("dimension", 2, 3));
+  const SpecReader sample = root.object("sample");
+  const std::size_t d = static_cast<std::size_t>(s.dimension);
+  const auto size = sample.numbers("size", d, d, Range::positive(), "m");
+  for (std::size_t a = 0; a < d; ++a) s.size[a] = size[a];
+  s.elementRadius = sample.number("element_radius", Range::positive(), "m");
+  s.radiusDispersion = sample.number("radius_dispersion", Range::closed(0.0, 0.5), "1", s.radiusDispersion);
+  s.porosity = sample.number("porosity", Range::closed(0.0, 0.6), "1", 0.0);
+  if (s.porosity > 0 || sample.has("pore_radius")) {
+    const auto pores = sample.numbers("pore_radius", 2, 2, Range::positive(), "m");
+    if (pores[0] > pores[1]) sample.fail("pore_radius", "[min, max] with min <= max (m)");
+    s.poreRadius = {pores[0], pores[1]};
+    const double smallestEdge = *std::min_element(size.begin(), size.end());
+    if (2.0 * pores[1] >= smallestEdge)
+      sample.fail("pore_radius", "pore diameters smaller than the smallest sample edge");
+  }
+  s.seed = static_cast<std::uint64_t>(sample.integer("seed", 0, (std::int64_t{1} << 53), 1));
+  s.bondGap = sample.number("bond_gap", Range::closed(0.0, 1.0), "1", s.bondGap);
+  sample.finish();
+
+  double volume = 1, elementVolume = 0;
+  for (std::size_t a = 0; a < d; ++a) volume *= s.size[a];
+  elementVolume = s.dimension == 2 ? std::numbers::pi * s.elementRadius * s.elementRadius
+                                   : 4.0 / 3.0 * std::numbers::pi * std::pow(s.elementRadius, 3);
+  const double estimate = volume / elementVolume;
+  if (estimate > kMaxElements)
+    throw SpecError(sample.pathOf("element_radius"), std::to_string(s.elementRadius),
+                    "a radius giving at most 5e6 elements for this sample.size (this gives about " +
+                        std::to_string(static_cast<long long>(estimate)) + ")");
+  if (estimate < 8)
+    throw SpecError(sample.pathOf("element_radius"), std::to_string(s.elementRadius),
+                    "a radius small enough for at least 8 elements in sample.size");
+  return s;
+}
+
+MaterialSpec parseMaterial(const SpecReader& root) {
+  MaterialSpec m;
+  const SpecReader material = root.object("material");
+  m.model = material.choice("model", {"beam"});
+  m.density = material.number("density", Range::positive(), "kg/m^3");
+  const SpecReader beam = material.object("beam");
+  m.beam.youngModulus = beam.number("young_modulus", Range::positive(), "Pa");
+  m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
+  m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
+  m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
+  beam.finish();
+  m.contact.youngModulus = m.beam.youngModulus;
+  m.contact.poissonRatio = m.beam.poissonRatio;
+  if (auto contact = material.optionalObject("contact")) {
+    m.contact.enabled = contact->boolean("enabled", true);
+    m.contact.youngModulus = contact->number("young_modulus", Range::positive(), "Pa", m.contact.youngModulus);
+    m.contact.poissonRatio = contact->number("poisson_ratio", {-1.0, 0.5, true, true}, "1", m.contact.poissonRatio);
+    m.contact.friction = contact->number("friction", Range::closed(0.0, 2.0), "1", m.contact.friction);
+    m.contact.dampingRatio = contact->number("damping_ratio", Range::closed(0.0, 1.0), "1", m.contact.dampingRatio);
+    contact->finish();
+  }
+  material.finish();
+  return m;
+}
+
+nlohmann::json toJson(const SampleSpec& s) {
+  nlohmann::json size = nlohmann::json::array();
+  for (int a = 0; a < s.dimension; ++a) size.push_back(s.size[a]);
+  nlohmann::json j = {{"size", size},
+                      {"element_radius", s.elementRadius},
+                      {"radius_dispersion", s.radiusDispersion},
+                      {"porosity", s.porosity},
+                      {"seed", s.seed},
+                      {"bond_gap", s.bondGap}};
+  if (s.porosity > 0) j["pore_radius"] = {s.poreRadius[0], s.poreRadius[1]};
+  return j;
+}
+
+nlohmann::json toJson(const MaterialSpec& m) {
+  return {{"model", m.model},
+          {"density", m.density},
+          {"beam",
+           {{"young_modulus", m.beam.youngModulus},
+            {"poisson_ratio", m.beam.poissonRatio},
+            {"radius_ratio", m.beam.radiusRatio},
+            {"failure_stress", m.beam.failureStress}}},
+          {"contact",
+           {{"enabled", m.contact.enabled},
+            {"young_modulus", m.contact.youngModulus},
+            {"poisson_ratio", m.contact.poissonRatio},
+            {"friction", m.contact.friction},
+            {"damping_ratio", m.contact.dampingRatio}}}};
+}
+
+}  // namespace rupture::io

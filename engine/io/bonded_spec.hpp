@@ -1,0 +1,19 @@
+#pragma once
+// Parsing and validation of the bonded sample + material part of a spec, and its resolved JSON
+// (with defaults filled in) for the result file.
+#include <nlohmann/json.hpp>
+
+#include "dem/sample_spec.hpp"
+#include "io/spec_reader.hpp"
+
+namespace rupture::io {
+
+/// Reads "dimension" and "sample" from the spec root.
+SampleSpec parseSample(const SpecReader& root);
+/// Reads "material" from the spec root (dimension-independent).
+MaterialSpec parseMaterial(const SpecReader& root);
+
+nlohmann::json toJson(const SampleSpec& sample);
+nlohmann::json toJson(const MaterialSpec& material);
+
+}  // namespace rupture::io

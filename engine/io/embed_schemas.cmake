@@ -1,0 +1,12 @@
+# Writes every api/schemas/<name>.schema.json into a C++ include as {name, raw string} pairs.
+file(GLOB schemas ${SCHEMA_DIR}/*.schema.json)
+list(SORT schemas)
+set(content "// Generated from api/schemas by engine/io/embed_schemas.cmake. Do not edit.\n")
+foreach(f ${schemas})
+  get_filename_component(fname ${f} NAME)
+  string(REPLACE ".schema.json" "" name ${fname})
+  file(READ ${f} text)
+  string(APPEND content "{\"${name}\", R\"rupture_schema(${text})rupture_schema\"},\n")
+endforeach()
+file(WRITE ${OUT}.tmp "${content}")
+file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)

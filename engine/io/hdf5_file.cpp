@@ -1,0 +1,604 @@
+#include "io/hdf5_file.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include <hdf5.h>
+
+// Version-mapped calls (H5Oget_info*, H5Literate*, H5Ovisit*) are avoided on purpose: Debian maps
+// them to the v18 signatures (dependencies notes §1.2) and 1.12 remaps them again. Everything here
+// has one signature from 1.8 to 1.14.
+static_assert(std::is_same_v<hid_t, std::int64_t>, "Hdf5File stores hid_t as std::int64_t");
+
+namespace rupture::io {
+namespace {
+
+/// Owns one hid_t and closes it with the matching H5?close.
+class Handle {
+public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : m_id(id), m_closer(closer) {}
+  Handle(Handle&& o) noexcept : m_id(std::exchange(o.m_id, -1)), m_closer(o.m_closer) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      m_id = std::exchange(o.m_id, -1);
+      m_closer = o.m_closer;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return m_id; }
+  void reset() {
+    if (m_id >= 0 && m_closer != nullptr) m_closer(m_id);
+    m_id = -1;
+  }
+
+private:
+  hid_t m_id = -1;
+  Closer m_closer = nullptr;
+};
+
+// Error stacks and the automatic printer are per thread (notes §1.1), so silence the printer once
+// in every thread that touches a file; failures are reported through Hdf5Error instead.
+void silenceAutoPrint() {
+  thread_local bool silenced = false;
+  if (!silenced) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    silenced = true;
+  }
+}
+
+/// The innermost (most specific) message on this thread's error stack, e.g. the errno text.
+std::string innermostHdf5Message() {
+  std::string message;
+  auto take = [](unsigned, const H5E_error2_t* err, void* data) -> herr_t {
+    auto* out = static_cast<std::string*>(data);
+    if (out->empty() && err != nullptr && err->desc != nullptr) {
+      *out = std::string(err->func_name != nullptr ? err->func_name : "?") + ": " + err->desc;
+    }
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take, &message);
+  H5Eclear2(H5E_DEFAULT);
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message;
+}
+
+[[noreturn]] void fail(const std::string& file, const std::string& obj, const std::string& what) {
+  std::string msg = "HDF5: " + what + " (file '" + file + "'";
+  if (!obj.empty()) msg += ", object '" + obj + "'";
+  msg += ")";
+  const std::string detail = innermostHdf5Message();
+  if (!detail.empty()) msg += ": " + detail;
+  throw Hdf5Error(msg);
+}
+
+hid_t checkId(hid_t id, const std::string& file, const std::string& obj, const std::string& what) {
+  if (id < 0) fail(file, obj, what);
+  return id;
+}
+
+void checkRc(herr_t rc, const std::string& file, const std::string& obj, const std::string& what) {
+  if (rc < 0) fail(file, obj, what);
+}
+
+std::string attrLabel(const std::string& objPath, const std::string& name) {
+  return objPath + "@" + name;
+}
+
+/// Link-creation list that makes missing parent groups, like `mkdir -p`.
+Handle intermediateGroupsLcpl(const std::string& file, const std::string& obj) {
+  Handle lcpl(checkId(H5Pcreate(H5P_LINK_CREATE), file, obj, "cannot create property list"),
+              H5Pclose);
+  checkRc(H5Pset_create_intermediate_group(lcpl.get(), 1), file, obj,
+          "cannot enable intermediate groups");
+  return lcpl;
+}
+
+/// File-access list for files we write: file format v2 or later, as H5MD recommends (notes §5.2).
+Handle writerFapl(const std::string& file) {
+  Handle fapl(checkId(H5Pcreate(H5P_FILE_ACCESS), file, "", "cannot create property list"),
+              H5Pclose);
+  checkRc(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), file, "",
+          "cannot set library version bounds");
+  return fapl;
+}
+
+Handle variableUtf8String(const std::string& file, const std::string& obj) {
+  Handle type(checkId(H5Tcopy(H5T_C_S1), file, obj, "cannot copy string type"), H5Tclose);
+  checkRc(H5Tset_size(type.get(), H5T_VARIABLE), file, obj, "cannot make string type");
+  checkRc(H5Tset_cset(type.get(), H5T_CSET_UTF8), file, obj, "cannot make string type");
+  return type;
+}
+
+/// Writes one scalar attribute on an open object, replacing any attribute of that name.
+void writeScalarAttribute(hid_t obj, const std::string& file, const std::string& label,
+                          const std::string& name, hid_t fileType, hid_t memType,
+                          const void* value) {
+  const htri_t present = H5Aexists(obj, name.c_str());
+  checkRc(present < 0 ? -1 : 0, file, label, "cannot query attribute");
+  if (present > 0) checkRc(H5Adelete(obj, name.c_str()), file, label, "cannot replace attribute");
+  Handle space(checkId(H5Screate(H5S_SCALAR), file, label, "cannot create dataspace"), H5Sclose);
+  Handle attr(checkId(H5Acreate2(obj, name.c_str(), fileType, space.get(), H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      file, label, "cannot create attribute"),
+              H5Aclose);
+  checkRc(H5Awrite(attr.get(), memType, value), file, label, "cannot write attribute");
+}
+
+void writeStringAttribute(hid_t obj, const std::string& file, const std::string& label,
+                          const std::string& name, const std::string& value) {
+  Handle type = variableUtf8String(file, label);
+  const char* text = value.c_str();
+  writeScalarAttribute(obj, file, label, name, type.get(), type.get(), &text);
+}
+
+std::size_t product(const std::vector<std::size_t>& dims) {
+  std::size_t n = 1;
+  for (std::size_t d : dims) n *= d;
+  return n;
+}
+
+// About 256 KiB per chunk: well inside the default 1 MiB chunk cache, large enough for deflate.
+constexpr hsize_t kChunkTargetBytes = 256 * 1024;
+
+/// Chunk shape: the full dataset, shrunk along the leading dimensions until it fits the target.
+std::vector<hsize_t> chunkShape(const std::vector<hsize_t>& dims, std::size_t elementBytes) {
+  std::vector<hsize_t> chunk(dims.size());
+  for (std::size_t i = 0; i < dims.size(); ++i) chunk[i] = std::max<hsize_t>(dims[i], 1);
+  auto bytes = [&] {
+    hsize_t b = elementBytes;
+    for (hsize_t c : chunk) b *= c;
+    return b;
+  };
+  for (std::size_t i = 0; i < chunk.size() && bytes() > kChunkTargetBytes; ++i) {
+    const hsize_t slice = bytes() / chunk[i];
+    chunk[i] = std::max<hsize_t>(1, kChunkTargetBytes / slice);
+  }
+  return chunk;
+}
+
+/// Which numeric classes a typed read accepts.
+enum class Accept { IntegerOrFloat, IntegerOnly };
+
+void checkNumericClass(hid_t type, Accept accept, const std::string& file,
+                       const std::string& label) {
+  const H5T_class_t cls = H5Tget_class(type);
+  checkRc(cls == H5T_NO_CLASS ? -1 : 0, file, label, "cannot query datatype");
+  if (cls == H5T_INTEGER) return;
+  if (cls == H5T_FLOAT && accept == Accept::IntegerOrFloat) return;
+  fail(file, label,
+       accept == Accept::IntegerOnly ? "not an integer type" : "not a numeric type");
+}
+
+/// Reads a one-element numeric attribute into *out as memType.
+void readScalarAttribute(hid_t file, const std::string& fileName, const std::string& objPath,
+                         const std::string& name, hid_t memType, Accept accept, void* out) {
+  const std::string label = attrLabel(objPath, name);
+  Handle attr(checkId(H5Aopen_by_name(file, objPath.c_str(), name.c_str(), H5P_DEFAULT,
+                                      H5P_DEFAULT),
+                      fileName, label, "cannot open attribute"),
+              H5Aclose);
+  Handle type(checkId(H5Aget_type(attr.get()), fileName, label, "cannot get attribute type"),
+              H5Tclose);
+  checkNumericClass(type.get(), accept, fileName, label);
+  Handle space(checkId(H5Aget_space(attr.get()), fileName, label, "cannot get dataspace"),
+               H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+    fail(fileName, label, "attribute is not a single value");
+  }
+  checkRc(H5Aread(attr.get(), memType, out), fileName, label, "cannot read attribute");
+}
+
+template <class T>
+void writeTypedDataset(hid_t file, const std::string& fileName, const std::string& path,
+                       const std::vector<T>& data, const std::vector<std::size_t>& dims,
+                       const std::string& unit, hid_t fileType, hid_t memType) {
+  if (dims.empty()) fail(fileName, path, "dataset needs at least one dimension");
+  if (product(dims) != data.size()) {
+    fail(fileName, path,
+         "dataset shape holds " + std::to_string(product(dims)) + " values but " +
+             std::to_string(data.size()) + " were given");
+  }
+  // Replace an existing dataset, but never silently drop a group (and everything under it).
+  const htri_t present = H5Lexists(file, path.c_str(), H5P_DEFAULT);
+  if (present > 0) {
+    Handle old(checkId(H5Oopen(file, path.c_str(), H5P_DEFAULT), fileName, path,
+                       "cannot open existing object"),
+               H5Oclose);
+    if (H5Iget_type(old.get()) != H5I_DATASET) fail(fileName, path, "exists and is not a dataset");
+    old.reset();
+    checkRc(H5Ldelete(file, path.c_str(), H5P_DEFAULT), fileName, path,
+            "cannot replace dataset");
+  }
+
+  const bool empty = data.empty();
+  const std::vector<hsize_t> shape(dims.begin(), dims.end());
+  // An empty dataset still needs a legal chunk shape (>= 1 per dim), hence unlimited max dims.
+  std::vector<hsize_t> maxShape(shape.size(), H5S_UNLIMITED);
+  if (!empty) maxShape.assign(dims.begin(), dims.end());
+  Handle space(checkId(H5Screate_simple(static_cast<int>(shape.size()), shape.data(),
+                                        maxShape.data()),
+                       fileName, path, "cannot create dataspace"),
+               H5Sclose);
+
+  Handle dcpl(checkId(H5Pcreate(H5P_DATASET_CREATE), fileName, path,
+                      "cannot create property list"),
+              H5Pclose);
+  const std::vector<hsize_t> chunk = chunkShape(shape, sizeof(T));
+  checkRc(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), fileName, path,
+          "cannot set chunking");
+  if (!empty) {
+    // Filter order matters: shuffle groups bytes of equal significance, then deflate squeezes.
+    checkRc(H5Pset_shuffle(dcpl.get()), fileName, path, "cannot enable shuffle");
+    checkRc(H5Pset_deflate(dcpl.get(), 4), fileName, path, "cannot enable deflate");
+  }
+
+  Handle lcpl = intermediateGroupsLcpl(fileName, path);
+  Handle dset(checkId(H5Dcreate2(file, path.c_str(), fileType, space.get(), lcpl.get(),
+                                 dcpl.get(), H5P_DEFAULT),
+                      fileName, path, "cannot create dataset"),
+              H5Dclose);
+  if (!empty) {
+    checkRc(H5Dwrite(dset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), fileName,
+            path, "cannot write dataset");
+  }
+  writeStringAttribute(dset.get(), fileName, attrLabel(path, "unit"), "unit", unit);
+}
+
+template <class T>
+std::vector<T> readTypedDataset(hid_t file, const std::string& fileName, const std::string& path,
+                                hid_t memType, Accept accept) {
+  Handle dset(checkId(H5Dopen2(file, path.c_str(), H5P_DEFAULT), fileName, path,
+                      "cannot open dataset"),
+              H5Dclose);
+  Handle type(checkId(H5Dget_type(dset.get()), fileName, path, "cannot get datatype"), H5Tclose);
+  checkNumericClass(type.get(), accept, fileName, path);
+  Handle space(checkId(H5Dget_space(dset.get()), fileName, path, "cannot get dataspace"),
+               H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  checkRc(n < 0 ? -1 : 0, fileName, path, "cannot get dataset size");
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (!out.empty()) {
+    checkRc(H5Dread(dset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), fileName,
+            path, "cannot read dataset");
+  }
+  return out;
+}
+
+}  // namespace
+
+// ---- lifetime -----------------------------------------------------------------------------------
+
+Hdf5File::Hdf5File(std::int64_t id, std::string path) : m_id(id), m_path(std::move(path)) {}
+
+Hdf5File Hdf5File::create(const std::string& path) {
+  silenceAutoPrint();
+  Handle fapl = writerFapl(path);
+  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  return Hdf5File(checkId(id, path, "", "cannot create file"), path);
+}
+
+Hdf5File Hdf5File::openReadOnly(const std::string& path) {
+  silenceAutoPrint();
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  return Hdf5File(checkId(id, path, "", "cannot open file read-only"), path);
+}
+
+Hdf5File Hdf5File::openReadWrite(const std::string& path) {
+  silenceAutoPrint();
+  Handle fapl = writerFapl(path);
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get());
+  return Hdf5File(checkId(id, path, "", "cannot open file read-write"), path);
+}
+
+Hdf5File::Hdf5File(Hdf5File&& other) noexcept
+    : m_id(std::exchange(other.m_id, -1)), m_path(std::move(other.m_path)) {}
+
+Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
+  if (this != &other) {
+    try {
+      close();
+    } catch (...) {  // noexcept: a failed close of the old file cannot be reported here
+    }
+    m_id = std::exchange(other.m_id, -1);
+    m_path = std::move(other.m_path);
+  }
+  return *this;
+}
+
+Hdf5File::~Hdf5File() {
+  try {
+    close();
+  } catch (...) {  // destructors must not throw; call close() explicitly to see the error
+  }
+}
+
+void Hdf5File::close() {
+  if (m_id < 0) return;
+  silenceAutoPrint();
+  const hid_t id = std::exchange(m_id, -1);  // closed (or unusable) from here on, even on failure
+  checkRc(H5Fclose(id), m_path, "", "cannot close file");
+}
+
+void Hdf5File::flush() {
+  requireOpen();
+  checkRc(H5Fflush(m_id, H5F_SCOPE_LOCAL), m_path, "", "cannot flush file");
+}
+
+const std::string& Hdf5File::path() const { return m_path; }
+
+void Hdf5File::requireOpen() const {
+  if (m_id < 0) throw Hdf5Error("HDF5: file '" + m_path + "' is closed");
+  silenceAutoPrint();  // the file may have been moved to another thread since it was opened
+}
+
+// ---- groups and links ---------------------------------------------------------------------------
+
+void Hdf5File::createGroup(const std::string& groupPath) {
+  requireOpen();
+  if (exists(groupPath)) {
+    Handle obj(checkId(H5Oopen(m_id, groupPath.c_str(), H5P_DEFAULT), m_path, groupPath,
+                       "cannot open object"),
+               H5Oclose);
+    if (H5Iget_type(obj.get()) != H5I_GROUP) fail(m_path, groupPath, "exists and is not a group");
+    return;
+  }
+  Handle lcpl = intermediateGroupsLcpl(m_path, groupPath);
+  Handle group(checkId(H5Gcreate2(m_id, groupPath.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+                       m_path, groupPath, "cannot create group"),
+               H5Gclose);
+}
+
+bool Hdf5File::exists(const std::string& objPath) const {
+  requireOpen();
+  if (objPath.empty()) return false;
+  // H5Lexists only looks at the last component, so walk the levels from the root down.
+  std::string prefix;
+  std::size_t start = 0;
+  while (start < objPath.size()) {
+    std::size_t end = objPath.find('/', start);
+    if (end == std::string::npos) end = objPath.size();
+    if (end > start) {
+      prefix += '/';
+      prefix.append(objPath, start, end - start);
+      if (H5Lexists(m_id, prefix.c_str(), H5P_DEFAULT) <= 0) {
+        H5Eclear2(H5E_DEFAULT);  // e.g. a dataset in the middle of the path: simply "no"
+        return false;
+      }
+    }
+    start = end + 1;
+  }
+  if (prefix.empty()) return true;  // "/" or "///": the root group
+  // A dangling soft link exists as a link but cannot be opened.
+  const htri_t resolves = H5Oexists_by_name(m_id, prefix.c_str(), H5P_DEFAULT);
+  H5Eclear2(H5E_DEFAULT);
+  return resolves > 0;
+}
+
+std::vector<std::string> Hdf5File::listGroup(const std::string& groupPath) const {
+  requireOpen();
+  Handle group(checkId(H5Gopen2(m_id, groupPath.c_str(), H5P_DEFAULT), m_path, groupPath,
+                       "cannot open group"),
+               H5Gclose);
+  H5G_info_t info{};
+  checkRc(H5Gget_info(group.get(), &info), m_path, groupPath, "cannot get group info");
+  std::vector<std::string> names;
+  names.reserve(info.nlinks);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                           nullptr, 0, H5P_DEFAULT);
+    checkRc(len < 0 ? -1 : 0, m_path, groupPath, "cannot get link name");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    checkRc(H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                               name.size(), H5P_DEFAULT) < 0
+                ? -1
+                : 0,
+            m_path, groupPath, "cannot get link name");
+    name.resize(static_cast<std::size_t>(len));
+    names.push_back(std::move(name));
+  }
+  // The name index is already in strcmp order; sorting keeps the promise whatever index is used.
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// ---- attributes ---------------------------------------------------------------------------------
+
+void Hdf5File::setAttribute(const std::string& objPath, const std::string& name, double value) {
+  requireOpen();
+  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
+                     "cannot open object"),
+             H5Oclose);
+  writeScalarAttribute(obj.get(), m_path, attrLabel(objPath, name), name, H5T_IEEE_F64LE,
+                       H5T_NATIVE_DOUBLE, &value);
+}
+
+void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
+                            std::int64_t value) {
+  requireOpen();
+  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
+                     "cannot open object"),
+             H5Oclose);
+  writeScalarAttribute(obj.get(), m_path, attrLabel(objPath, name), name, H5T_STD_I64LE,
+                       H5T_NATIVE_INT64, &value);
+}
+
+void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
+                            const std::string& value) {
+  requireOpen();
+  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
+                     "cannot open object"),
+             H5Oclose);
+  writeStringAttribute(obj.get(), m_path, attrLabel(objPath, name), name, value);
+}
+
+double Hdf5File::readAttributeDouble(const std::string& objPath, const std::string& name) const {
+  requireOpen();
+  double value = 0.0;
+  readScalarAttribute(m_id, m_path, objPath, name, H5T_NATIVE_DOUBLE, Accept::IntegerOrFloat,
+                      &value);
+  return value;
+}
+
+std::int64_t Hdf5File::readAttributeInt(const std::string& objPath,
+                                        const std::string& name) const {
+  requireOpen();
+  std::int64_t value = 0;
+  readScalarAttribute(m_id, m_path, objPath, name, H5T_NATIVE_INT64, Accept::IntegerOnly, &value);
+  return value;
+}
+
+std::string Hdf5File::readAttributeString(const std::string& objPath,
+                                          const std::string& name) const {
+  requireOpen();
+  const std::string label = attrLabel(objPath, name);
+  Handle attr(checkId(H5Aopen_by_name(m_id, objPath.c_str(), name.c_str(), H5P_DEFAULT,
+                                      H5P_DEFAULT),
+                      m_path, label, "cannot open attribute"),
+              H5Aclose);
+  Handle fileType(checkId(H5Aget_type(attr.get()), m_path, label, "cannot get attribute type"),
+                  H5Tclose);
+  if (H5Tget_class(fileType.get()) != H5T_STRING) fail(m_path, label, "not a string attribute");
+  Handle space(checkId(H5Aget_space(attr.get()), m_path, label, "cannot get dataspace"),
+               H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+    fail(m_path, label, "attribute is not a single string");
+  }
+
+  const htri_t variable = H5Tis_variable_str(fileType.get());
+  checkRc(variable < 0 ? -1 : 0, m_path, label, "cannot query string type");
+  if (variable > 0) {
+    // Same character set as stored: HDF5 does not convert between ASCII and UTF-8.
+    Handle memType = variableUtf8String(m_path, label);
+    checkRc(H5Tset_cset(memType.get(), H5Tget_cset(fileType.get())), m_path, label,
+            "cannot make string type");
+    char* text = nullptr;
+    checkRc(H5Aread(attr.get(), memType.get(), &text), m_path, label, "cannot read attribute");
+    std::string value = text != nullptr ? text : "";
+    H5free_memory(text);  // allocated by the library for the variable-length read
+    return value;
+  }
+  // Fixed length (e.g. H5MD's author name): read the raw bytes and cut the padding.
+  const std::size_t size = H5Tget_size(fileType.get());
+  checkRc(size == 0 ? -1 : 0, m_path, label, "cannot get string size");
+  std::string value(size, '\0');
+  checkRc(H5Aread(attr.get(), fileType.get(), value.data()), m_path, label,
+          "cannot read attribute");
+  if (const std::size_t nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
+  if (H5Tget_strpad(fileType.get()) == H5T_STR_SPACEPAD) {
+    value.erase(value.find_last_not_of(' ') + 1);
+  }
+  return value;
+}
+
+bool Hdf5File::hasAttribute(const std::string& objPath, const std::string& name) const {
+  requireOpen();
+  const htri_t present = H5Aexists_by_name(m_id, objPath.c_str(), name.c_str(), H5P_DEFAULT);
+  checkRc(present < 0 ? -1 : 0, m_path, attrLabel(objPath, name), "cannot query attribute");
+  return present > 0;
+}
+
+std::vector<std::string> Hdf5File::listAttributes(const std::string& objPath) const {
+  requireOpen();
+  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
+                     "cannot open object"),
+             H5Oclose);
+  std::vector<std::string> names;
+  // A C callback must not let an exception escape: report it as an iteration failure instead.
+  auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {
+    try {
+      static_cast<std::vector<std::string>*>(data)->emplace_back(attrName);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  };
+  checkRc(H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), m_path,
+          objPath, "cannot list attributes");
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// ---- datasets -----------------------------------------------------------------------------------
+
+void Hdf5File::writeDataset(const std::string& path, const std::vector<double>& data,
+                            const std::vector<std::size_t>& dims, const std::string& unit) {
+  requireOpen();
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+}
+
+void Hdf5File::writeDataset(const std::string& path, const std::vector<std::int32_t>& data,
+                            const std::vector<std::size_t>& dims, const std::string& unit) {
+  requireOpen();
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I32LE, H5T_NATIVE_INT32);
+}
+
+void Hdf5File::writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
+                            const std::vector<std::size_t>& dims, const std::string& unit) {
+  requireOpen();
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8);
+}
+
+std::vector<double> Hdf5File::readDatasetDouble(const std::string& path) const {
+  requireOpen();
+  return readTypedDataset<double>(m_id, m_path, path, H5T_NATIVE_DOUBLE, Accept::IntegerOrFloat);
+}
+
+std::vector<std::int64_t> Hdf5File::readDatasetInt(const std::string& path) const {
+  requireOpen();
+  return readTypedDataset<std::int64_t>(m_id, m_path, path, H5T_NATIVE_INT64,
+                                        Accept::IntegerOnly);
+}
+
+std::vector<std::size_t> Hdf5File::datasetDims(const std::string& path) const {
+  requireOpen();
+  Handle dset(checkId(H5Dopen2(m_id, path.c_str(), H5P_DEFAULT), m_path, path,
+                      "cannot open dataset"),
+              H5Dclose);
+  Handle space(checkId(H5Dget_space(dset.get()), m_path, path, "cannot get dataspace"), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  checkRc(rank < 0 ? -1 : 0, m_path, path, "cannot get rank");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  checkRc(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0 ? -1 : 0, m_path, path,
+          "cannot get dimensions");
+  return {dims.begin(), dims.end()};
+}
+
+// ---- merging ------------------------------------------------------------------------------------
+
+void Hdf5File::copyFileInto(const std::string& sourceFilePath, const std::string& groupPath) {
+  requireOpen();
+  const std::string destination = groupPath.empty() ? std::string("/") : groupPath;
+  if (exists(destination)) fail(m_path, destination, "copy destination already exists");
+  std::error_code ec;
+  if (std::filesystem::equivalent(sourceFilePath, m_path, ec)) {
+    fail(m_path, destination, "cannot copy a file into itself");
+  }
+
+  Handle source(checkId(H5Fopen(sourceFilePath.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                        sourceFilePath, "", "cannot open copy source read-only"),
+                H5Fclose);
+  Handle ocpypl(checkId(H5Pcreate(H5P_OBJECT_COPY), m_path, destination,
+                        "cannot create property list"),
+                H5Pclose);
+  // Expand everything that could point outside the copied tree, so the merged file stands alone.
+  checkRc(H5Pset_copy_object(ocpypl.get(), H5O_COPY_EXPAND_SOFT_LINK_FLAG |
+                                               H5O_COPY_EXPAND_EXT_LINK_FLAG |
+                                               H5O_COPY_EXPAND_REFERENCE_FLAG),
+          m_path, destination, "cannot set copy flags");
+  Handle lcpl = intermediateGroupsLcpl(m_path, destination);
+  // Copying the source root in one call brings its attributes along and keeps hard links shared.
+  checkRc(H5Ocopy(source.get(), "/", m_id, destination.c_str(), ocpypl.get(), lcpl.get()), m_path,
+          destination, "cannot copy '" + sourceFilePath + "'");
+}
+
+}  // namespace rupture::io

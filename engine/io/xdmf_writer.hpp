@@ -1,0 +1,24 @@
+#pragma once
+// ParaView sidecar for a run file. XDMF keeps the small metadata in XML and points at the arrays in
+// the HDF5 file, so ParaView can show snapshots without a converter (dependencies notes §5.3).
+#include <string>
+
+namespace rupture::io {
+
+/// Writes an Xdmf2 sidecar (ParaView's "XDMF Reader") describing every snapshot of a run file as a
+/// temporal collection of point clouds (Polyvertex topology).
+///
+/// Snapshots are the groups /snapshots/<k>, taken in sorted name order (zero-padded, "000000"),
+/// each holding position {n,3} (m), velocity {n,3} (m/s), stress {n,3,3} (Pa), damage {n} (1) and
+/// optionally radius {n} (m), with attributes time (s) and strain (1); n may differ per snapshot.
+/// Snapshots with n = 0 are left out (a grid without points is not useful to the reader).
+/// The HDF5 file is referenced by its path relative to the sidecar's directory, so the two can be
+/// moved together. Name the sidecar `*.xdmf2`: ParaView 5.11 opens `.xmf`/`.xdmf` with its broken
+/// Xdmf3 readers. The sidecar is written to a temporary file and renamed into place. If this
+/// process still has the run file open for writing, flush it first.
+///
+/// Throws Hdf5Error if the run file cannot be read or does not have this layout, and
+/// std::runtime_error if the sidecar cannot be written.
+void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath);
+
+}  // namespace rupture::io

@@ -1,0 +1,62 @@
+#include <omp.h>
+
+#include <algorithm>
+
+#include "scenarios/scenario.hpp"
+#include "io/spec_reader.hpp"
+
+namespace rupture {
+
+// One factory per scenario file.
+Scenario dynamicTensionScenario();
+
+const std::vector<Scenario>& scenarioRegistry() {
+  static const std::vector<Scenario> registry = {dynamicTensionScenario()};
+  return registry;
+}
+
+std::string embeddedSchema(const std::string& name) {
+  struct Entry { const char* name; const char* text; };
+  static const Entry entries[] = {
+#include "rupture_schemas.inc"
+      {"", ""}};
+  for (const Entry& e : entries)
+    if (name == e.name) return e.text;
+  return {};
+}
+
+const Scenario& scenarioFor(const nlohmann::json& spec) {
+  std::string names;
+  for (const Scenario& s : scenarioRegistry()) names += (names.empty() ? "\"" : ", \"") + s.info.name + "\"";
+  if (!spec.is_object()) throw SpecError("(root)", io::describeValue(spec), "a JSON object with a \"scenario\" field");
+  auto it = spec.find("scenario");
+  if (it == spec.end()) throw SpecError("scenario", "(missing)", "one of " + names + " (required)");
+  if (it->is_string())
+    for (const Scenario& s : scenarioRegistry())
+      if (s.info.name == it->get<std::string>()) return s;
+  throw SpecError("scenario", io::describeValue(*it), "one of " + names);
+}
+
+std::vector<ScenarioInfo> listScenarios() {
+  std::vector<ScenarioInfo> out;
+  for (const Scenario& s : scenarioRegistry()) out.push_back(s.info);
+  return out;
+}
+
+nlohmann::json scenarioSchema(const std::string& name) {
+  for (const Scenario& s : scenarioRegistry())
+    if (s.info.name == name) return nlohmann::json::parse(embeddedSchema(name));
+  return scenarioFor({{"scenario", name}}), nlohmann::json();  // throws SpecError naming the field
+}
+
+void validateSpec(const nlohmann::json& spec) { scenarioFor(spec).validate(spec); }
+
+RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control, int threads) {
+  const Scenario& scenario = scenarioFor(spec);
+  scenario.validate(spec);
+  // OpenMP's thread count is per calling thread: each server worker sets its own.
+  omp_set_num_threads(std::max(1, threads));
+  return scenario.run(spec, resultPath, control);
+}
+
+}  // namespace rupture

@@ -1,0 +1,54 @@
+#pragma once
+// The single entry every door uses: the CLI (`rupture run`) and the job server call runSpec with
+// a validated spec, a result path, and a RunControl through which they watch and cancel.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rupture/spec_error.hpp"
+
+namespace rupture {
+
+/// Shared between a running simulation and its watcher (progress bar, server worker).
+struct RunControl {
+  /// Set by the watcher; the run checks it at least every 0.2 s of wall time and stops cleanly.
+  std::atomic<bool> cancel{false};
+  /// Written by the run: fraction done in [0, 1] (estimated from strain / time towards the stop rule).
+  std::atomic<double> progress{0.0};
+  /// Optional human-readable stage messages ("preliminary VH run", "main run").
+  std::function<void(const std::string&)> log;
+};
+
+/// What a run returns once its HDF5 file is closed.
+struct RunOutcome {
+  nlohmann::json summary;  ///< scalar results, SI units; the same values as the file's /summary attributes
+  bool completed = true;   ///< false when cancelled: the file is kept and marked incomplete
+};
+
+struct ScenarioInfo {
+  std::string name;         ///< registry key, e.g. "dynamic-tension"
+  std::string title;        ///< one line
+  std::string description;  ///< a paragraph: what it models, what it outputs
+};
+
+/// The registered scenarios, in registry order.
+std::vector<ScenarioInfo> listScenarios();
+
+/// The JSON Schema (draft 2020-12) of a scenario's spec, as kept in api/schemas/<name>.schema.json.
+/// Throws SpecError(field "scenario") for an unknown name.
+nlohmann::json scenarioSchema(const std::string& name);
+
+/// Checks a whole spec (with its "scenario" key) without running it. Throws SpecError naming the
+/// first offending field; unknown fields are errors too.
+void validateSpec(const nlohmann::json& spec);
+
+/// Runs the spec and writes one HDF5 file at resultPath (written as resultPath + ".part" and renamed
+/// when closed, so a reader never sees a half-written file). Throws SpecError for an invalid spec,
+/// std::runtime_error for a failure during the run. `threads` = OpenMP threads for this run (>= 1).
+RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control,
+                   int threads = 1);
+
+}  // namespace rupture

@@ -1,0 +1,182 @@
+#include "config.hpp"
+
+#include <charconv>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+namespace rupture::server {
+namespace {
+
+/// One configurable option: its flag, its environment variable and how to store a value.
+struct Option {
+  const char* flag;      // without the leading "--"
+  const char* env;       // RUPTURE_*
+  const char* metavar;   // shown in --help; empty for switches
+  const char* help;
+  const char* fallback;  // the default, as shown in --help
+  std::function<std::string(ServerConfig&, const std::string&)> set;  // returns an error or ""
+};
+
+std::string parseInt(const std::string& text, long long lo, long long hi, long long& out) {
+  long long value = 0;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  auto [ptr, ec] = std::from_chars(first, last, value);
+  if (text.empty() || ec != std::errc() || ptr != last) return "'" + text + "' is not an integer";
+  if (value < lo || value > hi) {
+    return "'" + text + "' is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  }
+  out = value;
+  return "";
+}
+
+template <class T>
+std::function<std::string(ServerConfig&, const std::string&)> intSetter(T ServerConfig::*member,
+                                                                        long long lo, long long hi) {
+  return [member, lo, hi](ServerConfig& c, const std::string& v) {
+    long long parsed = 0;
+    std::string err = parseInt(v, lo, hi, parsed);
+    if (err.empty()) c.*member = static_cast<T>(parsed);
+    return err;
+  };
+}
+
+std::string parseBool(const std::string& v, bool& out) {
+  if (v == "1" || v == "true" || v == "yes" || v == "on") { out = true; return ""; }
+  if (v == "0" || v == "false" || v == "no" || v == "off") { out = false; return ""; }
+  return "'" + v + "' is not a boolean (true/false, 1/0, yes/no, on/off)";
+}
+
+const std::vector<Option>& options() {
+  static const std::vector<Option> table = {
+      {"port", "RUPTURE_PORT", "N", "TCP port to listen on; 0 picks a free port", "8080",
+       intSetter(&ServerConfig::port, 0, 65535)},
+      {"bind", "RUPTURE_BIND", "ADDR", "address to listen on (keep 127.0.0.1 unless behind a proxy)",
+       "127.0.0.1",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         if (v.empty()) return "an address is required";
+         c.bind = v;
+         return "";
+       }},
+      {"data-dir", "RUPTURE_DATA_DIR", "DIR",
+       "directory for rupture.sqlite and jobs/<id>/run-<k>.h5 (created if missing)", "./data",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         if (v.empty()) return "a directory is required";
+         c.dataDir = v;
+         return "";
+       }},
+      {"workers", "RUPTURE_WORKERS", "N", "runs executed at the same time; 0 = cores / threads-per-run",
+       "0", intSetter(&ServerConfig::workers, 0, 1024)},
+      {"threads-per-run", "RUPTURE_THREADS_PER_RUN", "N", "OpenMP threads given to each run", "1",
+       intSetter(&ServerConfig::threadsPerRun, 1, 1024)},
+      {"max-runs", "RUPTURE_MAX_RUNS", "N", "most runs one sweep may expand to", "1000",
+       intSetter(&ServerConfig::maxRuns, 1, 10'000'000)},
+      {"max-request-bytes", "RUPTURE_MAX_REQUEST_BYTES", "BYTES",
+       "largest request body accepted; larger ones get 413", "1048576",
+       intSetter(&ServerConfig::maxRequestBytes, 1, std::numeric_limits<int>::max())},
+      {"token", "RUPTURE_TOKEN", "SECRET",
+       "when set, POST and DELETE need 'Authorization: Bearer SECRET' (prefer the variable: "
+       "flags show in ps)",
+       "(none)",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         c.token = v;
+         return "";
+       }},
+      {"http-threads", "RUPTURE_HTTP_THREADS", "N", "threads answering HTTP requests", "8",
+       intSetter(&ServerConfig::httpThreads, 1, 256)},
+      {"log-requests", "RUPTURE_LOG_REQUESTS", "", "log one line per HTTP request on stderr", "off",
+       [](ServerConfig& c, const std::string& v) { return parseBool(v, c.logRequests); }},
+  };
+  return table;
+}
+
+}  // namespace
+
+int effectiveWorkers(const ServerConfig& config) {
+  if (config.workers > 0) return config.workers;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, cores / std::max(1, config.threadsPerRun));
+}
+
+EnvLookup processEnvironment() {
+  return [](const std::string& name) -> std::optional<std::string> {
+    const char* v = std::getenv(name.c_str());
+    if (!v) return std::nullopt;
+    return std::string(v);
+  };
+}
+
+ConfigResult parseConfig(const std::vector<std::string>& args, const EnvLookup& env) {
+  ConfigResult result;
+  for (const Option& opt : options()) {
+    if (auto v = env(opt.env)) {
+      std::string err = opt.set(result.config, *v);
+      if (!err.empty()) {
+        result.error = std::string(opt.env) + ": " + err;
+        return result;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "-h" || arg == "--help") { result.showHelp = true; continue; }
+    if (arg == "--version") { result.showVersion = true; continue; }
+    if (arg.rfind("--", 0) != 0) {
+      result.error = "unexpected argument '" + arg + "' (see --help)";
+      return result;
+    }
+    std::string name = arg.substr(2);
+    std::optional<std::string> value;
+    if (auto eq = name.find('='); eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    const Option* found = nullptr;
+    for (const Option& opt : options()) {
+      if (name == opt.flag) found = &opt;
+    }
+    if (!found) {
+      result.error = "unknown option '--" + name + "' (see --help)";
+      return result;
+    }
+    if (!value) {
+      if (*found->metavar == '\0') {
+        value = "true";  // a switch
+      } else if (i + 1 < args.size()) {
+        value = args[++i];
+      } else {
+        result.error = "--" + name + " needs a value (" + found->metavar + ")";
+        return result;
+      }
+    }
+    std::string err = found->set(result.config, *value);
+    if (!err.empty()) {
+      result.error = "--" + name + ": " + err;
+      return result;
+    }
+  }
+  return result;
+}
+
+std::string helpText() {
+  std::ostringstream out;
+  out << "Usage: rupture-server [OPTIONS]\n\n"
+         "Serves Rupture scenarios as parameter sweeps over HTTP (OGC API - Processes shape).\n"
+         "Every option can also be set by its environment variable; a flag wins over the variable.\n\n"
+         "Options:\n";
+  for (const Option& opt : options()) {
+    std::string left = std::string("  --") + opt.flag;
+    if (*opt.metavar) left += std::string(" ") + opt.metavar;
+    out << left << "\n      " << opt.help << "\n      env " << opt.env << ", default " << opt.fallback
+        << "\n";
+  }
+  out << "  -h, --help\n      show this help and exit\n"
+         "  --version\n      print the version and exit\n\n"
+         "Stop with SIGTERM or Ctrl-C: running runs are interrupted and re-queued for the next start.\n"
+         "API description: GET /openapi.yaml\n";
+  return out.str();
+}
+
+}  // namespace rupture::server

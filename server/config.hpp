@@ -1,0 +1,46 @@
+#pragma once
+// rupture-server configuration: every option is a flag and an environment variable (RUPTURE_*),
+// flags win over the environment, and `--help` lists them all from the same table.
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rupture::server {
+
+struct ServerConfig {
+  int port = 8080;                        ///< TCP port; 0 picks a free one (printed on start)
+  std::string bind = "127.0.0.1";         ///< address to listen on
+  std::string dataDir = "data";           ///< holds rupture.sqlite and jobs/<id>/run-<k>.h5
+  int workers = 0;                        ///< concurrent runs; 0 = cores / threads-per-run
+  int threadsPerRun = 1;                  ///< OpenMP threads given to each run
+  int maxRuns = 1000;                     ///< most runs one sweep may expand to
+  std::size_t maxRequestBytes = 1 << 20;  ///< largest request body accepted (413 above)
+  std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
+  int httpThreads = 8;                    ///< threads answering HTTP requests
+  bool logRequests = false;               ///< one line per request on stderr
+};
+
+/// Worker threads actually started: `workers` when set, otherwise max(1, cores / threadsPerRun).
+int effectiveWorkers(const ServerConfig& config);
+
+struct ConfigResult {
+  ServerConfig config;
+  bool showHelp = false;
+  bool showVersion = false;
+  std::string error;  ///< non-empty: the first bad flag or variable, with what is allowed
+};
+
+using EnvLookup = std::function<std::optional<std::string>(const std::string& name)>;
+
+/// The process environment (std::getenv).
+EnvLookup processEnvironment();
+
+/// Parses `args` (without argv[0]) over the defaults, after applying the RUPTURE_* variables.
+ConfigResult parseConfig(const std::vector<std::string>& args, const EnvLookup& env);
+
+/// The `--help` text: usage, every option with its variable and default.
+std::string helpText();
+
+}  // namespace rupture::server

@@ -1,0 +1,23 @@
+#pragma once
+// Durable file operations for the data directory: whole-file atomic writes and renames that
+// survive a crash (write to a temporary name, fsync, rename, fsync the directory).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace rupture::server {
+
+/// Writes `content` to `path` atomically: a reader sees the old file or the new one, never a part.
+void writeFileAtomic(const std::filesystem::path& path, const std::string& content);
+
+/// fsyncs `from`, renames it to `to` and fsyncs the directory.
+void renameDurable(const std::filesystem::path& from, const std::filesystem::path& to);
+
+/// The whole file, or nullopt when it cannot be read.
+std::optional<std::string> readFile(const std::filesystem::path& path);
+
+/// Size of a regular file, or nullopt when it does not exist or is not a regular file.
+std::optional<std::uintmax_t> regularFileSize(const std::filesystem::path& path);
+
+}  // namespace rupture::server

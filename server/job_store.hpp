@@ -1,0 +1,133 @@
+#pragma once
+// The job store: one SQLite database (WAL) holding jobs, their runs, statuses, progress, summaries
+// and result-file paths. It is the only state that survives a restart; files under the data
+// directory are referenced from it. All methods are thread-safe (one connection behind a mutex).
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "problem.hpp"
+
+struct sqlite3;
+
+namespace rupture::server {
+
+/// OGC API - Processes status codes, used for jobs and for their runs alike.
+enum class Status { Accepted, Running, Successful, Failed, Dismissed };
+
+const char* toString(Status status);
+std::optional<Status> parseStatus(const std::string& text);
+inline bool isTerminal(Status s) { return s == Status::Successful || s == Status::Failed || s == Status::Dismissed; }
+
+/// Current UTC time as RFC 3339 with milliseconds, e.g. 2026-11-21T07:43:53.123Z.
+std::string utcNow();
+
+struct RunKey {
+  std::int64_t job = 0;
+  int index = 0;
+  bool operator==(const RunKey&) const = default;
+};
+
+struct RunRecord {
+  RunKey key;
+  Json swept;           ///< array of swept values, aligned with JobRecord::sweptPaths
+  Json spec;            ///< the full spec this run executes
+  Status status = Status::Accepted;
+  double progress = 0;  ///< [0, 1]
+  Json summary;         ///< object of scalars once successful, else null
+  std::string error;    ///< message once failed
+  std::string resultPath;  ///< relative to the data directory, once successful
+  std::string started, finished, updated;
+  int attempts = 0;     ///< times the run was started (> 1 after a crash or restart)
+};
+
+struct JobRecord {
+  std::int64_t id = 0;
+  std::string processId;
+  std::string name;
+  Status status = Status::Accepted;
+  std::string sweepMode;
+  Json sweptPaths;  ///< array of dotted paths, in request order
+  Json inputs;      ///< the base inputs as posted
+  Json sweep;       ///< the sweep object as posted
+  std::string message;
+  std::string created, started, finished, updated;
+  int runsTotal = 0;
+  int runsAccepted = 0, runsRunning = 0, runsSuccessful = 0, runsFailed = 0, runsDismissed = 0;
+  double progress = 0;  ///< [0, 1]: finished runs count fully, running runs by their progress
+};
+
+struct NewJob {
+  std::string processId;
+  std::string name;
+  std::string sweepMode;
+  Json sweptPaths;
+  Json inputs;
+  Json sweep;
+  std::vector<std::pair<Json, Json>> runs;  ///< (swept values, full spec) per run, in run order
+};
+
+struct JobFilter {
+  std::vector<Status> statuses;  ///< empty = any
+  std::string processId;         ///< empty = any
+  int limit = 50;
+  std::int64_t offset = 0;
+};
+
+class JobStore {
+public:
+  /// Opens (creating if needed) the database file and its schema.
+  explicit JobStore(const std::string& path);
+  ~JobStore();
+  JobStore(const JobStore&) = delete;
+  JobStore& operator=(const JobStore&) = delete;
+
+  /// Inserts a job and all its runs (status accepted) in one transaction; returns the job id.
+  std::int64_t createJob(const NewJob& job);
+
+  std::optional<JobRecord> job(std::int64_t id);
+  /// Newest first. `total` receives the number of jobs matching the filter, before paging.
+  std::vector<JobRecord> listJobs(const JobFilter& filter, std::int64_t& total);
+  std::vector<RunRecord> runs(std::int64_t jobId);
+  std::optional<RunRecord> run(RunKey key);
+
+  /// Accepted runs of jobs not dismissed, in execution order (job id, then run index).
+  std::vector<RunKey> queuedRuns();
+  /// Runs accepted or running, in any job (for crash recovery).
+  std::vector<RunKey> unfinishedRuns();
+  /// After a crash: runs left `running` go back to `accepted` (or `dismissed` in a dismissed job).
+  /// Returns how many.
+  int requeueInterrupted();
+
+  /// accepted -> running. False when the run is no longer accepted (dismissed meanwhile).
+  bool startRun(RunKey key);
+  /// Stores progress fractions of running runs, in one transaction.
+  void setProgress(const std::vector<std::pair<RunKey, double>>& progress);
+  void finishSuccessful(RunKey key, const Json& summary, const std::string& resultPath);
+  void finishFailed(RunKey key, const std::string& message);
+  /// A running run stopped by cancellation.
+  void finishDismissed(RunKey key);
+  /// running -> accepted (the server is stopping; the run starts again on the next start).
+  void requeueRun(RunKey key);
+
+  /// Cancels a job: its accepted runs become dismissed and the job `dismissed`. Jobs already
+  /// successful or failed are left as they are. Returns the job after the change, or nullopt.
+  std::optional<JobRecord> dismissJob(std::int64_t id);
+
+  /// Number of accepted runs in jobs not dismissed.
+  int queueDepth();
+
+private:
+  void exec(const std::string& sql);
+  void updateJobStatus(std::int64_t jobId, const std::string& now);  // caller holds m_mutex, in a transaction
+  void finishRun(RunKey key, Status status, const Json* summary, const std::string* error,
+                 const std::string* resultPath);
+  std::optional<JobRecord> jobLocked(std::int64_t id);
+
+  std::mutex m_mutex;
+  sqlite3* m_db = nullptr;
+};
+
+}  // namespace rupture::server

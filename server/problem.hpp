@@ -1,0 +1,70 @@
+#pragma once
+// Client-facing errors as RFC 7807 problem documents (application/problem+json).
+// Handlers throw ApiError; the router turns it into the response. Every problem names its `type`
+// (a URI), `title`, `status`, `detail`, and, where a field is at fault, its dotted path in `field`.
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace rupture::server {
+
+using Json = nlohmann::ordered_json;
+
+/// Problem type URIs. The OGC API - Processes ones are used where the standard defines them.
+namespace problem {
+inline constexpr const char* kNoSuchProcess =
+    "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/no-such-process";
+inline constexpr const char* kNoSuchJob =
+    "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/no-such-job";
+inline constexpr const char* kResultNotReady =
+    "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/result-not-ready";
+inline constexpr const char* kInvalidJson = "urn:rupture:problem:invalid-json";
+inline constexpr const char* kInvalidRequest = "urn:rupture:problem:invalid-request";
+inline constexpr const char* kInvalidSpec = "urn:rupture:problem:invalid-spec";
+inline constexpr const char* kInvalidSweep = "urn:rupture:problem:invalid-sweep";
+inline constexpr const char* kTooManyRuns = "urn:rupture:problem:too-many-runs";
+inline constexpr const char* kInvalidParameter = "urn:rupture:problem:invalid-parameter";
+inline constexpr const char* kNotFound = "urn:rupture:problem:not-found";
+inline constexpr const char* kNoResults = "urn:rupture:problem:no-results";
+inline constexpr const char* kUnauthorized = "urn:rupture:problem:unauthorized";
+inline constexpr const char* kMethodNotAllowed = "urn:rupture:problem:method-not-allowed";
+inline constexpr const char* kPayloadTooLarge = "urn:rupture:problem:payload-too-large";
+inline constexpr const char* kLengthRequired = "urn:rupture:problem:length-required";
+inline constexpr const char* kRangeNotSatisfiable = "urn:rupture:problem:range-not-satisfiable";
+inline constexpr const char* kShuttingDown = "urn:rupture:problem:shutting-down";
+inline constexpr const char* kInternal = "urn:rupture:problem:internal-error";
+}  // namespace problem
+
+/// An error the client should see. `extra` members are merged into the problem document.
+class ApiError : public std::runtime_error {
+public:
+  ApiError(int status, std::string type, std::string title, std::string detail,
+           std::string field = {}, Json extra = Json::object())
+      : std::runtime_error(detail), m_status(status), m_type(std::move(type)),
+        m_title(std::move(title)), m_field(std::move(field)), m_extra(std::move(extra)) {}
+
+  int status() const { return m_status; }
+  const std::string& type() const { return m_type; }
+  const std::string& title() const { return m_title; }
+  const std::string& field() const { return m_field; }
+  const Json& extra() const { return m_extra; }
+
+private:
+  int m_status;
+  std::string m_type, m_title, m_field;
+  Json m_extra;
+};
+
+/// The problem document of an error (`instance` is the request path when given).
+Json problemDocument(const ApiError& error, const std::string& instance = {});
+
+/// A default problem document for a bare status code (404 route, 413 from the HTTP layer, ...).
+ApiError problemForStatus(int status, const std::string& detail = {});
+
+/// Reason phrase for a status code ("Not Found").
+const char* statusTitle(int status);
+
+inline constexpr const char* kProblemContentType = "application/problem+json";
+
+}  // namespace rupture::server

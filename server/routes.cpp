@@ -1,0 +1,856 @@
+#include "routes.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <regex>
+
+#include <httplib.h>
+
+#include "files.hpp"
+#include "log.hpp"
+#include "problem.hpp"
+#include "results.hpp"
+#include "rupture/run.hpp"
+#include "summary.hpp"
+#include "svg_plot.hpp"
+#include "sweep.hpp"
+
+#ifndef RUPTURE_VERSION
+#define RUPTURE_VERSION "0.0.0"
+#endif
+
+namespace rupture::server {
+namespace fs = std::filesystem;
+using httplib::Request;
+using httplib::Response;
+
+const std::string& openApiYaml() {
+  static const std::string text =
+#include "openapi_yaml.inc"
+      ;
+  return text;
+}
+
+namespace {
+
+constexpr const char* kJsonType = "application/json";
+constexpr const char* kHdf5Type = "application/x-hdf5";
+constexpr const char* kCsvType = "text/csv; charset=utf-8";
+constexpr const char* kOgcRel = "http://www.opengis.net/def/rel/ogc/1.0/";
+
+// ---------------------------------------------------------------------------------------------
+// Small helpers
+
+void sendJson(Response& res, const Json& doc, int status = 200) {
+  res.status = status;
+  res.set_content(doc.dump(2) + "\n", kJsonType);
+}
+
+void sendProblem(const Request& req, Response& res, const ApiError& error) {
+  res.status = error.status();
+  if (error.status() == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"rupture\"");
+  res.set_content(problemDocument(error, req.path).dump(2) + "\n", kProblemContentType);
+}
+
+Json link(const std::string& href, const std::string& rel, const std::string& type = kJsonType,
+          const std::string& title = {}) {
+  Json l = Json::object();
+  l["href"] = href;
+  l["rel"] = rel;
+  if (!type.empty()) l["type"] = type;
+  if (!title.empty()) l["title"] = title;
+  return l;
+}
+
+/// Strict non-negative integer parse (digits only, no sign, no spaces, fits in int64).
+std::optional<std::int64_t> parseIndex(const std::string& text) {
+  if (text.empty() || text.size() > 18) return std::nullopt;
+  std::int64_t value = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || ptr != text.data() + text.size() || value < 0) return std::nullopt;
+  return value;
+}
+
+ApiError noSuchJob(const std::string& id) {
+  return ApiError(404, problem::kNoSuchJob, "No such job",
+                  "no job '" + id + "' (job ids are positive integers; GET /jobs lists them)", "jobID",
+                  Json{{"in", "path"}});
+}
+
+std::int64_t jobIdFrom(const Request& req) {
+  const std::string text = req.matches[1];
+  auto id = parseIndex(text);
+  if (!id || *id < 1) throw noSuchJob(text);
+  return *id;
+}
+
+int runIndexFrom(const Request& req, const JobRecord& job) {
+  const std::string text = req.matches[2];
+  auto k = parseIndex(text);
+  if (!k || *k >= job.runsTotal) {
+    throw ApiError(404, problem::kNotFound, "No such run",
+                   "job " + std::to_string(job.id) + " has no run '" + text + "' (runs are numbered 0 to " +
+                       std::to_string(job.runsTotal - 1) + ")",
+                   "run", Json{{"in", "path"}});
+  }
+  return static_cast<int>(*k);
+}
+
+bool wantsCsv(const Request& req) {
+  if (req.has_param("format")) {
+    const std::string f = req.get_param_value("format");
+    if (f == "csv") return true;
+    if (f == "json") return false;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "format must be 'json' or 'csv', got '" + f + "'", "format",
+                   Json{{"in", "query"}, {"value", f}, {"allowed", Json::array({"json", "csv"})}});
+  }
+  const std::string accept = req.get_header_value("Accept");
+  return accept.find("text/csv") != std::string::npos && accept.find("application/json") == std::string::npos;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t comma = text.find(',', start);
+    if (comma == std::string::npos) comma = text.size();
+    std::string item = text.substr(start, comma - start);
+    if (!item.empty()) out.push_back(item);
+    start = comma + 1;
+  }
+  return out;
+}
+
+/// Every value of a (possibly repeated) query parameter, comma lists split.
+std::vector<std::string> paramList(const Request& req, const std::string& name) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < req.get_param_value_count(name); ++i) {
+    for (auto& item : splitList(req.get_param_value(name, i))) out.push_back(item);
+  }
+  return out;
+}
+
+/// Streams a file through a content provider (never the whole file in memory).
+void sendFile(Response& res, const fs::path& path, const std::string& downloadName) {
+  auto size = regularFileSize(path);
+  auto stream = std::make_shared<std::ifstream>(path, std::ios::binary);
+  if (!size || !*stream) {
+    throw ApiError(404, problem::kNoResults, "No results", "the result file is missing on the server");
+  }
+  res.set_header("Content-Disposition", "attachment; filename=\"" + downloadName + "\"");
+  res.set_content_provider(
+      static_cast<std::size_t>(*size), kHdf5Type,
+      [stream](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        std::vector<char> buffer(std::min<std::size_t>(length, 64 * 1024));
+        stream->clear();
+        stream->seekg(static_cast<std::streamoff>(offset));
+        stream->read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        const std::streamsize n = stream->gcount();
+        if (n <= 0) return false;
+        return sink.write(buffer.data(), static_cast<std::size_t>(n));
+      });
+}
+
+bool knownScenario(const std::string& name) {
+  for (const auto& s : rupture::listScenarios()) {
+    if (s.name == name) return true;
+  }
+  return false;
+}
+
+std::string schemaUnitOfNode(const nlohmann::json& node) {
+  for (const char* key : {"x-unit", "unit", "units"}) {
+    if (node.contains(key) && node[key].is_string()) return node[key].get<std::string>();
+  }
+  if (node.contains("description") && node["description"].is_string()) {
+    // Conventions in descriptions: "... [Pa]" or "... (unit: Pa)" or "..., in Pa".
+    static const std::regex bracket(R"(\[([^\[\]]{1,16})\]\s*\.?\s*$)");
+    static const std::regex unitColon(R"(\(unit:?\s*([^()]{1,16})\))");
+    std::smatch m;
+    const std::string d = node["description"].get<std::string>();
+    if (std::regex_search(d, m, bracket)) return m[1];
+    if (std::regex_search(d, m, unitColon)) return m[1];
+  }
+  return "";
+}
+
+/// The unit of a dotted spec path from the scenario's JSON Schema, "" when it says none.
+std::string schemaUnit(const nlohmann::json& schema, const std::string& path) {
+  const nlohmann::json* node = &schema;
+  for (const std::string& segment : splitPath(path)) {
+    if (node->contains("properties") && (*node)["properties"].contains(segment)) {
+      node = &(*node)["properties"][segment];
+    } else if (node->contains("items")) {
+      node = &(*node)["items"];
+    } else {
+      return "";
+    }
+  }
+  return schemaUnitOfNode(*node);
+}
+
+UnitLookup unitLookupFor(const std::string& scenario) {
+  nlohmann::json schema;
+  try {
+    schema = rupture::scenarioSchema(scenario);
+  } catch (const std::exception&) {
+    schema = nlohmann::json::object();
+  }
+  return [schema](const std::string& column) {
+    std::string unit = knownScalarUnit(column);
+    if (unit.empty()) unit = schemaUnit(schema, column);
+    return unit;
+  };
+}
+
+int percent(double fraction) { return static_cast<int>(std::floor(std::clamp(fraction, 0.0, 1.0) * 100.0 + 1e-9)); }
+
+// ---------------------------------------------------------------------------------------------
+// Documents
+
+Json runDocument(const JobRecord& job, const RunRecord& run) {
+  Json doc = Json::object();
+  doc["index"] = run.key.index;
+  Json swept = Json::object();
+  for (std::size_t i = 0; i < job.sweptPaths.size() && i < run.swept.size(); ++i) {
+    swept[job.sweptPaths[i].get<std::string>()] = run.swept[i];
+  }
+  doc["swept"] = swept;
+  doc["status"] = toString(run.status);
+  doc["progress"] = run.status == Status::Successful ? 100 : percent(run.progress);
+  if (!run.started.empty()) doc["started"] = run.started;
+  if (!run.finished.empty()) doc["finished"] = run.finished;
+  if (run.attempts > 1) doc["attempts"] = run.attempts;
+  if (run.summary.is_object()) doc["summary"] = run.summary;
+  if (!run.error.empty()) doc["error"] = run.error;
+  const std::string base = "/jobs/" + std::to_string(job.id) + "/runs/" + std::to_string(run.key.index);
+  Json links = Json::array({link(base, "self")});
+  if (run.status == Status::Successful) {
+    links.push_back(link(base + "/results", "enclosure", kHdf5Type, "this run's HDF5 file"));
+    links.push_back(link(base + "/series", "related", kJsonType, "time series (JSON or CSV)"));
+  }
+  doc["links"] = links;
+  return doc;
+}
+
+Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
+  Json doc = Json::object();
+  const std::string id = std::to_string(job.id);
+  doc["jobID"] = id;
+  doc["type"] = "process";
+  doc["processID"] = job.processId;
+  if (!job.name.empty()) doc["name"] = job.name;
+  doc["status"] = toString(job.status);
+  doc["message"] = job.message;
+  doc["progress"] = percent(job.progress);
+  doc["created"] = job.created;
+  if (!job.started.empty()) doc["started"] = job.started;
+  if (!job.finished.empty()) doc["finished"] = job.finished;
+  doc["updated"] = job.updated;
+  doc["sweep_mode"] = job.sweepMode;
+  doc["swept"] = job.sweptPaths;
+  doc["runs_total"] = job.runsTotal;
+  doc["runs_by_status"] = {{"accepted", job.runsAccepted},     {"running", job.runsRunning},
+                           {"successful", job.runsSuccessful}, {"failed", job.runsFailed},
+                           {"dismissed", job.runsDismissed}};
+  if (runs) {
+    Json list = Json::array();
+    for (const RunRecord& r : *runs) list.push_back(runDocument(job, r));
+    doc["runs"] = list;
+  }
+  const std::string base = "/jobs/" + id;
+  doc["links"] = Json::array({
+      link(base, "self", kJsonType, "this job's status"),
+      link(base + "/results", std::string(kOgcRel) + "results", kHdf5Type, "all runs in one HDF5 file"),
+      link(base + "/summary", "related", kJsonType, "summary table"),
+      link(base + "/summary?format=csv", "alternate", "text/csv", "summary table as CSV"),
+      link(base + "/summary.svg", "related", "image/svg+xml", "summary plot"),
+  });
+  return doc;
+}
+
+Json processSummary(const rupture::ScenarioInfo& info) {
+  Json doc = Json::object();
+  doc["id"] = info.name;
+  doc["title"] = info.title;
+  doc["description"] = info.description;
+  doc["version"] = RUPTURE_VERSION;
+  doc["jobControlOptions"] = Json::array({"async-execute"});
+  doc["outputTransmission"] = Json::array({"reference"});
+  doc["links"] = Json::array({
+      link("/processes/" + info.name, "self", kJsonType, "process description"),
+      link("/processes/" + info.name + "/execution", std::string(kOgcRel) + "execute", kJsonType,
+           "execute (POST)"),
+  });
+  return doc;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+class Api {
+public:
+  explicit Api(ServerContext& ctx) : m_ctx(ctx) {}
+
+  void landing(const Request&, Response& res) {
+    Json doc = Json::object();
+    doc["title"] = "Rupture";
+    doc["description"] =
+        "Particle-method fracture simulations served as parameter sweeps (OGC API - Processes). "
+        "POST /processes/{scenario}/execution with inputs and a sweep; follow the job.";
+    doc["version"] = RUPTURE_VERSION;
+    doc["links"] = Json::array({
+        link("/", "self", kJsonType, "this document"),
+        link("/openapi.yaml", "service-desc", "application/vnd.oai.openapi;version=3.0", "the API definition"),
+        link("/conformance", std::string(kOgcRel) + "conformance", kJsonType, "conformance classes"),
+        link("/processes", std::string(kOgcRel) + "processes", kJsonType, "the scenarios"),
+        link("/jobs", std::string(kOgcRel) + "job-list", kJsonType, "jobs"),
+        link("/health", "status", kJsonType, "server health"),
+    });
+    sendJson(res, doc);
+  }
+
+  void health(const Request&, Response& res) {
+    Json doc = Json::object();
+    doc["status"] = m_ctx.stopping ? "stopping" : "ok";
+    doc["version"] = RUPTURE_VERSION;
+    doc["workers"] = m_ctx.scheduler->workers();
+    doc["threads_per_run"] = m_ctx.scheduler->threadsPerRun();
+    doc["running"] = m_ctx.scheduler->running();
+    doc["queue_depth"] = m_ctx.store->queueDepth();
+    doc["uptime_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_ctx.startedAt).count();
+    Json scenarios = Json::array();
+    for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);
+    doc["scenarios"] = scenarios;
+    sendJson(res, doc);
+  }
+
+  void openapi(const Request&, Response& res) {
+    res.set_content(openApiYaml(), "application/vnd.oai.openapi;version=3.0");
+  }
+
+  void conformance(const Request&, Response& res) {
+    const std::string base = "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/";
+    sendJson(res, Json{{"conformsTo", Json::array({base + "core", base + "json", base + "job-list",
+                                                   base + "dismiss", base + "ogc-process-description",
+                                                   base + "oas30"})}});
+  }
+
+  void processes(const Request&, Response& res) {
+    Json list = Json::array();
+    for (const auto& s : rupture::listScenarios()) list.push_back(processSummary(s));
+    sendJson(res, Json{{"processes", list}, {"links", Json::array({link("/processes", "self")})}});
+  }
+
+  void process(const Request& req, Response& res) {
+    const std::string name = req.matches[1];
+    const rupture::ScenarioInfo* info = nullptr;
+    auto all = rupture::listScenarios();
+    for (const auto& s : all) {
+      if (s.name == name) info = &s;
+    }
+    if (!info) throw noSuchProcess(name);
+    Json doc = processSummary(*info);
+    Json schema = Json(rupture::scenarioSchema(name));
+    Json inputs = Json::object();
+    if (schema.contains("properties")) {
+      for (const auto& [key, sub] : schema["properties"].items()) {
+        if (key == "scenario") continue;
+        Json input = Json::object();
+        input["title"] = sub.value("title", key);
+        if (sub.contains("description")) input["description"] = sub["description"];
+        input["schema"] = sub;
+        inputs[key] = input;
+      }
+    }
+    doc["inputs"] = inputs;
+    doc["outputs"] = {
+        {"results", {{"title", "one HDF5 file per run, and one merged file per job"},
+                     {"schema", {{"type", "string"}, {"contentMediaType", kHdf5Type}}}}},
+        {"summary", {{"title", "summary scalars per run (JSON, CSV, SVG plot)"},
+                     {"schema", {{"type", "object"}}}}},
+    };
+    doc["inputsSchema"] = schema;
+    doc["sweep"] = {
+        {"description",
+         "POST body: {\"inputs\": {...spec without scenario...}, \"sweep\": {\"dotted.path\": [values]}, "
+         "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\"}"},
+        {"modes", Json::array({"grid", "zip"})},
+        {"max_runs", m_ctx.config.maxRuns},
+    };
+    sendJson(res, doc);
+  }
+
+  void execute(const Request& req, Response& res) {
+    requireToken(req);
+    if (m_ctx.stopping) {
+      throw ApiError(503, problem::kShuttingDown, "Service Unavailable",
+                     "the server is stopping; submit again once it is back");
+    }
+    const std::string scenario = req.matches[1];
+    if (!knownScenario(scenario)) throw noSuchProcess(scenario);
+
+    if (req.body.empty()) {
+      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
+                     "the request body is empty; send {\"inputs\": {...}} with Content-Type: application/json",
+                     "", Json{{"in", "body"}});
+    }
+    Json body;
+    try {
+      body = Json::parse(req.body);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
+                     std::string("the request body is not valid JSON: ") + e.what(), "",
+                     Json{{"in", "body"}, {"byte", e.byte}});
+    }
+    if (!body.is_object()) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
+    }
+    static const std::vector<std::string> allowedKeys = {"inputs", "sweep",   "sweep_mode", "name",
+                                                         "outputs", "response", "subscriber"};
+    for (const auto& [key, value] : body.items()) {
+      if (std::find(allowedKeys.begin(), allowedKeys.end(), key) == allowedKeys.end()) {
+        throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                       "unknown member '" + key + "' in the request body; allowed: inputs, sweep, sweep_mode, name",
+                       key, Json{{"in", "body"}});
+      }
+    }
+    auto inputsIt = body.find("inputs");
+    if (inputsIt == body.end() || !inputsIt->is_object()) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "\"inputs\" is required and must be an object: the spec without \"scenario\"", "inputs",
+                     Json{{"in", "body"}});
+    }
+    const Json& inputs = *inputsIt;
+    if (auto sc = inputs.find("scenario"); sc != inputs.end() && *sc != scenario) {
+      throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                     "inputs.scenario is " + sc->dump() + " but the URL names '" + scenario +
+                         "'; leave it out, the URL decides",
+                     "scenario", Json{{"in", "inputs"}, {"value", *sc}, {"allowed", Json::array({scenario})}});
+    }
+    std::string name;
+    if (auto n = body.find("name"); n != body.end() && !n->is_null()) {
+      if (!n->is_string() || n->get<std::string>().size() > 200) {
+        throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                       "name must be a string of at most 200 characters", "name", Json{{"in", "body"}});
+      }
+      name = n->get<std::string>();
+    }
+    auto member = [&](const char* key) -> const Json* {
+      auto it = body.find(key);
+      return it == body.end() ? nullptr : &*it;
+    };
+    const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
+    const std::vector<SweepPoint> points =
+        expandSweep(scenario, inputs, plan, static_cast<std::size_t>(m_ctx.config.maxRuns));
+    validateSweepPoints(points, plan);
+
+    NewJob job;
+    job.processId = scenario;
+    job.name = name;
+    job.sweepMode = toString(plan.mode);
+    job.sweptPaths = Json::array();
+    for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
+    job.inputs = inputs;
+    job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
+    for (const SweepPoint& p : points) job.runs.emplace_back(p.swept, p.spec);
+    const std::int64_t id = m_ctx.store->createJob(job);
+    m_ctx.scheduler->enqueue(id, static_cast<int>(points.size()));
+    logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(points.size()) +
+            " run(s)" + (name.empty() ? "" : ", \"" + name + "\""));
+
+    auto record = m_ctx.store->job(id);
+    auto runs = m_ctx.store->runs(id);
+    res.set_header("Location", "/jobs/" + std::to_string(id));
+    if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
+      res.set_header("Preference-Applied", "respond-async");
+    }
+    sendJson(res, statusInfo(*record, &runs), 201);
+  }
+
+  void jobs(const Request& req, Response& res) {
+    JobFilter filter;
+    for (const std::string& s : paramList(req, "status")) {
+      auto status = parseStatus(s);
+      if (!status) {
+        throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                       "unknown status '" + s + "'", "status",
+                       Json{{"in", "query"},
+                            {"value", s},
+                            {"allowed", Json::array({"accepted", "running", "successful", "failed", "dismissed"})}});
+      }
+      filter.statuses.push_back(*status);
+    }
+    for (const char* key : {"processID", "process_id"}) {
+      if (req.has_param(key)) filter.processId = req.get_param_value(key);
+    }
+    filter.limit = static_cast<int>(intParam(req, "limit", 50, 1, 1000));
+    filter.offset = intParam(req, "offset", 0, 0, std::numeric_limits<std::int64_t>::max() / 2);
+    std::int64_t total = 0;
+    auto list = m_ctx.store->listJobs(filter, total);
+    Json jobs = Json::array();
+    for (const JobRecord& j : list) jobs.push_back(statusInfo(j, nullptr));
+    Json doc = Json::object();
+    doc["jobs"] = jobs;
+    doc["numberMatched"] = total;
+    doc["numberReturned"] = jobs.size();
+    std::string query;
+    if (!filter.statuses.empty()) {
+      query += "&status=";
+      for (std::size_t i = 0; i < filter.statuses.size(); ++i) query += (i ? "," : "") + std::string(toString(filter.statuses[i]));
+    }
+    if (!filter.processId.empty()) query += "&processID=" + httplib::detail::encode_query_param(filter.processId);
+    auto page = [&](std::int64_t offset) {
+      return "/jobs?limit=" + std::to_string(filter.limit) + "&offset=" + std::to_string(offset) + query;
+    };
+    Json links = Json::array({link(page(filter.offset), "self")});
+    if (filter.offset + static_cast<std::int64_t>(list.size()) < total) {
+      links.push_back(link(page(filter.offset + filter.limit), "next"));
+    }
+    if (filter.offset > 0) links.push_back(link(page(std::max<std::int64_t>(0, filter.offset - filter.limit)), "prev"));
+    doc["links"] = links;
+    sendJson(res, doc);
+  }
+
+  void job(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    auto runs = m_ctx.store->runs(job.id);
+    sendJson(res, statusInfo(job, &runs));
+  }
+
+  void dismiss(const Request& req, Response& res) {
+    requireToken(req);
+    const std::int64_t id = jobIdFrom(req);
+    auto job = m_ctx.scheduler->dismiss(id);
+    if (!job) throw noSuchJob(std::to_string(id));
+    logLine("job " + std::to_string(id) + " dismiss requested; status " + toString(job->status));
+    auto runs = m_ctx.store->runs(id);
+    sendJson(res, statusInfo(*job, &runs));
+  }
+
+  void jobResults(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    if (job.runsAccepted + job.runsRunning > 0) {
+      throw ApiError(409, problem::kResultNotReady, "Result not ready",
+                     "job " + std::to_string(job.id) + " is " + toString(job.status) + " (" +
+                         std::to_string(job.runsTotal - job.runsAccepted - job.runsRunning) + " of " +
+                         std::to_string(job.runsTotal) +
+                         " runs finished); its results file is ready when every run has finished",
+                     "", Json{{"jobStatus", toString(job.status)}});
+    }
+    if (job.runsSuccessful == 0) {
+      throw ApiError(404, problem::kNoResults, "No results",
+                     "job " + std::to_string(job.id) + " has no successful run (" + job.message + ")");
+    }
+    const fs::path path = mergedResults(job, m_ctx.store->runs(job.id), m_ctx.dataDir);
+    sendFile(res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
+  }
+
+  void runsList(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    Json list = Json::array();
+    for (const RunRecord& r : m_ctx.store->runs(job.id)) list.push_back(runDocument(job, r));
+    sendJson(res, Json{{"jobID", std::to_string(job.id)}, {"runs", list}});
+  }
+
+  void run(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = loadRun(req, job);
+    Json doc = runDocument(job, run);
+    doc["spec"] = run.spec;
+    sendJson(res, doc);
+  }
+
+  void runResults(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    sendFile(res, m_ctx.dataDir / run.resultPath,
+             "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index) + ".h5");
+  }
+
+  void series(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    const bool csv = wantsCsv(req);
+    SeriesTable table = readSeries(m_ctx.dataDir / run.resultPath, paramList(req, "names"));
+    if (csv) {
+      res.set_content(seriesCsv(table), kCsvType);
+      return;
+    }
+    Json doc = Json::object();
+    doc["jobID"] = std::to_string(job.id);
+    doc["run"] = run.key.index;
+    doc["names"] = table.names;
+    Json units = Json::object(), series = Json::object();
+    std::size_t length = 0;
+    for (std::size_t i = 0; i < table.names.size(); ++i) {
+      units[table.names[i]] = table.units[i];
+      Json values = Json::array();
+      for (double v : table.columns[i]) values.push_back(std::isfinite(v) ? Json(v) : Json());
+      series[table.names[i]] = std::move(values);
+      length = std::max(length, table.columns[i].size());
+    }
+    doc["units"] = units;
+    doc["length"] = length;
+    doc["series"] = series;
+    sendJson(res, doc);
+  }
+
+  void summary(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const SummaryTable table = buildSummary(job, m_ctx.store->runs(job.id));
+    if (wantsCsv(req)) {
+      res.set_content(summaryCsv(table), kCsvType);
+      return;
+    }
+    Json doc = summaryJson(table, unitLookupFor(job.processId));
+    doc["status"] = toString(job.status);
+    sendJson(res, doc);
+  }
+
+  void summarySvg(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const SummaryTable table = buildSummary(job, m_ctx.store->runs(job.id));
+    PlotRequest plot;
+    plot.x = req.has_param("x") ? req.get_param_value("x")
+                                : (table.sweptPaths.empty() ? std::string() : table.sweptPaths.front());
+    plot.y = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
+    if (plot.x.empty()) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "this job sweeps nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
+    }
+    plot.xScale = scaleParam(req, "xscale");
+    plot.yScale = scaleParam(req, "yscale");
+    plot.title = plot.y + " vs " + plot.x + " - job " + std::to_string(job.id) +
+                 (job.name.empty() ? "" : " (" + job.name + ")");
+    res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(job.processId)), "image/svg+xml");
+  }
+
+  // -- shared checks ---------------------------------------------------------------------------
+
+  void requireToken(const Request& req) const {
+    const std::string& token = m_ctx.config.token;
+    if (token.empty()) return;
+    const std::string header = req.get_header_value("Authorization");
+    const std::string expected = "Bearer " + token;
+    // Constant-time comparison over the expected length.
+    unsigned diff = header.size() != expected.size();
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      diff |= static_cast<unsigned char>(i < header.size() ? header[i] : 0) ^ static_cast<unsigned char>(expected[i]);
+    }
+    if (diff) {
+      throw ApiError(401, problem::kUnauthorized, "Unauthorized",
+                     header.empty() ? "this server needs 'Authorization: Bearer <token>' for POST and DELETE"
+                                    : "the bearer token is wrong");
+    }
+  }
+
+private:
+  static ApiError noSuchProcess(const std::string& name) {
+    Json allowed = Json::array();
+    for (const auto& s : rupture::listScenarios()) allowed.push_back(s.name);
+    return ApiError(404, problem::kNoSuchProcess, "No such process",
+                    "no scenario '" + name + "'; available: " + allowed.dump(), "processID",
+                    Json{{"in", "path"}, {"allowed", allowed}});
+  }
+
+  static std::int64_t intParam(const Request& req, const char* name, std::int64_t fallback, std::int64_t lo,
+                               std::int64_t hi) {
+    if (!req.has_param(name)) return fallback;
+    const std::string text = req.get_param_value(name);
+    auto v = parseIndex(text);
+    if (!v || *v < lo || *v > hi) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     std::string(name) + " must be an integer in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "], got '" + text + "'",
+                     name, Json{{"in", "query"}, {"value", text}});
+    }
+    return *v;
+  }
+
+  static AxisScale scaleParam(const Request& req, const char* name) {
+    if (!req.has_param(name)) return AxisScale::Auto;
+    const std::string v = req.get_param_value(name);
+    if (v == "auto") return AxisScale::Auto;
+    if (v == "linear") return AxisScale::Linear;
+    if (v == "log") return AxisScale::Log;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   std::string(name) + " must be auto, linear or log, got '" + v + "'", name,
+                   Json{{"in", "query"}, {"value", v}, {"allowed", Json::array({"auto", "linear", "log"})}});
+  }
+
+  JobRecord loadJob(const Request& req) {
+    const std::int64_t id = jobIdFrom(req);
+    auto job = m_ctx.store->job(id);
+    if (!job) throw noSuchJob(req.matches[1]);
+    return *job;
+  }
+
+  RunRecord loadRun(const Request& req, const JobRecord& job) {
+    auto run = m_ctx.store->run({job.id, runIndexFrom(req, job)});
+    if (!run) throw noSuchJob(req.matches[1]);
+    return *run;
+  }
+
+  /// The run, which must be successful with its file in place.
+  RunRecord finishedRun(const Request& req, const JobRecord& job) {
+    RunRecord run = loadRun(req, job);
+    const std::string what = "run " + std::to_string(run.key.index) + " of job " + std::to_string(job.id);
+    if (run.status == Status::Accepted || run.status == Status::Running) {
+      throw ApiError(409, problem::kResultNotReady, "Result not ready",
+                     what + " is " + toString(run.status) + "; its results are ready when it is successful",
+                     "", Json{{"runStatus", toString(run.status)}});
+    }
+    if (run.status != Status::Successful || run.resultPath.empty()) {
+      throw ApiError(404, problem::kNoResults, "No results",
+                     what + " is " + toString(run.status) + " and has no results" +
+                         (run.error.empty() ? std::string() : ": " + run.error),
+                     "", Json{{"runStatus", toString(run.status)}});
+    }
+    return run;
+  }
+
+  ServerContext& m_ctx;
+};
+
+struct Route {
+  std::string pattern;
+  std::vector<std::string> methods;  // GET, POST, DELETE
+};
+
+}  // namespace
+
+void registerRoutes(httplib::Server& http, ServerContext& context) {
+  auto api = std::make_shared<Api>(context);
+  auto wrap = [api](void (Api::*method)(const Request&, Response&)) {
+    return [api, method](const Request& req, Response& res) {
+      try {
+        ((*api).*method)(req, res);
+      } catch (const ApiError& e) {
+        sendProblem(req, res, e);
+      } catch (const rupture::SpecError& e) {
+        sendProblem(req, res,
+                    ApiError(400, problem::kInvalidSpec, "Invalid spec", e.what(), e.field(),
+                             Json{{"value", e.value()}, {"allowed", e.allowed()}}));
+      } catch (const std::exception& e) {
+        logLine("internal error on " + req.method + " " + req.path + ": " + e.what());
+        sendProblem(req, res, ApiError(500, problem::kInternal, "Internal Server Error",
+                                       std::string("internal error: ") + e.what()));
+      }
+    };
+  };
+
+  const std::string id = "([^/]+)";
+  http.Get("/", wrap(&Api::landing));
+  http.Get("/health", wrap(&Api::health));
+  http.Get("/openapi.yaml", wrap(&Api::openapi));
+  http.Get("/api", wrap(&Api::openapi));
+  http.Get("/conformance", wrap(&Api::conformance));
+  http.Get("/processes", wrap(&Api::processes));
+  http.Get("/processes/" + id, wrap(&Api::process));
+  http.Post("/processes/" + id + "/execution", wrap(&Api::execute));
+  http.Get("/jobs", wrap(&Api::jobs));
+  http.Get("/jobs/" + id, wrap(&Api::job));
+  http.Delete("/jobs/" + id, wrap(&Api::dismiss));
+  http.Get("/jobs/" + id + "/results", wrap(&Api::jobResults));
+  http.Get("/jobs/" + id + "/runs", wrap(&Api::runsList));
+  http.Get("/jobs/" + id + "/runs/" + id, wrap(&Api::run));
+  http.Get("/jobs/" + id + "/runs/" + id + "/results", wrap(&Api::runResults));
+  http.Get("/jobs/" + id + "/runs/" + id + "/series", wrap(&Api::series));
+  http.Get("/jobs/" + id + "/summary", wrap(&Api::summary));
+  http.Get(R"(/jobs/([^/]+)/summary\.svg)", wrap(&Api::summarySvg));
+
+  // 405 (with Allow) for the other methods on every known path; OPTIONS answers with Allow.
+  const std::vector<Route> routes = {
+      {"/", {"GET"}},
+      {"/health", {"GET"}},
+      {"/openapi\\.yaml", {"GET"}},
+      {"/api", {"GET"}},
+      {"/conformance", {"GET"}},
+      {"/processes", {"GET"}},
+      {"/processes/" + id, {"GET"}},
+      {"/processes/" + id + "/execution", {"POST"}},
+      {"/jobs", {"GET"}},
+      {"/jobs/" + id, {"GET", "DELETE"}},
+      {"/jobs/" + id + "/results", {"GET"}},
+      {"/jobs/" + id + "/runs", {"GET"}},
+      {"/jobs/" + id + "/runs/" + id, {"GET"}},
+      {"/jobs/" + id + "/runs/" + id + "/results", {"GET"}},
+      {"/jobs/" + id + "/runs/" + id + "/series", {"GET"}},
+      {"/jobs/" + id + "/summary", {"GET"}},
+      {R"(/jobs/([^/]+)/summary\.svg)", {"GET"}},
+  };
+  for (const Route& route : routes) {
+    std::string allow;
+    for (const auto& m : route.methods) allow += (allow.empty() ? "" : ", ") + m;
+    if (std::find(route.methods.begin(), route.methods.end(), "GET") != route.methods.end()) allow += ", HEAD";
+    allow += ", OPTIONS";
+    auto notAllowed = [allow](const Request& req, Response& res) {
+      res.set_header("Allow", allow);
+      sendProblem(req, res,
+                  ApiError(405, problem::kMethodNotAllowed, "Method Not Allowed",
+                           req.method + " is not allowed on " + req.path + "; allowed: " + allow));
+    };
+    auto has = [&](const char* m) {
+      return std::find(route.methods.begin(), route.methods.end(), m) != route.methods.end();
+    };
+    if (!has("GET")) http.Get(route.pattern, notAllowed);
+    if (!has("POST")) http.Post(route.pattern, httplib::Server::Handler(notAllowed));
+    if (!has("DELETE")) http.Delete(route.pattern, httplib::Server::Handler(notAllowed));
+    http.Put(route.pattern, httplib::Server::Handler(notAllowed));
+    http.Patch(route.pattern, httplib::Server::Handler(notAllowed));
+    http.Options(route.pattern, [allow](const Request&, Response& res) {
+      res.status = 204;
+      res.set_header("Allow", allow);
+    });
+  }
+
+  // Before the body is read: chunked uploads escape the body-size limit in cpp-httplib 0.11.4, so
+  // they are refused outright; multi-range requests are refused too (each range would be copied).
+  http.set_pre_routing_handler([](const Request& req, Response& res) {
+    if (req.has_header("Transfer-Encoding")) {
+      res.set_header("Connection", "close");
+      sendProblem(req, res, problemForStatus(411));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (req.get_header_value("Range").find(',') != std::string::npos) {
+      sendProblem(req, res, problemForStatus(416, "multi-range requests are not supported; ask for one range"));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+
+  // Statuses produced by the HTTP layer itself (404 without a route, 413, 400 bad request line, ...)
+  // get a problem document too.
+  http.set_error_handler(httplib::Server::HandlerWithResponse([](const Request& req, Response& res) {
+    if (!res.body.empty() || res.content_length_ > 0) return httplib::Server::HandlerResponse::Unhandled;
+    sendProblem(req, res, problemForStatus(res.status));
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  http.set_exception_handler([](const Request& req, Response& res, std::exception_ptr ep) {
+    std::string what = "unknown exception";
+    try {
+      if (ep) std::rethrow_exception(ep);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    logLine("internal error on " + req.method + " " + req.path + ": " + what);
+    sendProblem(req, res, ApiError(500, problem::kInternal, "Internal Server Error", "internal error: " + what));
+  });
+  http.set_post_routing_handler([](const Request&, Response& res) {
+    res.set_header("X-Content-Type-Options", "nosniff");
+    if (!res.has_header("Cache-Control")) res.set_header("Cache-Control", "no-store");
+  });
+  if (context.config.logRequests) {
+    http.set_logger([](const Request& req, const Response& res) {
+      logLine(req.remote_addr + " \"" + req.method + " " + req.target + "\" " + std::to_string(res.status));
+    });
+  }
+}
+
+}  // namespace rupture::server

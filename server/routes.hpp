@@ -1,0 +1,35 @@
+#pragma once
+// The HTTP API (OGC API - Processes, Part 1 shape, extended for sweeps): routes, problem+json
+// errors, authentication, downloads. See api/openapi.yaml for the contract.
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "config.hpp"
+#include "job_store.hpp"
+#include "scheduler.hpp"
+
+namespace httplib {
+class Server;
+}
+
+namespace rupture::server {
+
+/// What the handlers need; owned by RuptureServer.
+struct ServerContext {
+  ServerConfig config;
+  std::filesystem::path dataDir;
+  JobStore* store = nullptr;
+  Scheduler* scheduler = nullptr;
+  std::atomic<bool> stopping{false};
+  std::chrono::steady_clock::time_point startedAt = std::chrono::steady_clock::now();
+};
+
+/// Registers every route, the 405 answers, and the pre-routing / error / exception handlers.
+void registerRoutes(httplib::Server& http, ServerContext& context);
+
+/// The OpenAPI document served at /openapi.yaml (api/openapi.yaml, compiled in).
+const std::string& openApiYaml();
+
+}  // namespace rupture::server

@@ -1,0 +1,87 @@
+#pragma once
+// The scheduler: a FIFO of runs (job order, then run index) served by a pool of worker threads.
+// Each run gets its own engine call with its own RunControl (cancel flag + progress); a monitor
+// copies progress into the store at most once a second. A run that throws marks only itself failed.
+//
+// Result files: <data-dir>/jobs/<id>/run-<k>.h5 exists only for a finished, complete run. The engine
+// writes run-<k>.partial.h5 (through its own .part + rename); on success the summary goes to
+// run-<k>.summary.json, then the file is renamed to run-<k>.h5, then the store is updated. A crash
+// between the rename and the store update is repaired on the next start from the summary file, so a
+// finished result is never recomputed.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "job_store.hpp"
+#include "rupture/run.hpp"
+
+namespace rupture::server {
+
+/// How a run is executed: rupture::runSpec in production.
+using RunExecutor = std::function<rupture::RunOutcome(const nlohmann::json& spec, const std::string& resultPath,
+                                                      rupture::RunControl& control, int threads)>;
+
+class Scheduler {
+public:
+  Scheduler(JobStore& store, std::filesystem::path dataDir, int workers, int threadsPerRun,
+            RunExecutor executor = {});
+  ~Scheduler();
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
+
+  /// Repairs and re-queues what a crash left behind, queues every accepted run, starts the threads.
+  void start();
+  /// Queues the runs 0..runs-1 of a new job.
+  void enqueue(std::int64_t jobId, int runs);
+  /// Cancels a job: queued runs never start, running ones are told to stop (within a second).
+  /// Returns the job after the change, or nullopt when there is no such job.
+  std::optional<JobRecord> dismiss(std::int64_t jobId);
+  /// Stops the workers: running runs are cancelled and re-queued for the next start. Idempotent.
+  void shutdown();
+
+  int workers() const { return m_workerCount; }
+  int threadsPerRun() const { return m_threadsPerRun; }
+  int running() const;
+
+  /// <data-dir>/jobs/<id>/run-<k>.h5
+  std::filesystem::path runFile(RunKey key) const;
+  std::filesystem::path jobDir(std::int64_t jobId) const;
+
+private:
+  void workerLoop();
+  void monitorLoop();
+  void execute(RunKey key, const std::shared_ptr<rupture::RunControl>& control);
+  void recoverFinishedFiles();
+
+  JobStore& m_store;
+  std::filesystem::path m_dataDir;
+  int m_workerCount;
+  int m_threadsPerRun;
+  RunExecutor m_executor;
+
+  mutable std::mutex m_mutex;
+  std::condition_variable m_wake;         // workers: queue or stop
+  std::condition_variable m_monitorWake;  // monitor: stop
+  std::deque<RunKey> m_queue;
+  struct RunKeyLess {
+    bool operator()(const RunKey& a, const RunKey& b) const {
+      return a.job != b.job ? a.job < b.job : a.index < b.index;
+    }
+  };
+  std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
+  bool m_stopping = false;
+  bool m_started = false;
+  std::vector<std::thread> m_threads;
+  std::thread m_monitor;
+};
+
+}  // namespace rupture::server

@@ -1,0 +1,54 @@
+#pragma once
+// RuptureServer: owns the job store, the scheduler and the HTTP server, and their lifecycle.
+//   RuptureServer server(config);
+//   int port = server.bind();   // opens the data directory, starts the workers, binds the port
+//   server.listen();            // serves until stop() (from another thread, e.g. a sigwait thread)
+// stop() is safe before, during and after listen(), from any thread, and more than once.
+#include <atomic>
+#include <memory>
+#include <thread>
+
+#include "config.hpp"
+#include "routes.hpp"
+
+namespace httplib {
+class Server;
+}
+
+namespace rupture::server {
+
+class RuptureServer {
+public:
+  /// Opens (creating) the data directory and the job store. Throws std::runtime_error on failure.
+  explicit RuptureServer(ServerConfig config);
+  ~RuptureServer();
+  RuptureServer(const RuptureServer&) = delete;
+  RuptureServer& operator=(const RuptureServer&) = delete;
+
+  /// Starts the scheduler (re-queueing interrupted runs) and binds the port (0 = any free one).
+  /// Returns the bound port; throws std::runtime_error if the address cannot be bound.
+  int bind();
+  /// Serves requests until stop(). Returns false if the server could not listen.
+  bool listen();
+  /// bind() + listen() on a background thread; returns once requests are being answered.
+  int startInBackground();
+  /// Stops accepting requests, lets requests in flight finish, then stops the workers: running
+  /// runs are cancelled and re-queued for the next start. Blocks until all of that is done.
+  void stop();
+
+  int port() const { return m_port; }
+  const ServerConfig& config() const { return m_context.config; }
+
+private:
+  ServerContext m_context;
+  std::unique_ptr<JobStore> m_store;
+  std::unique_ptr<Scheduler> m_scheduler;
+  std::unique_ptr<httplib::Server> m_http;
+  std::thread m_background;
+  std::atomic<bool> m_stopRequested{false};
+  std::atomic<bool> m_inListen{false};
+  std::atomic<bool> m_stopped{false};
+  int m_port = -1;
+};
+
+}  // namespace rupture::server

@@ -1,0 +1,152 @@
+#include "summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace rupture::server {
+namespace {
+
+/// The scalars every run reports, in the order a reader wants them.
+const std::vector<std::pair<std::string, std::string>>& knownScalars() {
+  static const std::vector<std::pair<std::string, std::string>> list = {
+      {"peak_stress", "Pa"},        {"strain_at_peak", ""}, {"crack_onset_strain", ""},
+      {"broken_bond_fraction", ""}, {"fragments", ""},      {"equilibrium_ratio", ""},
+      {"steps", ""},                {"wall_time_s", "s"},
+  };
+  return list;
+}
+
+void flatten(const Json& value, const std::string& prefix, Json& out) {
+  if (value.is_object()) {
+    for (const auto& [k, v] : value.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, out);
+  } else if (!prefix.empty()) {
+    out[prefix] = value;
+  }
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string csvValue(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return csvField(v.get<std::string>());
+  if (v.is_number_float()) return formatNumber(v.get<double>());
+  return csvField(v.dump());
+}
+
+}  // namespace
+
+std::string formatNumber(double value) {
+  if (!std::isfinite(value)) return "";  // NaN/inf: an empty CSV cell
+  return nlohmann::json(value).dump();
+}
+
+bool isKnownScalar(const std::string& name) {
+  for (const auto& [n, unit] : knownScalars()) {
+    if (n == name) return true;
+  }
+  return false;
+}
+
+std::string knownScalarUnit(const std::string& name) {
+  for (const auto& [n, unit] : knownScalars()) {
+    if (n == name) return unit;
+  }
+  if (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0) return "s";
+  return "";
+}
+
+Json SummaryTable::value(const SummaryRow& row, const std::string& column) const {
+  for (std::size_t i = 0; i < sweptPaths.size(); ++i) {
+    if (sweptPaths[i] == column) return i < row.swept.size() ? row.swept[i] : Json();
+  }
+  auto it = row.scalars.find(column);
+  return it == row.scalars.end() ? Json() : *it;
+}
+
+bool SummaryTable::hasColumn(const std::string& column) const {
+  return std::find(sweptPaths.begin(), sweptPaths.end(), column) != sweptPaths.end() ||
+         std::find(scalarNames.begin(), scalarNames.end(), column) != scalarNames.end();
+}
+
+SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs) {
+  SummaryTable table;
+  table.jobId = job.id;
+  for (const auto& p : job.sweptPaths) table.sweptPaths.push_back(p.get<std::string>());
+  std::vector<std::string> seen;
+  for (const RunRecord& run : runs) {
+    SummaryRow row;
+    row.run = run.key.index;
+    row.status = run.status;
+    row.swept = run.swept.is_array() ? run.swept : Json::array();
+    row.scalars = Json::object();
+    if (run.summary.is_object()) flatten(run.summary, "", row.scalars);
+    row.error = run.error;
+    for (const auto& [k, v] : row.scalars.items()) {
+      if (std::find(seen.begin(), seen.end(), k) == seen.end()) seen.push_back(k);
+    }
+    table.rows.push_back(std::move(row));
+  }
+  for (const auto& [name, unit] : knownScalars()) {
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) table.scalarNames.push_back(name);
+  }
+  for (const std::string& name : seen) {
+    if (std::find(table.scalarNames.begin(), table.scalarNames.end(), name) == table.scalarNames.end()) {
+      table.scalarNames.push_back(name);
+    }
+  }
+  return table;
+}
+
+Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
+  Json doc = Json::object();
+  doc["jobID"] = std::to_string(table.jobId);
+  Json columns = Json::array();
+  for (const auto& p : table.sweptPaths) {
+    columns.push_back({{"name", p}, {"kind", "swept"}, {"unit", unitOf ? unitOf(p) : ""}});
+  }
+  for (const auto& s : table.scalarNames) {
+    columns.push_back({{"name", s}, {"kind", "result"}, {"unit", unitOf ? unitOf(s) : knownScalarUnit(s)}});
+  }
+  doc["columns"] = columns;
+  Json rows = Json::array();
+  for (const SummaryRow& row : table.rows) {
+    Json r = Json::object();
+    r["run"] = row.run;
+    r["status"] = toString(row.status);
+    for (std::size_t i = 0; i < table.sweptPaths.size(); ++i) {
+      r[table.sweptPaths[i]] = i < row.swept.size() ? row.swept[i] : Json();
+    }
+    for (const auto& s : table.scalarNames) r[s] = table.value(row, s);
+    if (!row.error.empty()) r["error"] = row.error;
+    rows.push_back(std::move(r));
+  }
+  doc["rows"] = rows;
+  return doc;
+}
+
+std::string summaryCsv(const SummaryTable& table) {
+  std::ostringstream out;
+  out << "run,status";
+  for (const auto& p : table.sweptPaths) out << ',' << csvField(p);
+  for (const auto& s : table.scalarNames) out << ',' << csvField(s);
+  out << ",error\r\n";
+  for (const SummaryRow& row : table.rows) {
+    out << row.run << ',' << toString(row.status);
+    for (const auto& p : table.sweptPaths) out << ',' << csvValue(table.value(row, p));
+    for (const auto& s : table.scalarNames) out << ',' << csvValue(table.value(row, s));
+    out << ',' << csvField(row.error) << "\r\n";
+  }
+  return out.str();
+}
+
+}  // namespace rupture::server

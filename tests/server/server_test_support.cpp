@@ -1,0 +1,160 @@
+// Definitions for server_test_support.hpp (no tests here).
+#include "server_test_support.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace rupture::server::test {
+
+Json smallInputs() {
+  Json spec = Json::parse(readText(exampleFile()));
+  spec.erase("scenario");
+  return spec;
+}
+
+std::string rawExchange(int port, const std::string& request, double seconds) {
+  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return {};
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);  // loopback only
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    ::close(fd);
+    return {};
+  }
+  std::size_t sent = 0;
+  while (sent < request.size()) {
+    const ssize_t n = ::send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;  // the server may close early (411, 413): keep what it answered
+    sent += static_cast<std::size_t>(n);
+  }
+  ::shutdown(fd, SHUT_WR);
+  std::string out;
+  char buf[4096];
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 100) <= 0) continue;
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) break;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return out;
+}
+
+int rawStatus(const std::string& response) {
+  if (response.rfind("HTTP/1.", 0) != 0 || response.size() < 12) return -1;
+  return std::atoi(response.substr(9, 3).c_str());
+}
+
+std::string rawBody(const std::string& response) {
+  const std::size_t p = response.find("\r\n\r\n");
+  return p == std::string::npos ? std::string() : response.substr(p + 4);
+}
+
+bool wellFormedXml(const std::string& text, std::string& error) {
+  std::vector<std::string> stack;
+  std::size_t i = 0;
+  bool sawRoot = false;
+  while (i < text.size()) {
+    if (text[i] != '<') {
+      if (text[i] == '&') {
+        const std::size_t semi = text.find(';', i);
+        const std::string entity = semi == std::string::npos ? "" : text.substr(i, semi - i + 1);
+        static const std::set<std::string> ok = {"&amp;", "&lt;", "&gt;", "&quot;", "&apos;"};
+        if (!ok.count(entity) && entity.rfind("&#", 0) != 0) {
+          error = "bad entity at " + std::to_string(i);
+          return false;
+        }
+      }
+      ++i;
+      continue;
+    }
+    if (text.compare(i, 5, "<?xml") == 0) {
+      i = text.find("?>", i);
+      if (i == std::string::npos) { error = "unterminated declaration"; return false; }
+      i += 2;
+      continue;
+    }
+    if (text.compare(i, 4, "<!--") == 0) {
+      i = text.find("-->", i);
+      if (i == std::string::npos) { error = "unterminated comment"; return false; }
+      i += 3;
+      continue;
+    }
+    const std::size_t end = text.find('>', i);
+    if (end == std::string::npos) { error = "unterminated tag at " + std::to_string(i); return false; }
+    std::string tag = text.substr(i + 1, end - i - 1);
+    i = end + 1;
+    if (!tag.empty() && tag[0] == '/') {
+      const std::string name = tag.substr(1);
+      if (stack.empty() || stack.back() != name) {
+        error = "closing </" + name + "> does not match <" + (stack.empty() ? "" : stack.back()) + ">";
+        return false;
+      }
+      stack.pop_back();
+      continue;
+    }
+    const bool selfClosing = !tag.empty() && tag.back() == '/';
+    if (selfClosing) tag.pop_back();
+    const std::size_t nameEnd = tag.find_first_of(" \t\n");
+    const std::string name = tag.substr(0, nameEnd);
+    if (name.empty()) { error = "empty tag name"; return false; }
+    // Attributes: name="value" pairs.
+    std::size_t p = nameEnd == std::string::npos ? tag.size() : nameEnd;
+    while (p < tag.size()) {
+      while (p < tag.size() && std::isspace(static_cast<unsigned char>(tag[p]))) ++p;
+      if (p >= tag.size()) break;
+      const std::size_t eq = tag.find('=', p);
+      if (eq == std::string::npos || eq + 1 >= tag.size() || (tag[eq + 1] != '"' && tag[eq + 1] != '\'')) {
+        error = "unquoted attribute in <" + name + ">";
+        return false;
+      }
+      const std::size_t close = tag.find(tag[eq + 1], eq + 2);
+      if (close == std::string::npos) { error = "unterminated attribute in <" + name + ">"; return false; }
+      if (tag.substr(eq + 2, close - eq - 2).find('<') != std::string::npos) {
+        error = "'<' inside an attribute of <" + name + ">";
+        return false;
+      }
+      p = close + 1;
+    }
+    if (stack.empty()) {
+      if (sawRoot) { error = "more than one root element"; return false; }
+      sawRoot = true;
+    }
+    if (!selfClosing) stack.push_back(name);
+  }
+  if (!stack.empty()) { error = "unclosed <" + stack.back() + ">"; return false; }
+  if (!sawRoot) { error = "no root element"; return false; }
+  return true;
+}
+
+std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false, any = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') { field += '"'; ++i; }
+      else if (c == '"') quoted = false;
+      else field += c;
+      continue;
+    }
+    if (c == '"') { quoted = true; any = true; }
+    else if (c == ',') { row.push_back(field); field.clear(); any = true; }
+    else if (c == '\r') {}
+    else if (c == '\n') { row.push_back(field); rows.push_back(row); row.clear(); field.clear(); any = false; }
+    else { field += c; any = true; }
+  }
+  if (any || !field.empty()) { row.push_back(field); rows.push_back(row); }
+  return rows;
+}
+
+}  // namespace rupture::server::test

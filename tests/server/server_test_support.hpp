@@ -1,0 +1,201 @@
+#pragma once
+// Shared helpers for the server tests: temporary data directories, an in-process server on a free
+// loopback port, a real HTTP client, JSON helpers and the small dynamic-tension inputs.
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include "problem.hpp"
+#include "rupture/run.hpp"
+#include "server.hpp"
+
+namespace rupture::server::test {
+
+namespace fs = std::filesystem;
+
+/// A fresh directory under the system temp dir, removed with everything in it at scope exit.
+class TempDir {
+public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "rupture-server-test-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    m_path = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(m_path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return m_path; }
+
+private:
+  fs::path m_path;
+};
+
+inline std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+/// Polls `done` every 20 ms until it is true or `seconds` have passed; returns its last value.
+inline bool waitFor(const std::function<bool()>& done, double seconds) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return done();
+}
+
+/// The scenario the end-to-end tests drive.
+inline constexpr const char* kScenario = "dynamic-tension";
+
+inline fs::path exampleFile() { return fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"; }
+
+inline bool scenarioAvailable() {
+  if (!fs::exists(exampleFile())) return false;
+  for (const auto& s : rupture::listScenarios()) {
+    if (s.name == kScenario) return true;
+  }
+  return false;
+}
+
+/// The small example's spec without "scenario" (= the POST body's inputs), shrunk further so that a
+/// run takes about a second on one core.
+Json smallInputs();
+
+/// A real server on 127.0.0.1 with a free port, in this process, with its own data directory.
+class LiveServer {
+public:
+  explicit LiveServer(const std::function<void(ServerConfig&)>& configure = {}, const fs::path& dataDir = {}) {
+    ServerConfig config;
+    config.port = 0;
+    config.bind = "127.0.0.1";
+    config.dataDir = dataDir.empty() ? m_dir.path().string() : dataDir.string();
+    config.workers = 2;
+    config.threadsPerRun = 1;
+    config.httpThreads = 8;
+    if (configure) configure(config);
+    m_server = std::make_unique<RuptureServer>(config);
+    m_port = m_server->startInBackground();
+  }
+  ~LiveServer() { m_server->stop(); }
+
+  int port() const { return m_port; }
+  RuptureServer& server() { return *m_server; }
+  fs::path dataDir() const { return m_server->config().dataDir; }
+  std::unique_ptr<httplib::Client> client() const {
+    auto c = std::make_unique<httplib::Client>("127.0.0.1", m_port);
+    c->set_read_timeout(30, 0);
+    c->set_connection_timeout(5, 0);
+    return c;
+  }
+
+private:
+  TempDir m_dir;
+  std::unique_ptr<RuptureServer> m_server;
+  int m_port = 0;
+};
+
+inline Json parseJson(const std::string& text) { return Json::parse(text); }
+
+/// GET that must answer `status` with a JSON body.
+inline Json getJson(httplib::Client& client, const std::string& path, int status = 200) {
+  auto res = client.Get(path.c_str());
+  if (!res) {
+    ADD_FAILURE() << "GET " << path << ": no response (" << httplib::to_string(res.error()) << ")";
+    return Json();
+  }
+  EXPECT_EQ(res->status, status) << "GET " << path << ": " << res->body;
+  return Json::parse(res->body);
+}
+
+inline httplib::Result postJson(httplib::Client& client, const std::string& path, const Json& body,
+                                const httplib::Headers& headers = {}) {
+  return client.Post(path.c_str(), headers, body.dump(), "application/json");
+}
+
+/// Posts a sweep and returns the job id (the POST must answer 201).
+inline std::int64_t submit(httplib::Client& client, const Json& body, const httplib::Headers& headers = {}) {
+  auto res = postJson(client, std::string("/processes/") + kScenario + "/execution", body, headers);
+  if (!res) {
+    ADD_FAILURE() << "POST: no response";
+    return -1;
+  }
+  EXPECT_EQ(res->status, 201) << res->body;
+  if (res->status != 201) return -1;
+  const Json doc = Json::parse(res->body);
+  EXPECT_EQ(res->get_header_value("Location"), "/jobs/" + doc["jobID"].get<std::string>());
+  return std::stoll(doc["jobID"].get<std::string>());
+}
+
+/// Polls GET /jobs/{id} until its status is one of `statuses`; returns the last document.
+inline Json waitForJob(httplib::Client& client, std::int64_t id, const std::set<std::string>& statuses,
+                       double seconds) {
+  Json doc;
+  waitFor(
+      [&] {
+        auto res = client.Get(("/jobs/" + std::to_string(id)).c_str());
+        if (!res || res->status != 200) return false;
+        doc = Json::parse(res->body);
+        return statuses.count(doc["status"].get<std::string>()) > 0;
+      },
+      seconds);
+  return doc;
+}
+
+/// Checks a problem document: status, content type, the RFC 7807 members, and `field` when given.
+inline Json expectProblem(const httplib::Result& res, int status, const std::string& field = {}) {
+  if (!res) {
+    ADD_FAILURE() << "no response";
+    return Json();
+  }
+  EXPECT_EQ(res->status, status) << res->body;
+  EXPECT_EQ(res->get_header_value("Content-Type"), kProblemContentType) << res->body;
+  Json doc;
+  try {
+    doc = Json::parse(res->body);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "problem body is not JSON: " << res->body;
+    return Json();
+  }
+  EXPECT_TRUE(doc.contains("type") && doc["type"].is_string()) << res->body;
+  EXPECT_TRUE(doc.contains("title") && doc["title"].is_string()) << res->body;
+  EXPECT_EQ(doc.value("status", 0), status) << res->body;
+  EXPECT_TRUE(doc.contains("detail") && doc["detail"].is_string()) << res->body;
+  if (!field.empty()) {
+    EXPECT_EQ(doc.value("field", std::string()), field) << res->body;
+  }
+  return doc;
+}
+
+/// Sends raw bytes to 127.0.0.1:port and returns everything the server answers until it closes
+/// the connection (or `seconds` pass). For requests an HTTP client library would normalise.
+std::string rawExchange(int port, const std::string& request, double seconds = 5);
+
+/// The status code of a raw HTTP response ("HTTP/1.1 404 Not Found" -> 404), or -1.
+int rawStatus(const std::string& response);
+
+/// The body of a raw (non-chunked) HTTP response.
+std::string rawBody(const std::string& response);
+
+/// Minimal XML well-formedness check (tags balance, attributes quoted), enough for our SVG.
+bool wellFormedXml(const std::string& text, std::string& error);
+
+/// Splits RFC 4180 CSV into rows of fields.
+std::vector<std::vector<std::string>> parseCsv(const std::string& text);
+
+}  // namespace rupture::server::test
