@@ -81,6 +81,14 @@ void bondNeighbours(BondedSystem& system, double gap) {
     });
 }
 
+void dropUnbonded(BondedSystem& system) {
+  std::vector<std::uint8_t> bonded(system.particles.size(), 0);
+  for (std::size_t b = 0; b < system.bonds.size(); ++b)
+    bonded[system.bonds.i[b]] = bonded[system.bonds.j[b]] = 1;
+  if (std::find(bonded.begin(), bonded.end(), 0) != bonded.end())
+    system.bonds.remap(system.particles.compact(bonded));
+}
+
 std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::mt19937_64& rng) {
   std::vector<Pore> pores;
   if (s.porosity <= 0) return pores;
@@ -132,13 +140,19 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
     p.add(c[0], c[1], c[2], r);
     solid += elementVolume(s.dimension, r);
   }
-  report.packingFraction = solid / boxVolume;
   double meanRadius = 0;
   for (double r : p.radius) meanRadius += r;
   meanRadius /= static_cast<double>(p.size());
   report.relaxationOverlap = relaxOverlaps(p, s.size, meanRadius);
 
   bondNeighbours(system, s.bondGap);
+
+  // Rattlers (elements of the dense packing with no bond) would float free: drop them first, so
+  // that the dense sample is exactly what gets the bulk density.
+  dropUnbonded(system);
+  solid = 0;
+  for (double r : p.radius) solid += elementVolume(s.dimension, r);
+  report.packingFraction = solid / boxVolume;
 
   // Masses from the dense packing: the dense sample has the bulk density.
   report.thickness = s.dimension == 2 ? s.elementRadius : 0.0;
@@ -190,15 +204,9 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
     for (Pore& pore : report.pores) pore.radius *= scale;
     report.porosity = removed / solid;
   }
-  // Drop the pore elements, then any element left with no bond (it would float free).
-  auto newIndex = p.compact(keep);
-  system.bonds.remap(newIndex);
-  std::vector<std::uint8_t> bonded(p.size(), 0);
-  for (std::size_t b = 0; b < system.bonds.size(); ++b) bonded[system.bonds.i[b]] = bonded[system.bonds.j[b]] = 1;
-  if (std::find(bonded.begin(), bonded.end(), 0) != bonded.end()) {
-    newIndex = p.compact(bonded);
-    system.bonds.remap(newIndex);
-  }
+  // Drop the pore elements, then any element the pores left with no bond.
+  system.bonds.remap(p.compact(keep));
+  dropUnbonded(system);
 
   system.beam = m.beam;
   system.contact.setParameters(m.contact);

@@ -1,0 +1,95 @@
+// `rupture calibrate` and `rupture bench` through the real binary: documented output keys, and
+// exit code 2 with the field named for bad specs.
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+
+using rupture::testing::runCli;
+using rupture::testing::writeSpec;
+
+namespace {
+
+nlohmann::json smallSpec() {
+  return {{"dimension", 2},
+          {"sample", {{"size", {0.15e-6, 0.15e-6}}, {"element_radius", 3.3e-9}, {"seed", 5}}},
+          {"material",
+           {{"model", "beam"},
+            {"density", 6060},
+            {"beam", {{"young_modulus", 2865e9}, {"poisson_ratio", 0.3}, {"radius_ratio", 0.3}, {"failure_stress", 4e9}}}}}};
+}
+
+TEST(CliCalibrate, MeasuresYoungModulusAndPoissonRatio) {
+  const auto r = runCli("calibrate " + writeSpec(smallSpec(), "good.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_GT(out.at("young_modulus").get<double>(), 1e10);
+  EXPECT_GT(out.at("poisson_ratio").get<double>(), 0.0);
+  EXPECT_LT(out.at("poisson_ratio").get<double>(), 1.0);
+  EXPECT_GT(out.at("sample").at("elements").get<int>(), 100);
+}
+
+struct BadSpec {
+  const char* name;
+  nlohmann::json::json_pointer pointer;
+  nlohmann::json value;  // null: remove the field
+  const char* field;     // must appear in the message
+};
+
+class CliBadSpec : public ::testing::TestWithParam<BadSpec> {};
+
+TEST_P(CliBadSpec, ExitsTwoNamingTheField) {
+  const BadSpec& bad = GetParam();
+  nlohmann::json spec = smallSpec();
+  if (bad.value.is_null()) {
+    const auto parent = bad.pointer.parent_pointer();
+    spec[parent].erase(bad.pointer.back());
+  } else {
+    spec[bad.pointer] = bad.value;
+  }
+  const auto r = runCli("calibrate " + writeSpec(spec, std::string(bad.name) + ".json"));
+  EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find(bad.field), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("allowed"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Specs, CliBadSpec,
+    ::testing::Values(
+        BadSpec{"missing_radius", nlohmann::json::json_pointer("/sample/element_radius"), nullptr, "sample.element_radius"},
+        BadSpec{"negative_radius", nlohmann::json::json_pointer("/sample/element_radius"), -1e-9, "sample.element_radius"},
+        BadSpec{"porosity_09", nlohmann::json::json_pointer("/sample/porosity"), 0.9, "sample.porosity"},
+        BadSpec{"dimension_4", nlohmann::json::json_pointer("/dimension"), 4, "dimension"},
+        BadSpec{"missing_failure", nlohmann::json::json_pointer("/material/beam/failure_stress"), nullptr, "material.beam.failure_stress"},
+        BadSpec{"unknown_key", nlohmann::json::json_pointer("/sample/colour"), "red", "sample.colour"},
+        BadSpec{"wrong_type", nlohmann::json::json_pointer("/material/density"), "heavy", "material.density"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(CliCalibrate, UnreadableOrMalformedSpecExitsTwo) {
+  EXPECT_EQ(runCli("calibrate /nonexistent/spec.json").exitCode, 2);
+  const auto path = rupture::testing::writeSpec(nullptr, "null.json");
+  std::ofstream(path) << "{ not json";
+  const auto r = runCli("calibrate " + path);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("not valid JSON"), std::string::npos);
+}
+
+TEST(CliBench, PrintsOneJsonLineWithTheDocumentedKeys) {
+  const auto r = runCli("bench W1 --particles 2000 --steps 20 --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  for (const char* key : {"workload", "particles", "bonds", "steps", "threads", "seconds", "particle_steps_per_s", "bond_steps_per_s"})
+    EXPECT_TRUE(out.contains(key)) << key;
+  EXPECT_EQ(out["workload"], "W1");
+  EXPECT_EQ(out["steps"], 20);
+  // fcc: 4 spheres per cell and about 6 bonds per sphere (12 neighbours, each bond counted once).
+  const double bondsPerSphere = out["bonds"].get<double>() / out["particles"].get<double>();
+  EXPECT_GT(bondsPerSphere, 4.5);
+  EXPECT_LT(bondsPerSphere, 6.0);
+  EXPECT_NEAR(out["particle_steps_per_s"].get<double>(),
+              out["particles"].get<double>() * 20 / out["seconds"].get<double>(), 1e-6 * out["particle_steps_per_s"].get<double>());
+  EXPECT_EQ(runCli("bench W9").exitCode, 2);
+  EXPECT_EQ(runCli("bench W1 --threads 0").exitCode, 2);
+}
+
+}  // namespace
