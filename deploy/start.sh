@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The README's first command: install the dependencies, build, start rupture-server on an embedded
+# SQLite database in ./data (port $RUPTURE_PORT, default 8080), and submit the example sweep
+# (examples/sweep-small.json: strain rate × initial velocity field of the small dynamic-tension
+# sample). The server stays in the foreground; Ctrl-C stops it gracefully, and the next start on
+# the same data directory resumes any unfinished runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash deploy/setup.sh
+bash deploy/build.sh
+PORT="${RUPTURE_PORT:-8080}"
+DATA="${RUPTURE_DATA_DIR:-data}"
+./build/server/rupture-server --data-dir "$DATA" --port "$PORT" &
+server=$!
+trap 'kill -TERM "$server" 2>/dev/null; wait "$server"' INT TERM
+for _ in $(seq 1 100); do
+  curl -sf "http://127.0.0.1:$PORT/health" >/dev/null && break
+  sleep 0.1
+done
+echo "== submitting the example sweep (examples/sweep-small.json)"
+curl -sS --json @examples/sweep-small.json "http://127.0.0.1:$PORT/processes/dynamic-tension/execution"
+echo
+cat <<MSG
+== rupture-server is running on http://127.0.0.1:$PORT (data in $DATA/); the sweep runs in the background.
+   curl -s http://127.0.0.1:$PORT/jobs/1                           # status and per-run progress
+   curl -s "http://127.0.0.1:$PORT/jobs/1/summary?format=csv"      # peak stress versus strain rate
+   curl -s -o plot.svg "http://127.0.0.1:$PORT/jobs/1/summary.svg?x=loading.strain_rate&y=peak_stress"
+   curl -s -o results.h5 http://127.0.0.1:$PORT/jobs/1/results     # every run's HDF5 groups, once finished
+Ctrl-C stops the server.
+MSG
+wait "$server"
