@@ -360,6 +360,12 @@ int JobStore::queueDepth() {
   return q.step() ? static_cast<int>(q.i64(0)) : 0;
 }
 
+int JobStore::runningCount() {
+  std::lock_guard lock(m_mutex);
+  Stmt q(m_db, "SELECT COUNT(*) FROM runs WHERE status = 'running'");
+  return q.step() ? static_cast<int>(q.i64(0)) : 0;
+}
+
 int JobStore::requeueInterrupted() {
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();

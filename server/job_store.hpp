@@ -118,6 +118,8 @@ public:
 
   /// Number of accepted runs in jobs not dismissed.
   int queueDepth();
+  /// Number of runs recorded as running.
+  int runningCount();
 
 private:
   void exec(const std::string& sql);

@@ -155,6 +155,28 @@ void sendFile(Response& res, const fs::path& path, const std::string& downloadNa
       });
 }
 
+/// Deepest nesting of arrays and objects in a JSON text (strings skipped). Checked before parsing:
+/// nlohmann::json parses, copies and frees nested values recursively, so a body of half a million
+/// '[' would overflow the stack.
+int jsonNestingDepth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\') ++i;
+      else if (c == '"') inString = false;
+      continue;
+    }
+    if (c == '"') inString = true;
+    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
+    else if (c == ']' || c == '}') --depth;
+  }
+  return deepest;
+}
+
+constexpr int kMaxJsonDepth = 64;
+
 bool knownScenario(const std::string& name) {
   for (const auto& s : rupture::listScenarios()) {
     if (s.name == name) return true;
@@ -167,13 +189,20 @@ std::string schemaUnitOfNode(const nlohmann::json& node) {
     if (node.contains(key) && node[key].is_string()) return node[key].get<std::string>();
   }
   if (node.contains("description") && node["description"].is_string()) {
-    // Conventions in descriptions: "... [Pa]" or "... (unit: Pa)" or "..., in Pa".
+    // Conventions in descriptions: "Imposed strain rate (1/s): ...", "Box edges (m), ...",
+    // "... (1, dimensionless)", or a trailing "[Pa]". Equation references "(eq. 3)" are skipped.
+    static const std::regex paren(R"(\(([^()]{1,24})\))");
     static const std::regex bracket(R"(\[([^\[\]]{1,16})\]\s*\.?\s*$)");
-    static const std::regex unitColon(R"(\(unit:?\s*([^()]{1,16})\))");
-    std::smatch m;
+    static const std::regex unitLike(R"(^[A-Za-z0-9/^*.+\- ]{1,12}$)");
     const std::string d = node["description"].get<std::string>();
+    std::smatch m;
     if (std::regex_search(d, m, bracket)) return m[1];
-    if (std::regex_search(d, m, unitColon)) return m[1];
+    for (auto it = std::sregex_iterator(d.begin(), d.end(), paren); it != std::sregex_iterator(); ++it) {
+      const std::string inside = (*it)[1];
+      if (inside.rfind("1, dimensionless", 0) == 0 || inside == "1") return "";
+      if (inside.rfind("eq", 0) == 0 || inside.rfind("default", 0) == 0) continue;
+      if (std::regex_match(inside, unitLike)) return inside;
+    }
   }
   return "";
 }
@@ -319,7 +348,7 @@ public:
     doc["version"] = RUPTURE_VERSION;
     doc["workers"] = m_ctx.scheduler->workers();
     doc["threads_per_run"] = m_ctx.scheduler->threadsPerRun();
-    doc["running"] = m_ctx.scheduler->running();
+    doc["running"] = m_ctx.store->runningCount();  // the store's view, as GET /jobs shows it
     doc["queue_depth"] = m_ctx.store->queueDepth();
     doc["uptime_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_ctx.startedAt).count();
     Json scenarios = Json::array();
@@ -396,6 +425,12 @@ public:
     if (req.body.empty()) {
       throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
                      "the request body is empty; send {\"inputs\": {...}} with Content-Type: application/json",
+                     "", Json{{"in", "body"}});
+    }
+    if (jsonNestingDepth(req.body) > kMaxJsonDepth) {
+      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
+                     "the request body nests arrays or objects deeper than " + std::to_string(kMaxJsonDepth) +
+                         " levels",
                      "", Json{{"in", "body"}});
     }
     Json body;

@@ -183,9 +183,12 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     if (stopping()) {
       m_store.requeueRun(key);
       logLine(describe(key) + " interrupted by shutdown; re-queued");
-    } else {
+    } else if (control->cancel) {
       m_store.finishDismissed(key);
       logLine(describe(key) + " cancelled after " + elapsed() + " s");
+    } else {
+      m_store.finishFailed(key, "the run ended without completing (nobody cancelled it)");
+      logLine(describe(key) + " ended incomplete after " + elapsed() + " s");
     }
   } catch (const std::exception& e) {
     removeQuietly(partial);

@@ -45,7 +45,15 @@ std::string tickLabel(double v) {
   if (std::abs(v) < 1e-300) return "0";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
+  std::string text = buf;  // "5.2e+07" -> "5.2e7", "1e-05" -> "1e-5"
+  if (auto e = text.find('e'); e != std::string::npos) {
+    std::string exponent = text.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    if (exponent[0] == '+' || exponent[0] == '-') exponent.erase(0, 1);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    text = text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+  }
+  return text;
 }
 
 std::string valueText(const Json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }

@@ -216,6 +216,13 @@ void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan&
       }
       throw ApiError(400, problem::kInvalidSpec, "Invalid spec", std::string(e.what()) + where,
                      e.field(), extra);
+    } catch (const std::exception& e) {
+      // The validator choked on an input it did not expect: still the client's input, still a 400.
+      Json extra = Json::object();
+      extra["in"] = "inputs";
+      if (!plan.axes.empty()) extra["sweep_point"] = k;
+      throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                     std::string("the spec could not be validated: ") + e.what(), "", extra);
     }
   }
 }

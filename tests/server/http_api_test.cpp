@@ -122,6 +122,11 @@ TEST(HttpApi, BadSubmissionsGetProblemDocumentsAndNoJob) {
   expectProblem(post(withInputs(inputs, {{"sweep", {{"loading.strain_rate", Json::array()}}}})), 400,
                 "loading.strain_rate");
 
+  // Pathologically deep nesting is refused before parsing (it would overflow the parser's stack).
+  const std::string deep = "{\"inputs\": " + std::string(400000, '[') + std::string(400000, ']') + "}";
+  expectProblem(post(deep), 400);
+  expectStillServing(*client);
+
   // Form-encoded bodies (curl -d without --json) are parsed as JSON all the same.
   auto form = client->Post(kExecute.c_str(), "{\"inputs\": {", "application/x-www-form-urlencoded");
   expectProblem(form, 400);

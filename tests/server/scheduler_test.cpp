@@ -43,6 +43,7 @@ struct FakeExecutor {
       struct Leave { std::atomic<int>& c; ~Leave() { --c; } } leave{concurrent};
       const std::string behaviour = spec["behaviour"];
       if (behaviour == "throw" && spec["k"] == 1) throw std::runtime_error("run 1 exploded");
+      if (behaviour == "incomplete") return rupture::RunOutcome{nlohmann::json::object(), false};
       if (behaviour == "slow") {
         for (int i = 0; i < 1000 && !control.cancel; ++i) {
           control.progress = i / 1000.0;
@@ -95,6 +96,20 @@ TEST(Scheduler, AThrowingRunFailsOnlyItself) {
   EXPECT_EQ(store.run({id, 2})->status, Status::Successful);
   EXPECT_EQ(store.job(id)->status, Status::Failed);
   EXPECT_LE(fake.maxConcurrent.load(), 2);
+}
+
+TEST(Scheduler, ARunEndingIncompleteWithoutCancelFails) {
+  test::TempDir dir;
+  JobStore store((dir.path() / "db.sqlite").string());
+  FakeExecutor fake;
+  Scheduler scheduler(store, dir.path(), 1, 3, fake.executor());
+  scheduler.start();
+  const auto id = store.createJob(jobOf(1, "incomplete"));
+  scheduler.enqueue(id, 1);
+  ASSERT_TRUE(test::waitFor([&] { return jobDone(store, id); }, 10));
+  EXPECT_EQ(store.run({id, 0})->status, Status::Failed);
+  EXPECT_FALSE(store.run({id, 0})->error.empty());
+  EXPECT_FALSE(std::filesystem::exists(scheduler.runFile({id, 0})));
 }
 
 TEST(Scheduler, DismissCancelsRunningAndQueuedRuns) {

@@ -77,6 +77,20 @@ inline bool scenarioAvailable() {
 /// run takes about a second on one core.
 Json smallInputs();
 
+/// A swept path that sets how long a run takes, with a value for a quick run (as long as
+/// smallInputs()), one for a run of a few seconds, and one for a run that lasts well over ten
+/// seconds (to be cancelled).
+struct RunLengthKnob {
+  std::string path;
+  Json quick;
+  Json medium;
+  Json slow;
+};
+RunLengthKnob runLengthKnob();
+
+/// Two strain rates for the 2 x 2 grid, a decade apart.
+Json twoStrainRates();
+
 /// A real server on 127.0.0.1 with a free port, in this process, with its own data directory.
 class LiveServer {
 public:
@@ -182,8 +196,8 @@ inline Json expectProblem(const httplib::Result& res, int status, const std::str
   return doc;
 }
 
-/// Sends raw bytes to 127.0.0.1:port and returns everything the server answers until it closes
-/// the connection (or `seconds` pass). For requests an HTTP client library would normalise.
+/// Sends raw bytes to 127.0.0.1:port and returns the server's answer: up to the end of the first
+/// response, the connection's close, or `seconds`. For requests a client library would normalise.
 std::string rawExchange(int port, const std::string& request, double seconds = 5);
 
 /// The status code of a raw HTTP response ("HTTP/1.1 404 Not Found" -> 404), or -1.

@@ -113,6 +113,8 @@ TEST(SvgPlot, PlotHasLogAxisUnitsAndOneSeriesPerOtherSweptValue) {
   EXPECT_NE(svg.find("peak_stress [Pa]"), std::string::npos);
   // Decade ticks 10^5 .. 10^7.
   for (const char* d : {">5</tspan>", ">6</tspan>", ">7</tspan>"}) EXPECT_NE(svg.find(d), std::string::npos) << d;
+  EXPECT_NE(svg.find(">2e8</text>"), std::string::npos);  // compact tick labels on the linear y axis
+  EXPECT_EQ(svg.find("e+0"), std::string::npos);
   // Two series (V0, VL) with a legend titled by the other swept path.
   EXPECT_NE(svg.find("class=\"legend\""), std::string::npos);
   EXPECT_NE(svg.find("data-label=\"V0\""), std::string::npos);
