@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include <hdf5.h>
-
 #include "files.hpp"
-#include "hdf5_merge.hpp"
 #include "io/hdf5_file.hpp"
 #include "summary.hpp"
 
@@ -27,22 +24,11 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
   std::error_code ec;
   fs::remove(part, ec);
   {
-    // Objects and their attributes first (see hdf5_merge.hpp for why not Hdf5File::copyFileInto).
-    const hid_t file = H5Fcreate(part.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (file < 0) throw std::runtime_error("cannot create " + part.string());
-    try {
-      for (const RunRecord& run : runs) {
-        if (run.status != Status::Successful || run.resultPath.empty()) continue;
-        copyRunFileInto(file, (dataDir / run.resultPath).string(), "/run-" + std::to_string(run.key.index));
-      }
-    } catch (...) {
-      H5Fclose(file);
-      throw;
+    Hdf5File out = Hdf5File::create(part.string());
+    for (const RunRecord& run : runs) {
+      if (run.status != Status::Successful || run.resultPath.empty()) continue;
+      out.copyFileInto((dataDir / run.resultPath).string(), "/run-" + std::to_string(run.key.index));
     }
-    if (H5Fclose(file) < 0) throw std::runtime_error("cannot close " + part.string());
-  }
-  {
-    Hdf5File out = Hdf5File::openReadWrite(part.string());
     out.setAttribute("/", "job_id", std::int64_t{job.id});
     out.setAttribute("/", "process_id", job.processId);
     out.setAttribute("/", "name", job.name);

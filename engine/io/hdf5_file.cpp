@@ -1,7 +1,10 @@
 #include "io/hdf5_file.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <filesystem>
+#include <set>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -10,7 +13,8 @@
 
 // Version-mapped calls (H5Oget_info*, H5Literate*, H5Ovisit*) are avoided on purpose: Debian maps
 // them to the v18 signatures (dependencies notes §1.2) and 1.12 remaps them again. Everything here
-// has one signature from 1.8 to 1.14.
+// has one signature from 1.8 to 1.14, except two explicitly numbered calls in copyFileInto's
+// attribute pass (object identity, VL memory release), chosen by H5_VERSION_GE.
 static_assert(std::is_same_v<hid_t, std::int64_t>, "Hdf5File stores hid_t as std::int64_t");
 
 namespace rupture::io {
@@ -575,6 +579,181 @@ std::vector<std::size_t> Hdf5File::datasetDims(const std::string& path) const {
 
 // ---- merging ------------------------------------------------------------------------------------
 
+namespace {
+
+/// Identity of an object within its file: the attribute pass visits each copied object once, which
+/// keeps objects shared by hard links (and hard-link cycles) from being walked again.
+#if H5_VERSION_GE(1, 12, 0)
+using ObjectKey = std::array<unsigned char, sizeof(H5O_token_t)>;
+ObjectKey objectKey(hid_t obj, const std::string& file, const std::string& label) {
+  H5O_info2_t info{};
+  checkRc(H5Oget_info3(obj, &info, H5O_INFO_BASIC), file, label, "cannot get object info");
+  ObjectKey key{};
+  std::memcpy(key.data(), &info.token, key.size());
+  return key;
+}
+#else
+using ObjectKey = haddr_t;
+ObjectKey objectKey(hid_t obj, const std::string& file, const std::string& label) {
+  H5O_info_t info{};
+  checkRc(H5Oget_info2(obj, &info, H5O_INFO_BASIC), file, label, "cannot get object info");
+  return info.addr;
+}
+#endif
+
+/// Releases the variable-length data (strings, sequences) that H5Aread allocated inside a buffer;
+/// a no-op for fixed-size types.
+class VlenRelease {
+public:
+  VlenRelease(hid_t memType, hid_t space, void* buffer)
+      : m_type(memType), m_space(space), m_buffer(buffer) {}
+  VlenRelease(const VlenRelease&) = delete;
+  VlenRelease& operator=(const VlenRelease&) = delete;
+  ~VlenRelease() {
+#if H5_VERSION_GE(1, 12, 0)
+    H5Treclaim(m_type, m_space, H5P_DEFAULT, m_buffer);
+#else
+    H5Dvlen_reclaim(m_type, m_space, H5P_DEFAULT, m_buffer);
+#endif
+  }
+
+private:
+  hid_t m_type;
+  hid_t m_space;
+  void* m_buffer;
+};
+
+std::string childPath(const std::string& parent, const std::string& name) {
+  return parent == "/" ? "/" + name : parent + "/" + name;
+}
+
+/// The index that keeps the source's attribute order: creation order where the object tracks it.
+H5_index_t attributeOrder(hid_t obj, const std::string& file, const std::string& label) {
+  hid_t plist = -1;
+  switch (H5Iget_type(obj)) {
+    case H5I_GROUP: plist = H5Gget_create_plist(obj); break;
+    case H5I_DATASET: plist = H5Dget_create_plist(obj); break;
+    case H5I_DATATYPE: plist = H5Tget_create_plist(obj); break;
+    default: return H5_INDEX_NAME;
+  }
+  Handle ocpl(checkId(plist, file, label, "cannot get creation properties"), H5Pclose);
+  unsigned flags = 0;
+  checkRc(H5Pget_attr_creation_order(ocpl.get(), &flags), file, label,
+          "cannot get attribute creation order");
+  return (flags & H5P_CRT_ORDER_TRACKED) != 0 ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME;
+}
+
+/// Re-creates every attribute of one object: read into memory as the native type, write back with
+/// the stored type, same dataspace and creation properties (name encoding).
+void copyAttributes(hid_t src, const std::string& srcFile, const std::string& srcPath, hid_t dst,
+                    const std::string& dstFile, const std::string& dstPath) {
+  const H5_index_t order = attributeOrder(src, srcFile, srcPath);
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {
+    try {
+      static_cast<std::vector<std::string>*>(data)->emplace_back(attrName);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  };
+  checkRc(H5Aiterate2(src, order, H5_ITER_INC, nullptr, collect, &names), srcFile, srcPath,
+          "cannot list attributes");
+
+  for (const std::string& name : names) {
+    const std::string from = attrLabel(srcPath, name);
+    const std::string to = attrLabel(dstPath, name);
+    Handle attr(checkId(H5Aopen(src, name.c_str(), H5P_DEFAULT), srcFile, from,
+                        "cannot open attribute"),
+                H5Aclose);
+    Handle stored(checkId(H5Aget_type(attr.get()), srcFile, from, "cannot get attribute type"),
+                  H5Tclose);
+    const htri_t references = H5Tdetect_class(stored.get(), H5T_REFERENCE);
+    checkRc(references < 0 ? -1 : 0, srcFile, from, "cannot query attribute type");
+    if (references > 0) {
+      fail(srcFile, from, "cannot copy an attribute holding references (they would point into "
+                          "the source)");
+    }
+    // A transient copy: the source may use a named datatype, which belongs to the source file.
+    Handle fileType(checkId(H5Tcopy(stored.get()), srcFile, from, "cannot copy attribute type"),
+                    H5Tclose);
+    Handle memType(checkId(H5Tget_native_type(stored.get(), H5T_DIR_ASCEND), srcFile, from,
+                           "cannot get native attribute type"),
+                   H5Tclose);
+    Handle space(checkId(H5Aget_space(attr.get()), srcFile, from, "cannot get dataspace"),
+                 H5Sclose);
+    Handle acpl(checkId(H5Aget_create_plist(attr.get()), srcFile, from,
+                        "cannot get attribute creation properties"),
+                H5Pclose);
+    const hssize_t points = H5Sget_simple_extent_npoints(space.get());
+    const std::size_t size = H5Tget_size(memType.get());
+    checkRc(points < 0 || size == 0 ? -1 : 0, srcFile, from, "cannot get attribute size");
+
+    Handle copy(checkId(H5Acreate2(dst, name.c_str(), fileType.get(), space.get(), acpl.get(),
+                                   H5P_DEFAULT),
+                        dstFile, to, "cannot create attribute"),
+                H5Aclose);
+    if (points == 0) continue;  // an empty (null or zero-size) dataspace holds no data
+    std::vector<unsigned char> buffer(static_cast<std::size_t>(points) * size);
+    checkRc(H5Aread(attr.get(), memType.get(), buffer.data()), srcFile, from,
+            "cannot read attribute");
+    const VlenRelease release(memType.get(), space.get(), buffer.data());  // after the write
+    checkRc(H5Awrite(copy.get(), memType.get(), buffer.data()), dstFile, to,
+            "cannot write attribute");
+  }
+}
+
+/// Attribute pass of copyFileInto: walks the source from `src` and the attribute-less copy from
+/// `dst` side by side, link name by link name, copying the attributes of every object reached.
+/// Soft and external links are followed in the source, as H5Ocopy expanded them.
+class AttributeCopier {
+public:
+  AttributeCopier(std::string srcFile, std::string dstFile)
+      : m_srcFile(std::move(srcFile)), m_dstFile(std::move(dstFile)) {}
+
+  void object(hid_t src, const std::string& srcPath, hid_t dst, const std::string& dstPath) {
+    if (!m_done.insert(objectKey(dst, m_dstFile, dstPath)).second) return;
+    copyAttributes(src, m_srcFile, srcPath, dst, m_dstFile, dstPath);
+    if (H5Iget_type(src) != H5I_GROUP) return;
+
+    H5G_info_t info{};
+    checkRc(H5Gget_info(src, &info), m_srcFile, srcPath, "cannot get group info");
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+      const ssize_t len = H5Lget_name_by_idx(src, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
+                                             H5P_DEFAULT);
+      checkRc(len < 0 ? -1 : 0, m_srcFile, srcPath, "cannot get link name");
+      std::string name(static_cast<std::size_t>(len) + 1, '\0');
+      checkRc(H5Lget_name_by_idx(src, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                                 name.size(), H5P_DEFAULT) < 0
+                  ? -1
+                  : 0,
+              m_srcFile, srcPath, "cannot get link name");
+      name.resize(static_cast<std::size_t>(len));
+      const std::string childSrc = childPath(srcPath, name);
+      const std::string childDst = childPath(dstPath, name);
+      // A dangling soft or external link has no object, hence no attributes; H5Ocopy kept it as
+      // a link.
+      const hid_t srcChild = H5Oopen(src, name.c_str(), H5P_DEFAULT);
+      if (srcChild < 0) {
+        H5Eclear2(H5E_DEFAULT);
+        continue;
+      }
+      Handle from(srcChild, H5Oclose);
+      Handle to(checkId(H5Oopen(dst, name.c_str(), H5P_DEFAULT), m_dstFile, childDst,
+                        "cannot open copied object"),
+                H5Oclose);
+      object(from.get(), childSrc, to.get(), childDst);
+    }
+  }
+
+private:
+  std::string m_srcFile;
+  std::string m_dstFile;
+  std::set<ObjectKey> m_done;  ///< copied objects whose attributes are in place
+};
+
+}  // namespace
+
 void Hdf5File::copyFileInto(const std::string& sourceFilePath, const std::string& groupPath) {
   requireOpen();
   const std::string destination = groupPath.empty() ? std::string("/") : groupPath;
@@ -591,14 +770,32 @@ void Hdf5File::copyFileInto(const std::string& sourceFilePath, const std::string
                         "cannot create property list"),
                 H5Pclose);
   // Expand everything that could point outside the copied tree, so the merged file stands alone.
-  checkRc(H5Pset_copy_object(ocpypl.get(), H5O_COPY_EXPAND_SOFT_LINK_FLAG |
+  // Attributes are left out here and re-created below: H5Ocopy of an object with more than 8
+  // attributes (dense storage) including variable-length strings segfaults in Debian's 1.10.8.
+  checkRc(H5Pset_copy_object(ocpypl.get(), H5O_COPY_WITHOUT_ATTR_FLAG |
+                                               H5O_COPY_EXPAND_SOFT_LINK_FLAG |
                                                H5O_COPY_EXPAND_EXT_LINK_FLAG |
                                                H5O_COPY_EXPAND_REFERENCE_FLAG),
           m_path, destination, "cannot set copy flags");
   Handle lcpl = intermediateGroupsLcpl(m_path, destination);
-  // Copying the source root in one call brings its attributes along and keeps hard links shared.
+  // Copying the source root in one call keeps objects hard-linked in the source shared.
   checkRc(H5Ocopy(source.get(), "/", m_id, destination.c_str(), ocpypl.get(), lcpl.get()), m_path,
           destination, "cannot copy '" + sourceFilePath + "'");
+
+  try {
+    Handle from(checkId(H5Oopen(source.get(), "/", H5P_DEFAULT), sourceFilePath, "/",
+                        "cannot open object"),
+                H5Oclose);
+    Handle to(checkId(H5Oopen(m_id, destination.c_str(), H5P_DEFAULT), m_path, destination,
+                      "cannot open copied object"),
+              H5Oclose);
+    AttributeCopier(sourceFilePath, m_path).object(from.get(), "/", to.get(), destination);
+  } catch (...) {
+    // Leave no half-copied group behind (the parents it created stay).
+    H5Ldelete(m_id, destination.c_str(), H5P_DEFAULT);
+    H5Eclear2(H5E_DEFAULT);
+    throw;
+  }
 }
 
 }  // namespace rupture::io

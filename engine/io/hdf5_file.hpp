@@ -80,10 +80,16 @@ public:
   std::vector<std::size_t> datasetDims(const std::string& path) const;
 
   /// Deep-copies the whole root group of another file (which should be closed everywhere else)
-  /// to groupPath of this file: every child, and the source's root attributes as attributes of
-  /// groupPath. groupPath must not exist yet (missing parents are created). Soft and external links
-  /// and object references are expanded into copies, so the result never points at the source.
-  /// One H5Ocopy call, so objects hard-linked in the source stay shared in the copy.
+  /// to groupPath of this file: every child with all its attributes, and the source's root
+  /// attributes as attributes of groupPath. groupPath must not exist yet (missing parents are
+  /// created). Soft and external links and object references in datasets are expanded into
+  /// copies, so the result never points at the source (a dangling link stays a dangling link).
+  /// Objects hard-linked in the source stay shared in the copy.
+  /// Objects are copied by one H5Ocopy without attributes, then every attribute of every group,
+  /// dataset and named datatype is re-created through memory: H5Ocopy of attributes segfaults in
+  /// Debian's HDF5 1.10.8 on an object with more than 8 attributes including variable-length
+  /// strings, such as the engine's /summary group. An attribute holding references cannot be
+  /// re-pointed and throws. On any failure after the copy started, groupPath is removed again.
   void copyFileInto(const std::string& sourceFilePath, const std::string& groupPath);
 
 private:

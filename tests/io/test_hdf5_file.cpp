@@ -7,8 +7,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -41,6 +44,53 @@ std::vector<double> ramp(std::size_t n) {
   std::vector<double> v(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = 0.5 * static_cast<double>(i) - 3.0;
   return v;
+}
+
+/// Every attribute of the tree at root (objects reached through links, recursively), keyed
+/// "<path below root>@<name>", the value rendered with its kind. Trees with link cycles loop.
+std::map<std::string, std::string> attributeTree(const Hdf5File& f, const std::string& root,
+                                                 const std::string& below = "") {
+  std::map<std::string, std::string> out;
+  const std::string path = root + below;
+  for (const std::string& name : f.listAttributes(path.empty() ? "/" : path)) {
+    const std::string at = path.empty() ? "/" : path;
+    std::ostringstream value;
+    value.precision(17);
+    try {
+      value << "string " << f.readAttributeString(at, name);
+    } catch (const Hdf5Error&) {
+      try {
+        value << "int " << f.readAttributeInt(at, name);
+      } catch (const Hdf5Error&) {
+        try {
+          value << "double " << f.readAttributeDouble(at, name);
+        } catch (const Hdf5Error&) {
+          value << "not a scalar";  // compared through the C API where it matters
+        }
+      }
+    }
+    out[below + "@" + name] = value.str();
+  }
+  std::vector<std::string> children;
+  try {
+    children = f.listGroup(path.empty() ? "/" : path);
+  } catch (const Hdf5Error&) {  // a dataset
+  }
+  for (const std::string& child : children) {
+    if (!f.exists(path + "/" + child)) continue;  // dangling link
+    out.merge(attributeTree(f, root, below + "/" + child));
+  }
+  return out;
+}
+
+/// Address of the object at path, through the C API (same address: same, shared object).
+haddr_t objectAddress(const std::string& filePath, const std::string& objPath) {
+  const hid_t fid = H5Fopen(filePath.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(fid, 0);
+  H5O_info_t info{};
+  EXPECT_GE(H5Oget_info_by_name2(fid, objPath.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT), 0);
+  H5Fclose(fid);
+  return info.addr;
 }
 
 }  // namespace
@@ -334,6 +384,164 @@ TEST_F(Hdf5FileTest, CopyFileIntoIsSelfContained) {
   EXPECT_EQ(m.readAttributeInt("/runs/run1", "seed"), 42);
   EXPECT_EQ(m.readAttributeDouble("/runs/run1", "rate"), 250.0);
   EXPECT_EQ(m.listAttributes("/"), (std::vector<std::string>{"kind"}));
+}
+
+// Regression: H5Ocopy of an object with more than 8 attributes (dense storage) including
+// variable-length strings segfaults in Debian's HDF5 1.10.8, and the engine's /summary group is
+// such an object. A regression crashes this test binary.
+TEST_F(Hdf5FileTest, CopyFileIntoKeepsManyAttributesWithStrings) {
+  const std::string source = file("run.h5");
+  const std::string merged = file("merged.h5");
+  {
+    Hdf5File s = Hdf5File::create(source);
+    s.createGroup("/summary");
+    for (int i = 0; i < 12; ++i) {  // 4 of each kind, interleaved
+      const std::string name = "value_" + std::to_string(i);
+      if (i % 3 == 0) s.setAttribute("/summary", name, "text " + std::to_string(i) + " µm");
+      if (i % 3 == 1) s.setAttribute("/summary", name, 0.1 * i);
+      if (i % 3 == 2) s.setAttribute("/summary", name, std::int64_t{-1'000'000'000'000} * i);
+      s.setAttribute("/", name, std::string(i, 'r'));  // the root too, with 12 strings
+    }
+    s.setAttribute("/summary", "empty", std::string());
+    s.writeDataset("/summary/series", ramp(5), {5}, "Pa");
+    for (int i = 0; i < 10; ++i) {
+      s.setAttribute("/summary/series", "label_" + std::to_string(i), "series " + std::to_string(i));
+      s.setAttribute("/summary/series", "scale_" + std::to_string(i), 2.0 * i);
+    }
+    s.writeDataset("/sample/ids", std::vector<std::int32_t>{4, 5}, {2}, "1");
+  }
+  {
+    hid_t fid = H5Fopen(source.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(fid, 0);
+    // A fixed-length string and a non-scalar attribute, as other writers (h5py, H5MD) make them.
+    hid_t fixed = H5Tcopy(H5T_C_S1);
+    H5Tset_size(fixed, 8);
+    hid_t scalar = H5Screate(H5S_SCALAR);
+    hid_t attr = H5Acreate_by_name(fid, "/summary", "author", fixed, scalar, H5P_DEFAULT,
+                                   H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(H5Awrite(attr, fixed, "Ada\0\0\0\0\0"), 0);
+    H5Aclose(attr);
+    const hsize_t three = 3;
+    hid_t vector = H5Screate_simple(1, &three, nullptr);
+    const double box[3] = {1.0, 2.0, 3.5};
+    attr = H5Acreate_by_name(fid, "/sample", "box", H5T_IEEE_F64LE, vector, H5P_DEFAULT,
+                             H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_DOUBLE, box), 0);
+    H5Aclose(attr);
+    H5Sclose(vector);
+    H5Sclose(scalar);
+    H5Tclose(fixed);
+    // A dangling soft link: nothing to copy attributes from, and no reason to fail.
+    ASSERT_GE(H5Lcreate_soft("/nowhere", fid, "/sample/lost", H5P_DEFAULT, H5P_DEFAULT), 0);
+    H5Fclose(fid);
+  }
+  {
+    Hdf5File m = Hdf5File::create(merged);
+    m.copyFileInto(source, "/run-0");
+    m.copyFileInto(source, "/runs/run-1");
+  }
+
+  Hdf5File s = Hdf5File::openReadOnly(source);
+  Hdf5File m = Hdf5File::openReadOnly(merged);
+  const auto expected = attributeTree(s, "");
+  EXPECT_EQ(expected.size(), 12u + 13u + 21u + 1u + 1u + 1u);  // + ids@unit, author, box
+  EXPECT_EQ(attributeTree(m, "/run-0"), expected);
+  EXPECT_EQ(attributeTree(m, "/runs/run-1"), expected);
+  EXPECT_EQ(m.readAttributeString("/run-0/summary", "value_3"), "text 3 µm");
+  EXPECT_EQ(m.readAttributeDouble("/run-0/summary", "value_4"), 0.1 * 4);
+  EXPECT_EQ(m.readAttributeInt("/run-0/summary", "value_5"), std::int64_t{-5'000'000'000'000});
+  EXPECT_EQ(m.readAttributeString("/run-0/summary", "author"), "Ada");
+  EXPECT_EQ(m.readAttributeString("/run-0/summary/series", "unit"), "Pa");
+  EXPECT_EQ(m.readDatasetDouble("/run-0/summary/series"), ramp(5));
+  EXPECT_EQ(m.readAttributeString("/runs/run-1", "value_11"), std::string(11, 'r'));
+  EXPECT_EQ(m.listAttributes("/"), std::vector<std::string>{});
+  {
+    hid_t fid = H5Fopen(merged.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(fid, 0);
+    hid_t attr = H5Aopen_by_name(fid, "/run-0/sample", "box", H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(attr, 0);
+    hid_t space = H5Aget_space(attr);
+    EXPECT_EQ(H5Sget_simple_extent_npoints(space), 3);
+    double box[3] = {};
+    EXPECT_GE(H5Aread(attr, H5T_NATIVE_DOUBLE, box), 0);
+    EXPECT_EQ(box[2], 3.5);
+    H5Sclose(space);
+    H5Aclose(attr);
+    H5Fclose(fid);
+  }
+}
+
+TEST_F(Hdf5FileTest, CopyFileIntoKeepsHardLinksSharedAndSurvivesCycles) {
+  const std::string source = file("run.h5");
+  const std::string merged = file("merged.h5");
+  {
+    Hdf5File s = Hdf5File::create(source);
+    s.writeDataset("/g/data", ramp(3), {3}, "m");
+    s.setAttribute("/g", "name", std::string("g"));
+  }
+  {
+    hid_t fid = H5Fopen(source.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(fid, 0);
+    ASSERT_GE(H5Lcreate_hard(fid, "/g/data", fid, "/alias", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_hard(fid, "/g", fid, "/g/loop", H5P_DEFAULT, H5P_DEFAULT), 0);
+    H5Fclose(fid);
+  }
+  {
+    Hdf5File m = Hdf5File::create(merged);
+    m.copyFileInto(source, "/run");
+    EXPECT_EQ(m.readAttributeString("/run/alias", "unit"), "m");
+    EXPECT_EQ(m.readAttributeString("/run/g/loop/loop", "name"), "g");
+    EXPECT_EQ(m.listAttributes("/run/g"), std::vector<std::string>{"name"});
+  }
+  EXPECT_EQ(objectAddress(merged, "/run/alias"), objectAddress(merged, "/run/g/data"));
+  EXPECT_EQ(objectAddress(merged, "/run/g/loop"), objectAddress(merged, "/run/g"));
+}
+
+TEST_F(Hdf5FileTest, CopyFileIntoRefusesReferenceAttributesAndLeavesNothing) {
+  const std::string source = file("run.h5");
+  {
+    Hdf5File s = Hdf5File::create(source);
+    s.writeDataset("/g/data", ramp(3), {3}, "m");
+  }
+  {
+    hid_t fid = H5Fopen(source.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(fid, 0);
+    hobj_ref_t ref{};
+    ASSERT_GE(H5Rcreate(&ref, fid, "/g/data", H5R_OBJECT, -1), 0);
+    hid_t scalar = H5Screate(H5S_SCALAR);
+    hid_t attr = H5Acreate_by_name(fid, "/g", "target", H5T_STD_REF_OBJ, scalar, H5P_DEFAULT,
+                                   H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(H5Awrite(attr, H5T_STD_REF_OBJ, &ref), 0);
+    H5Aclose(attr);
+    H5Sclose(scalar);
+    H5Fclose(fid);
+  }
+  Hdf5File m = Hdf5File::create(file("merged.h5"));
+  try {
+    m.copyFileInto(source, "/runs/run");
+    FAIL() << "expected Hdf5Error";
+  } catch (const Hdf5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/g@target"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(m.exists("/runs/run"));
+}
+
+// A real engine result, when one is at hand (writing one takes about a minute):
+//   rupture run examples/dynamic-tension-small.json -o run.h5
+//   RUPTURE_TEST_RUN_FILE=$PWD/run.h5 tests/io_tests
+TEST_F(Hdf5FileTest, CopyFileIntoCopiesEngineRunFile) {
+  const char* run = std::getenv("RUPTURE_TEST_RUN_FILE");
+  if (run == nullptr || *run == '\0') GTEST_SKIP() << "RUPTURE_TEST_RUN_FILE is not set";
+  const std::string merged = file("merged.h5");
+  {
+    Hdf5File m = Hdf5File::create(merged);
+    m.copyFileInto(run, "/run-0");
+  }
+  Hdf5File s = Hdf5File::openReadOnly(run);
+  Hdf5File m = Hdf5File::openReadOnly(merged);
+  const auto expected = attributeTree(s, "");
+  EXPECT_GT(expected.count("/summary@wall_time_s"), 0u);
+  EXPECT_EQ(attributeTree(m, "/run-0"), expected);
 }
 
 TEST_F(Hdf5FileTest, CopyFileIntoReportsMissingSource) {

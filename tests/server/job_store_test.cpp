@@ -135,7 +135,7 @@ TEST(JobStore, ListsNewestFirstWithFiltersAndPaging) {
   test::TempDir dir;
   JobStore store((dir.path() / "db.sqlite").string());
   std::vector<std::int64_t> ids;
-  for (int i = 0; i < 5; ++i) ids.push_back(store.createJob(threeRunJob("j" + std::to_string(i))));
+  for (int i = 0; i < 5; ++i) ids.push_back(store.createJob(threeRunJob(std::string("j").append(std::to_string(i)))));
   store.dismissJob(ids[1]);
   std::int64_t total = 0;
   auto all = store.listJobs({}, total);
