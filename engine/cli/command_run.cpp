@@ -1,0 +1,216 @@
+// rupture run SPEC.json -o RUN.h5 [--threads N]
+//
+// Validates the spec (exit 2 naming the field), runs it on a worker thread through rupture::runSpec
+// while this thread shows the progress on stderr (a bar with an ETA on a terminal, a plain line at
+// most every 10 s otherwise), writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary
+// as JSON on stdout. Ctrl-C (SIGINT) asks the run to stop: the file is still written, marked
+// incomplete (/summary completed = 0), the summary is printed and the exit code is 130. A second
+// Ctrl-C kills the process at once.
+#include <omp.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "cli/cli.hpp"
+#include "cli/spec_file.hpp"
+#include "io/xdmf_writer.hpp"
+#include "rupture/run.hpp"
+
+namespace rupture::cli {
+
+namespace {
+
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
+
+// The cancel flag of the run in flight, for the signal handler (std::atomic<bool> is lock-free,
+// so storing to it is async-signal-safe).
+std::atomic<bool>* g_cancel = nullptr;
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void onInterrupt(int) {
+  if (g_cancel) g_cancel->store(true);
+}
+
+/// Installs the SIGINT handler for the lifetime of a run; SA_RESETHAND: a second Ctrl-C kills.
+class InterruptGuard {
+public:
+  explicit InterruptGuard(std::atomic<bool>& cancel) {
+    g_cancel = &cancel;
+    struct sigaction action {};
+    action.sa_handler = onInterrupt;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &action, &m_previous);
+  }
+  ~InterruptGuard() {
+    sigaction(SIGINT, &m_previous, nullptr);
+    g_cancel = nullptr;
+  }
+
+private:
+  struct sigaction m_previous {};
+};
+
+std::string sidecarPath(const std::string& h5Path) {
+  std::filesystem::path p(h5Path);
+  if (p.extension() == ".h5" || p.extension() == ".hdf5") return p.replace_extension(".xdmf2").string();
+  return h5Path + ".xdmf2";
+}
+
+std::string clock(double seconds) {
+  if (!(seconds >= 0) || seconds > 1e7) return "--";
+  const long s = static_cast<long>(seconds + 0.5);
+  char buffer[32];
+  if (s >= 3600) std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
+  return buffer;
+}
+
+/// Progress on stderr: a redrawn bar on a terminal, sparse plain lines otherwise.
+class ProgressView {
+public:
+  explicit ProgressView(bool terminal) : m_terminal(terminal), m_start(std::chrono::steady_clock::now()) {}
+
+  void message(const std::string& text) {
+    std::lock_guard lock(m_mutex);
+    if (m_terminal && m_barShown) std::cerr << "\r\033[K";
+    std::cerr << "rupture run: " << text << "\n";
+    m_barShown = false;
+  }
+
+  void update(double fraction, bool force = false) {
+    std::lock_guard lock(m_mutex);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    const double eta = fraction > 0.01 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+    if (m_terminal) {
+      constexpr int width = 30;
+      const int filled = static_cast<int>(fraction * width + 0.5);
+      std::string bar(static_cast<std::size_t>(filled), '#');
+      bar.append(static_cast<std::size_t>(width - filled), '.');
+      char line[160];
+      std::snprintf(line, sizeof line, "\r\033[K[%s] %5.1f %%  elapsed %s  ETA %s", bar.c_str(), 100.0 * fraction,
+                    clock(elapsed).c_str(), clock(eta).c_str());
+      std::cerr << line << std::flush;
+      m_barShown = true;
+    } else if (force || elapsed - m_lastLine >= 10.0) {
+      m_lastLine = elapsed;
+      char line[160];
+      std::snprintf(line, sizeof line, "rupture run: %.0f %% (elapsed %s, ETA %s)\n", 100.0 * fraction,
+                    clock(elapsed).c_str(), clock(eta).c_str());
+      std::cerr << line << std::flush;
+    }
+  }
+
+  void close() {
+    std::lock_guard lock(m_mutex);
+    if (m_terminal && m_barShown) std::cerr << "\n";
+    m_barShown = false;
+  }
+
+private:
+  bool m_terminal;
+  std::chrono::steady_clock::time_point m_start;
+  std::mutex m_mutex;
+  bool m_barShown = false;
+  double m_lastLine = 0;
+};
+
+}  // namespace
+
+int runCommand(const Args& args) {
+  constexpr const char* usage = "run: usage: rupture run SPEC.json -o RUN.h5 [--threads N]";
+  std::string specPath, output;
+  long long threads = omp_get_max_threads();
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "-o" || a == "--output" || a == "--threads") {
+      if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; " + usage);
+      if (a == "--threads") {
+        if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
+      } else {
+        output = args[k + 1];
+      }
+      ++k;
+    } else if (!a.empty() && a[0] == '-') {
+      return usageError("run: unknown option '" + a + "'; allowed: -o/--output, --threads");
+    } else if (specPath.empty()) {
+      specPath = a;
+    } else {
+      return usageError(std::string("run: more than one spec file; ") + usage);
+    }
+  }
+  if (specPath.empty()) return usageError(std::string("run: missing SPEC.json; ") + usage);
+  if (output.empty()) return usageError(std::string("run: missing -o RUN.h5; ") + usage);
+
+  nlohmann::json spec;
+  if (int code = readSpecFile(specPath, spec)) return code;
+  try {
+    validateSpec(spec);
+  } catch (const SpecError& e) {
+    return reportSpecError(specPath, e);
+  }
+
+  RunControl control;
+  ProgressView view(::isatty(STDERR_FILENO) == 1);
+  control.log = [&view](const std::string& text) { view.message(text); };
+  RunOutcome outcome;
+  std::exception_ptr failure;
+  std::atomic<bool> finished{false};
+  {
+    InterruptGuard guard(control.cancel);
+    std::thread worker([&] {
+      try {
+        outcome = runSpec(spec, output, control, static_cast<int>(threads));
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      finished.store(true);
+    });
+    bool noticed = false;
+    while (!finished.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      if (control.cancel.load() && !noticed) {
+        noticed = true;
+        view.message("interrupted: stopping and writing an incomplete result file (Ctrl-C again to kill)");
+      }
+      if (!finished.load()) view.update(control.progress.load());
+    }
+    worker.join();
+  }
+  if (!failure) view.update(control.progress.load(), true);
+  view.close();
+
+  if (failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const SpecError& e) {
+      return reportSpecError(specPath, e);
+    } catch (const std::exception& e) {
+      std::cerr << "rupture run: failed: " << e.what() << "\n";
+      return 1;
+    }
+  }
+
+  int code = outcome.completed ? 0 : kExitInterrupted;
+  const std::string sidecar = sidecarPath(output);
+  try {
+    io::writeXdmfSidecar(output, sidecar);
+  } catch (const std::exception& e) {
+    std::cerr << "rupture run: cannot write the ParaView sidecar '" << sidecar << "': " << e.what() << "\n";
+    code = code == 0 ? 1 : code;
+  }
+  std::cout << outcome.summary.dump(2) << std::endl;
+  std::cerr << "rupture run: " << (outcome.completed ? "done" : "interrupted, result marked incomplete") << ": "
+            << output << " (+ " << sidecar << ")\n";
+  return code;
+}
+
+}  // namespace rupture::cli

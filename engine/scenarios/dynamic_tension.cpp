@@ -1,0 +1,342 @@
+#include "scenarios/dynamic_tension.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/sample_builder.hpp"
+#include "io/bonded_spec.hpp"
+#include "scenarios/bond_network.hpp"
+#include "scenarios/dynamic_tension_spec.hpp"
+#include "scenarios/preliminary_cache.hpp"
+#include "scenarios/tension_loading.hpp"
+#include "scenarios/tension_observables.hpp"
+#include "scenarios/tension_recorder.hpp"
+#include "scenarios/vh_preliminary.hpp"
+
+namespace rupture {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void log(const RunControl& control, const std::string& message) {
+  if (control.log) control.log(message);
+}
+
+/// Monotone progress in [0, 1].
+void reportProgress(RunControl& control, double fraction) {
+  fraction = std::clamp(fraction, 0.0, 1.0);
+  if (fraction > control.progress.load(std::memory_order_relaxed)) control.progress.store(fraction);
+}
+
+/// The preliminary run's parameters and cache key. Its ramp uses eq. 6 with loading.wave_speed
+/// when given, else the affine wave speed of the bond network (an upper bound: a shorter ramp).
+struct PreliminaryPlan {
+  PreliminaryParameters params;
+  nlohmann::json key;
+};
+
+PreliminaryPlan planPreliminary(const DynamicTensionSpec& spec, const BondedSystem& system,
+                                const TensionGeometry& geometry, double timeStep) {
+  PreliminaryPlan plan;
+  PreliminaryParameters& p = plan.params;
+  p.strainRate = spec.loading.vhPreliminaryStrainRate;
+  p.captureStrain = spec.loading.vhCaptureStrain;
+  const double c = spec.loading.waveSpeed ? *spec.loading.waveSpeed : affineWaveSpeed(system, geometry);
+  p.rampTime = spec.loading.rampWaveRoundTrips * 2.0 * geometry.gaugeLength / c;  // eq. 6
+  p.timeStep = timeStep;
+  p.maxStrain = spec.run.maxStrain;
+  p.maxSteps = spec.run.maxSteps;
+  plan.key = {{"format", 1},
+              {"engine", RUPTURE_VERSION},
+              {"dimension", spec.sample.dimension},
+              {"sample", io::toJson(spec.sample)},
+              {"material", io::toJson(spec.material)},
+              {"preliminary",
+               {{"strain_rate", p.strainRate},
+                {"capture_strain", p.captureStrain ? nlohmann::json(*p.captureStrain) : nlohmann::json("half_onset")},
+                {"ramp_time", p.rampTime},
+                {"time_step", p.timeStep}}}};  // the guards never change a successful result
+  return plan;
+}
+
+nlohmann::json preliminaryAttributes(const PreliminaryResult* r, bool fromCache, const std::string& cacheFile) {
+  if (!r) return {{"used", 0}};
+  return {{"used", 1},
+          {"from_cache", fromCache ? 1 : 0},
+          {"cache_file", cacheFile},
+          {"strain_rate", r->strainRate},
+          {"ramp_time", r->rampTime},
+          {"time_step", r->timeStep},
+          {"capture_strain", r->captureStrain},
+          {"capture_time", r->captureTime},
+          {"capture_steps", r->captureSteps},
+          {"steps", r->steps},
+          {"onset_strain", std::isnan(r->onsetStrain) ? nlohmann::json(nullptr) : nlohmann::json(r->onsetStrain)},
+          {"face_velocity", r->faceVelocity},
+          {"modulus", r->modulus},
+          {"wave_speed", r->waveSpeed},
+          {"equilibrium_ratio", r->equilibriumRatio},
+          {"wall_time_s", r->wallTime}};
+}
+
+const std::map<std::string, std::string>& preliminaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"strain_rate", "1/s"},   {"ramp_time", "s"},     {"time_step", "s"},       {"capture_strain", "1"},
+      {"capture_time", "s"},    {"onset_strain", "1"},  {"face_velocity", "m/s"}, {"modulus", "Pa"},
+      {"wave_speed", "m/s"},    {"equilibrium_ratio", "1"}, {"wall_time_s", "s"}};
+  return units;
+}
+
+struct PreliminaryOutcome {
+  std::optional<PreliminaryResult> result;  ///< empty when not needed, or cancelled
+  bool fromCache = false, cancelled = false;
+  std::string cacheFile;                    ///< where it was read or stored ("" if not cached)
+  double progressWeight = 0;                ///< share of the progress bar taken by computing it
+};
+
+/// The preliminary run when this spec needs it (VH, or V0 without ramp_time nor wave_speed): read
+/// from the cache, else computed on a copy of the sample and stored.
+PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const BondedSystem& system,
+                                     const TensionGeometry& geometry, double timeStep,
+                                     const std::string& resultPath, RunControl& control) {
+  PreliminaryOutcome out;
+  const InitialVelocityField field = spec.loading.initialVelocity;
+  const bool needed = field == InitialVelocityField::VH ||
+                      (field == InitialVelocityField::V0 && !spec.loading.rampTime && !spec.loading.waveSpeed);
+  if (!needed) return out;
+  const PreliminaryPlan plan = planPreliminary(spec, system, geometry, timeStep);
+  if (spec.output.cachePreliminary) {
+    out.cacheFile = preliminaryCacheFile(preliminaryCacheDirectory(resultPath), plan.key);
+    out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
+    out.fromCache = out.result.has_value();
+    if (out.fromCache) {
+      log(control, "preliminary run read from the cache " + out.cacheFile);
+      return out;
+    }
+  }
+  const double r = 0.7 * spec.loading.strainRate / plan.params.strainRate;  // cost ratio, roughly
+  out.progressWeight = r / (1.0 + r);
+  log(control, "preliminary run from rest at " + format(plan.params.strainRate) + " /s");
+  out.result = runPreliminary(system, geometry, plan.params, control,
+                              [&](double f) { reportProgress(control, out.progressWeight * f); });
+  if (!out.result) {
+    out.cancelled = true;
+  } else if (spec.output.cachePreliminary && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
+    log(control, "cannot write the preliminary-run cache " + out.cacheFile + " (continuing without it)");
+    out.cacheFile.clear();
+  }
+  return out;
+}
+
+/// Sets the initial velocities of the main run (section 3.2). The face DOFs are overwritten by
+/// TensionLoading::install afterwards.
+void applyInitialField(BondedSystem& system, InitialVelocityField field, const TensionGeometry& geometry,
+                       double maxVelocity, const PreliminaryResult* preliminary) {
+  ParticleStore& p = system.particles;
+  const std::size_t n = p.size();
+  switch (field) {
+    case InitialVelocityField::V0:  // eq. 5: at rest
+      break;
+    case InitialVelocityField::VL: {  // eq. 8: v_x = V_max (x − X_min) / (X_max − X_min)
+      const double span = geometry.xmaxCentre - geometry.xminCentre;
+      for (std::size_t k = 0; k < n; ++k) p.vx[k] = maxVelocity * (p.x[k] - geometry.xminCentre) / span;
+      break;
+    }
+    case InitialVelocityField::VH: {  // eq. 9: V_i(0) = V_i⁰ V_max / V_max⁰, rotations included
+      const VelocityField& f = preliminary->field;
+      const double scale = maxVelocity / preliminary->faceVelocity;
+      for (std::size_t k = 0; k < n; ++k) {
+        p.vx[k] = scale * f.vx[k]; p.vy[k] = scale * f.vy[k]; p.vz[k] = scale * f.vz[k];
+        p.wx[k] = scale * f.wx[k]; p.wy[k] = scale * f.wy[k]; p.wz[k] = scale * f.wz[k];
+      }
+      break;
+    }
+  }
+}
+
+nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"peak_stress", "Pa"},          {"strain_at_peak", "1"},        {"time_at_peak", "s"},
+      {"stress_xmin_at_peak", "Pa"},  {"stress_xmax_at_peak", "Pa"},  {"max_stress_xmin", "Pa"},
+      {"max_stress_xmax", "Pa"},      {"equilibrium_ratio", "1"},     {"crack_onset_strain", "1"},
+      {"crack_onset_time", "s"},      {"strain_rate_at_onset", "1/s"}, {"broken_bond_fraction", "1"},  {"broken_bonds", "1"},
+      {"fragments", "1"},             {"final_strain", "1"},          {"final_time", "s"},
+      {"steps", "1"},                 {"time_step", "s"},             {"critical_time_step", "s"},
+      {"wall_time_s", "s"},           {"completed", "1"},             {"elements", "1"},
+      {"bonds", "1"},                 {"mean_coordination", "1"},     {"porosity", "1"},
+      {"strain_rate", "1/s"},         {"max_velocity", "m/s"},        {"ramp_time", "s"},
+      {"wave_speed", "m/s"},          {"gauge_length", "m"},          {"section", "m^2"},
+      {"modulus", "Pa"}};
+  return units;
+}
+
+RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const DynamicTensionSpec spec = parseDynamicTensionSpec(json);
+  control.progress.store(0.0);
+
+  // Sample, loaded faces, time step.
+  log(control, "building the sample");
+  BondedSystem system;
+  const SampleReport report = buildSample(spec.sample, spec.material, system);
+  const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
+  const double criticalStep = system.criticalTimeStep();
+  if (!std::isfinite(criticalStep) || !(criticalStep > 0))
+    throw std::runtime_error("dynamic-tension: the sample has no bond with a finite stiffness (no stable time step)");
+  const double dt = spec.run.timeStepSafety * criticalStep;
+  log(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
+                   " bonds, time step " + format(dt) + " s");
+
+  TensionRecorder recorder(resultPath);
+  recorder.writeSpec(toJson(spec), json);
+  recorder.writeSample(system, report, geometry);
+
+  // Preliminary run (VH field; the sample's wave speed for a V0 ramp without ramp_time).
+  const InitialVelocityField field = spec.loading.initialVelocity;
+  const PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control);
+  const PreliminaryResult* preliminary = pre.result ? &*pre.result : nullptr;
+  recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),
+                           preliminaryUnits());
+
+  // Loading (eqs. 3, 6): VL and VH start with the X_max face at V_max (Fig. 1b dashed line).
+  const double waveSpeed = spec.loading.waveSpeed ? *spec.loading.waveSpeed : preliminary ? preliminary->waveSpeed : kNaN;
+  double rampTime = 0;
+  if (field == InitialVelocityField::V0)
+    rampTime = spec.loading.rampTime ? *spec.loading.rampTime
+                                     : spec.loading.rampWaveRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed;
+  TensionLoading loading(geometry, spec.loading.strainRate, rampTime);
+  const double maxVelocity = loading.ramp().maxVelocity;
+  if (!pre.cancelled) applyInitialField(system, field, geometry, maxVelocity, preliminary);
+  loading.install(system);
+
+  // Main run: one step, the face stresses, the observables, rows and snapshots when due, the stop rule.
+  TensionObservables observed(system.bonds.size());
+  const double outputInterval = spec.outputInterval();
+  const std::vector<double>& snapshotStrains = spec.run.snapshotStrains;
+  std::size_t nextSnapshot = 0, lastRowStep = 0;
+  std::string stopReason = pre.cancelled ? "cancelled" : "";
+  FaceStresses stress = loading.stresses(system.particles);
+  double strain = 0;
+  auto record = [&] {
+    lastRowStep = system.steps;
+    recorder.appendRow({system.time, strain, stress.xmin, stress.xmax, stress.mean, observed.brokenFraction(),
+                        system.kineticEnergy(), system.elasticEnergy(), system.particles.vx[geometry.xmax.front()]});
+  };
+  auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested strains
+    if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
+    recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
+                           "strain " + format(snapshotStrains[nextSnapshot]));
+    while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
+  };
+
+  if (!pre.cancelled) {
+    log(control, "main run: " + toString(field) + " at " + format(spec.loading.strainRate) + " /s, V_max " +
+                     format(maxVelocity) + " m/s, ramp " + format(rampTime) + " s");
+    record();
+    snapshotsDue();
+    double nextOutput = outputInterval;
+    auto lastReport = Clock::now();
+    while (true) {
+      if (control.cancel.load(std::memory_order_relaxed)) { stopReason = "cancelled"; break; }
+      if (static_cast<std::int64_t>(system.steps) >= spec.run.maxSteps) { stopReason = "max_steps"; break; }
+      system.step(dt);
+      strain = loading.strain(system.particles);
+      stress = loading.stresses(system.particles);
+      observed.observe(system.time, strain, stress, system.brokenLastStep);
+      if (system.time >= nextOutput) {
+        record();
+        while (nextOutput <= system.time) nextOutput += outputInterval;
+      }
+      snapshotsDue();
+      if (observed.postPeakDrop(spec.run.stopFraction)) { stopReason = "post_peak_drop"; break; }
+      if (strain >= spec.run.maxStrain) { stopReason = "max_strain"; break; }
+      if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
+        lastReport = Clock::now();
+        const double main = observed.progress(system.time, loading.ramp(), geometry.gaugeLength, spec.run.maxStrain,
+                                              spec.run.stopFraction,
+                                              maxStressRatio(system.bonds, system.beam.failureStress));
+        reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
+      }
+    }
+    if (lastRowStep != system.steps) record();  // the last state is always a row
+  }
+  recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
+  const bool completed = stopReason != "cancelled";
+
+  // Summary (SI units; see dynamicTensionSummaryUnits).
+  const double onsetTime = observed.onsetTime();
+  nlohmann::json summary = observed.summary();
+  summary.update(nlohmann::json{
+      {"completed", completed ? 1 : 0},
+      {"stop_reason", stopReason},
+      // The imposed rate when the first bond broke: below strain_rate when a V0 ramp was not over (eq. 7).
+      {"strain_rate_at_onset", std::isnan(onsetTime) ? nlohmann::json(nullptr)
+                                                     : nlohmann::json(loading.ramp().velocity(onsetTime) / geometry.gaugeLength)},
+      {"fragments", static_cast<std::int64_t>(countFragments(system.bonds, system.particles.size()))},
+      {"final_strain", strain},
+      {"final_time", system.time},
+      {"steps", static_cast<std::int64_t>(system.steps)},
+      {"time_step", dt},
+      {"critical_time_step", criticalStep},
+      {"elements", static_cast<std::int64_t>(report.elements)},
+      {"bonds", static_cast<std::int64_t>(report.bonds)},
+      {"mean_coordination", report.meanCoordination},
+      {"porosity", report.porosity},
+      {"strain_rate", spec.loading.strainRate},
+      {"initial_velocity", toString(field)},
+      {"max_velocity", maxVelocity},
+      {"ramp_time", nullIfNaN(rampTime)},
+      {"wave_speed", nullIfNaN(waveSpeed)},
+      {"modulus", preliminary ? nlohmann::json(preliminary->modulus) : nlohmann::json(nullptr)},
+      {"gauge_length", geometry.gaugeLength},
+      {"section", geometry.section},
+  });
+  if (field == InitialVelocityField::V0 && onsetTime < rampTime)
+    log(control, "note: the first bond broke during the V0 ramp, at " +
+                     format(summary["strain_rate_at_onset"].get<double>()) +
+                     " /s: the requested strain rate is above eq. 7's limit for this ramp time");
+  summary["wall_time_s"] = seconds(wallStart);
+  recorder.writeAttributes("/summary", summary, dynamicTensionSummaryUnits());
+  recorder.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  log(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
+  return {summary, completed};
+}
+
+Scenario dynamicTensionScenario() {
+  Scenario s;
+  s.info.name = "dynamic-tension";
+  s.info.title = "Uniaxial dynamic tension of a porous brittle bonded sample (Longchamp et al. 2024)";
+  s.info.description =
+      "A bonded discrete-element sample is pulled along x: zero x-velocity on the X_min face, an imposed "
+      "x-velocity V(t) on the X_max face (sinusoidal rise to V_max = strain_rate x L0 over a ramp time), lateral "
+      "faces free. Initial velocity field at rest (V0), linear (VL) or heterogeneous (VH, from a cached "
+      "low-rate preliminary run). Stops after the peak once the mean boundary stress falls below a fraction of "
+      "it. Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
+      "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, fragments and "
+      "equilibrium ratio.";
+  s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
+  s.run = runDynamicTension;
+  return s;
+}
+
+}  // namespace rupture

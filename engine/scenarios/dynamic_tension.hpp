@@ -1,0 +1,32 @@
+#pragma once
+// Scenario "dynamic-tension": uniaxial dynamic tension of a porous brittle bonded sample at a
+// prescribed strain rate, with one of three initial velocity fields (V0, VL, VH), after
+// V. Longchamp, J. Girardot, D. André, F. Malaise, I. Iordanoff, "Analyse numérique de
+// l'endommagement dynamique à l'échelle de la microstructure par simulation discrète",
+// CSMA 2024, hal-04610894, section 3 (eqs. 3–9).
+//
+// One run: build the sample → (VH, or V0 without a ramp time: the cached preliminary run) →
+// initial velocity field → velocity-Verlet steps with the X_max face velocity imposed → stop after
+// the peak once σ̄ < stop_fraction × peak, or at run.max_strain / run.max_steps / on cancel.
+// Output: one HDF5 file (tension_recorder.hpp), summary scalars in RunOutcome::summary.
+// Documentation: docs/dynamic-tension.md; spec: api/schemas/dynamic-tension.schema.json.
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "rupture/run.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace rupture {
+
+/// The registry entry (declared in scenarios/registry.cpp).
+Scenario dynamicTensionScenario();
+
+/// Runs a spec already validated by parseDynamicTensionSpec (it is parsed again here).
+RunOutcome runDynamicTension(const nlohmann::json& spec, const std::string& resultPath, RunControl& control);
+
+/// Units of the summary scalars (the "<name>_unit" attributes of /summary).
+const std::map<std::string, std::string>& dynamicTensionSummaryUnits();
+
+}  // namespace rupture

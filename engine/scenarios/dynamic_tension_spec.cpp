@@ -1,0 +1,121 @@
+#include "scenarios/dynamic_tension_spec.hpp"
+
+#include <algorithm>
+
+#include "io/bonded_spec.hpp"
+#include "io/spec_reader.hpp"
+
+namespace rupture {
+
+namespace {
+
+using io::Range;
+using io::SpecReader;
+
+constexpr const char* kScenarioName = "dynamic-tension";
+
+TensionLoadingSpec parseLoading(const SpecReader& root) {
+  TensionLoadingSpec l;
+  const SpecReader loading = root.object("loading");
+  l.strainRate = loading.number("strain_rate", Range::positive(), "1/s");
+  const std::string field = loading.choice("initial_velocity", {"V0", "VL", "VH"}, "VH");
+  l.initialVelocity = field == "V0" ? InitialVelocityField::V0
+                      : field == "VL" ? InitialVelocityField::VL
+                                      : InitialVelocityField::VH;
+  // Optional numbers without a fixed default: absent = derived at run time (see the header).
+  if (loading.has("ramp_time")) l.rampTime = loading.number("ramp_time", Range::positive(), "s");
+  l.rampWaveRoundTrips = loading.number("ramp_wave_round_trips", Range::positive(), "1", l.rampWaveRoundTrips);
+  if (loading.has("wave_speed")) l.waveSpeed = loading.number("wave_speed", Range::positive(), "m/s");
+  l.vhPreliminaryStrainRate =
+      loading.number("vh_preliminary_strain_rate", Range::positive(), "1/s", l.vhPreliminaryStrainRate);
+  if (loading.has("vh_capture_strain"))
+    l.vhCaptureStrain = loading.number("vh_capture_strain", {0.0, 1.0, true, true}, "1");
+  loading.finish();
+  return l;
+}
+
+TensionRunSpec parseRun(const SpecReader& root) {
+  TensionRunSpec r;
+  const auto run = root.optionalObject("run");
+  if (!run) return r;
+  r.maxStrain = run->number("max_strain", {0.0, 1.0, true, false}, "1", r.maxStrain);
+  r.stopFraction = run->number("stop_fraction", {0.0, 1.0, false, true}, "1", r.stopFraction);
+  if (run->has("output_interval")) r.outputInterval = run->number("output_interval", Range::positive(), "s");
+  if (run->has("snapshot_strains")) {
+    r.snapshotStrains = run->numbers("snapshot_strains", 0, 1000, Range::closed(0.0, 1.0), "1");
+    std::sort(r.snapshotStrains.begin(), r.snapshotStrains.end());
+    r.snapshotStrains.erase(std::unique(r.snapshotStrains.begin(), r.snapshotStrains.end()),
+                            r.snapshotStrains.end());
+  }
+  r.timeStepSafety = run->number("time_step_safety", {0.0, 1.0, true, false}, "1", r.timeStepSafety);
+  r.maxSteps = run->integer("max_steps", 1, std::int64_t{1} << 40, r.maxSteps);
+  run->finish();
+  return r;
+}
+
+TensionOutputSpec parseOutput(const SpecReader& root) {
+  TensionOutputSpec o;
+  if (const auto output = root.optionalObject("output")) {
+    o.cachePreliminary = output->boolean("cache_preliminary", o.cachePreliminary);
+    output->finish();
+  }
+  return o;
+}
+
+}  // namespace
+
+std::string toString(InitialVelocityField field) {
+  switch (field) {
+    case InitialVelocityField::V0: return "V0";
+    case InitialVelocityField::VL: return "VL";
+    case InitialVelocityField::VH: return "VH";
+  }
+  return "?";
+}
+
+DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
+  const SpecReader root(json, "");
+  root.choice("scenario", {kScenarioName});
+  DynamicTensionSpec s;
+  s.description = root.string("description", "");
+  s.sample = io::parseSample(root);
+  s.material = io::parseMaterial(root);
+  s.loading = parseLoading(root);
+  s.run = parseRun(root);
+  s.output = parseOutput(root);
+  root.finish();
+
+  // Cross-field checks.
+  if (s.loading.vhCaptureStrain && *s.loading.vhCaptureStrain >= s.run.maxStrain)
+    throw SpecError("loading.vh_capture_strain", std::to_string(*s.loading.vhCaptureStrain),
+                    "a strain below run.max_strain (" + std::to_string(s.run.maxStrain) + ")");
+  return s;
+}
+
+nlohmann::json toJson(const DynamicTensionSpec& s) {
+  nlohmann::json j;
+  j["scenario"] = kScenarioName;
+  if (!s.description.empty()) j["description"] = s.description;
+  j["dimension"] = s.sample.dimension;
+  j["sample"] = io::toJson(s.sample);
+  j["material"] = io::toJson(s.material);
+  j["loading"] = {{"strain_rate", s.loading.strainRate},
+                  {"initial_velocity", toString(s.loading.initialVelocity)},
+                  {"ramp_wave_round_trips", s.loading.rampWaveRoundTrips},
+                  {"vh_preliminary_strain_rate", s.loading.vhPreliminaryStrainRate}};
+  // Absent optional fields stay absent (their values are derived at run time and reported in
+  // /summary and /preliminary), so the resolved spec parses back to the same struct.
+  if (s.loading.rampTime) j["loading"]["ramp_time"] = *s.loading.rampTime;
+  if (s.loading.waveSpeed) j["loading"]["wave_speed"] = *s.loading.waveSpeed;
+  if (s.loading.vhCaptureStrain) j["loading"]["vh_capture_strain"] = *s.loading.vhCaptureStrain;
+  j["run"] = {{"max_strain", s.run.maxStrain},
+              {"stop_fraction", s.run.stopFraction},
+              {"output_interval", s.outputInterval()},
+              {"snapshot_strains", s.run.snapshotStrains},
+              {"time_step_safety", s.run.timeStepSafety},
+              {"max_steps", s.run.maxSteps}};
+  j["output"] = {{"cache_preliminary", s.output.cachePreliminary}};
+  return j;
+}
+
+}  // namespace rupture

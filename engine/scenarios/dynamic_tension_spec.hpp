@@ -1,0 +1,72 @@
+#pragma once
+// The spec of the dynamic-tension scenario (Longchamp et al., CSMA 2024, section 3): the common
+// bonded sample + material, plus "loading", "run" and "output". Plain data in SI units; parsed and
+// validated once (parseDynamicTensionSpec), serialised back with every default filled in (toJson)
+// for the result file. The JSON Schema api/schemas/dynamic-tension.schema.json describes the same
+// fields; docs/dynamic-tension.md explains them.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dem/sample_spec.hpp"
+
+namespace rupture {
+
+/// Initial velocity field of the main run (section 3.2): at rest (eq. 5), linear (eq. 8),
+/// heterogeneous from a preliminary low-rate run (eq. 9).
+enum class InitialVelocityField { V0, VL, VH };
+
+std::string toString(InitialVelocityField field);
+
+struct TensionLoadingSpec {
+  double strainRate = 0;                                     ///< ε̇ = V_max / L0 (1/s), eq. 3
+  InitialVelocityField initialVelocity = InitialVelocityField::VH;
+  std::optional<double> rampTime;                            ///< Δt of the V0 ramp (s); default eq. 6
+  double rampWaveRoundTrips = 3;                             ///< n of eq. 6 (1)
+  std::optional<double> waveSpeed;                           ///< C0 of eq. 6 (m/s); default measured
+  double vhPreliminaryStrainRate = 1e5;                      ///< strain rate of the preliminary run (1/s)
+  std::optional<double> vhCaptureStrain;                     ///< capture strain (1); default ½ × onset
+};
+
+struct TensionRunSpec {
+  double maxStrain = 0.01;                   ///< stop at this strain (1)
+  double stopFraction = 0.1;                 ///< stop once σ̄ < stopFraction × peak after damage (1)
+  std::optional<double> outputInterval;      ///< time between series rows (s); default 5e-6 / ε̇
+  std::vector<double> snapshotStrains;       ///< strains at which snapshots are written (1), sorted
+  double timeStepSafety = 0.15;              ///< dt = safety × critical step (1)
+  std::int64_t maxSteps = 50'000'000;        ///< guard on the number of steps of one run
+};
+
+struct TensionOutputSpec {
+  bool cachePreliminary = true;  ///< reuse / store the preliminary run in the cache directory
+};
+
+struct DynamicTensionSpec {
+  std::string description;  ///< free text, kept in the result file
+  SampleSpec sample;
+  MaterialSpec material;
+  TensionLoadingSpec loading;
+  TensionRunSpec run;
+  TensionOutputSpec output;
+
+  /// Strain increment between series rows used when run.output_interval is absent (1).
+  static constexpr double kDefaultOutputStrainIncrement = 5e-6;
+  /// Output interval actually used (s).
+  double outputInterval() const {
+    return run.outputInterval ? *run.outputInterval : kDefaultOutputStrainIncrement / loading.strainRate;
+  }
+};
+
+/// Reads and checks a whole spec (with "scenario": "dynamic-tension"); throws SpecError naming the
+/// first offending field (dotted path, value, what is allowed). Unknown keys are errors.
+DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& spec);
+
+/// The resolved spec, in the same shape as the input: every default filled in, except the optional
+/// fields derived at run time (ramp_time, wave_speed, vh_capture_strain), which stay absent when
+/// they were absent. Parsing it back gives the same struct.
+nlohmann::json toJson(const DynamicTensionSpec& spec);
+
+}  // namespace rupture

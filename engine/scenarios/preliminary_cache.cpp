@@ -1,0 +1,144 @@
+#include "scenarios/preliminary_cache.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include "io/hdf5_file.hpp"
+
+namespace rupture {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::int64_t kFormatVersion = 1;
+
+std::vector<double> interleave(const std::vector<double>& a, const std::vector<double>& b,
+                               const std::vector<double>& c) {
+  std::vector<double> out(3 * a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    out[3 * k] = a[k];
+    out[3 * k + 1] = b[k];
+    out[3 * k + 2] = c[k];
+  }
+  return out;
+}
+
+void split(const std::vector<double>& in, std::vector<double>& a, std::vector<double>& b, std::vector<double>& c) {
+  const std::size_t n = in.size() / 3;
+  a.resize(n); b.resize(n); c.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    a[k] = in[3 * k];
+    b[k] = in[3 * k + 1];
+    c[k] = in[3 * k + 2];
+  }
+}
+
+}  // namespace
+
+std::string fnv1aHex(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
+
+std::string preliminaryCacheDirectory(const std::string& resultPath) {
+  if (const char* dir = std::getenv("RUPTURE_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (fs::path(xdg) / "rupture").string();
+  if (const char* home = std::getenv("HOME"); home && *home) return (fs::path(home) / ".cache" / "rupture").string();
+  fs::path parent = fs::path(resultPath).parent_path();
+  if (parent.empty()) parent = ".";
+  return (parent / ".rupture-cache").string();
+}
+
+std::string preliminaryCacheFile(const std::string& directory, const nlohmann::json& key) {
+  return (fs::path(directory) / ("dynamic-tension-preliminary-" + fnv1aHex(key.dump()) + ".h5")).string();
+}
+
+std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const nlohmann::json& key,
+                                                 std::size_t elements) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return std::nullopt;
+  try {
+    io::Hdf5File f = io::Hdf5File::openReadOnly(file);
+    if (f.readAttributeInt("/", "format_version") != kFormatVersion) return std::nullopt;
+    if (f.readAttributeString("/", "key") != key.dump()) return std::nullopt;
+    if (f.readAttributeInt("/", "elements") != static_cast<std::int64_t>(elements)) return std::nullopt;
+    PreliminaryResult r;
+    auto d = [&](const char* name) { return f.readAttributeDouble("/", name); };
+    auto i = [&](const char* name) { return f.readAttributeInt("/", name); };
+    r.faceVelocity = d("face_velocity");
+    r.strainRate = d("strain_rate");
+    r.rampTime = d("ramp_time");
+    r.timeStep = d("time_step");
+    r.captureStrain = d("capture_strain");
+    r.captureTime = d("capture_time");
+    r.captureSteps = i("capture_steps");
+    r.steps = i("steps");
+    r.onsetStrain = d("onset_strain");
+    r.modulus = d("modulus");
+    r.waveSpeed = d("wave_speed");
+    r.equilibriumRatio = d("equilibrium_ratio");
+    r.wallTime = d("wall_time_s");
+    const auto v = f.readDatasetDouble("/velocity");
+    const auto w = f.readDatasetDouble("/angular_velocity");
+    if (v.size() != 3 * elements || w.size() != 3 * elements) return std::nullopt;
+    split(v, r.field.vx, r.field.vy, r.field.vz);
+    split(w, r.field.wx, r.field.wy, r.field.wz);
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable or older layout: recompute
+  }
+}
+
+bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& r) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path target(file);
+  const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp." + std::to_string(::getpid()) +
+                                               "." + std::to_string(counter++));
+  std::error_code ec;
+  fs::create_directories(target.parent_path(), ec);
+  try {
+    {
+      io::Hdf5File f = io::Hdf5File::create(tmp.string());
+      f.setAttribute("/", "format_version", kFormatVersion);
+      f.setAttribute("/", "key", key.dump());
+      f.setAttribute("/", "elements", static_cast<std::int64_t>(r.field.vx.size()));
+      f.setAttribute("/", "face_velocity", r.faceVelocity);
+      f.setAttribute("/", "strain_rate", r.strainRate);
+      f.setAttribute("/", "ramp_time", r.rampTime);
+      f.setAttribute("/", "time_step", r.timeStep);
+      f.setAttribute("/", "capture_strain", r.captureStrain);
+      f.setAttribute("/", "capture_time", r.captureTime);
+      f.setAttribute("/", "capture_steps", r.captureSteps);
+      f.setAttribute("/", "steps", r.steps);
+      f.setAttribute("/", "onset_strain", r.onsetStrain);
+      f.setAttribute("/", "modulus", r.modulus);
+      f.setAttribute("/", "wave_speed", r.waveSpeed);
+      f.setAttribute("/", "equilibrium_ratio", r.equilibriumRatio);
+      f.setAttribute("/", "wall_time_s", r.wallTime);
+      const std::size_t n = r.field.vx.size();
+      f.writeDataset("/velocity", interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
+      f.writeDataset("/angular_velocity", interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
+      f.close();
+    }
+    fs::rename(tmp, target);
+    return true;
+  } catch (const std::exception&) {
+    fs::remove(tmp, ec);
+    return false;
+  }
+}
+
+}  // namespace rupture

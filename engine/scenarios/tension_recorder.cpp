@@ -1,0 +1,176 @@
+#include "scenarios/tension_recorder.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <system_error>
+
+#include "scenarios/bond_network.hpp"
+#include "scenarios/virial_stress.hpp"
+
+namespace rupture {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<double> xyz(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c) {
+  std::vector<double> out(3 * a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    out[3 * k] = a[k];
+    out[3 * k + 1] = b[k];
+    out[3 * k + 2] = c[k];
+  }
+  return out;
+}
+
+std::vector<std::int32_t> bondPairs(const BondStore& bonds) {
+  std::vector<std::int32_t> pairs(2 * bonds.size());
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    pairs[2 * b] = bonds.i[b];
+    pairs[2 * b + 1] = bonds.j[b];
+  }
+  return pairs;
+}
+
+}  // namespace
+
+const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
+  static const std::vector<std::pair<std::string, std::string>> names = {
+      {"time", "s"},
+      {"strain", "1"},
+      {"stress_xmin", "Pa"},
+      {"stress_xmax", "Pa"},
+      {"stress_mean", "Pa"},
+      {"broken_bond_fraction", "1"},
+      {"kinetic_energy", "J"},
+      {"elastic_energy", "J"},
+      {"face_velocity", "m/s"},
+  };
+  return names;
+}
+
+TensionRecorder::TensionRecorder(std::string resultPath)
+    : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"),
+      m_file(io::Hdf5File::create(m_partPath)) {
+  m_file.setAttribute("/", "scenario", std::string("dynamic-tension"));
+  m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
+  m_file.setAttribute("/", "completed", std::int64_t{0});
+  m_file.createGroup("/snapshots");
+}
+
+TensionRecorder::~TensionRecorder() {
+  if (!m_done) abandon();
+}
+
+void TensionRecorder::writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) {
+  m_file.createGroup("/spec");
+  m_file.setAttribute("/spec", "json", resolved.dump());
+  m_file.setAttribute("/spec", "input", input.dump());
+}
+
+void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport& report,
+                                  const TensionGeometry& geometry) {
+  const ParticleStore& p = system.particles;
+  const std::size_t n = p.size();
+  m_file.createGroup("/sample");
+  writeAttributes("/sample",
+                  {{"elements", static_cast<std::int64_t>(report.elements)},
+                   {"bonds", static_cast<std::int64_t>(report.bonds)},
+                   {"mean_coordination", report.meanCoordination},
+                   {"packing_fraction", report.packingFraction},
+                   {"porosity", report.porosity},
+                   {"thickness", report.thickness},
+                   {"element_density", report.elementDensity},
+                   {"bulk_density", geometry.bulkDensity},
+                   {"gauge_length", geometry.gaugeLength},
+                   {"section", geometry.section},
+                   {"xmin_elements", static_cast<std::int64_t>(geometry.xmin.size())},
+                   {"xmax_elements", static_cast<std::int64_t>(geometry.xmax.size())}},
+                  {{"thickness", "m"},
+                   {"element_density", "kg/m^3"},
+                   {"bulk_density", "kg/m^3"},
+                   {"gauge_length", "m"},
+                   {"section", "m^2"}});
+  m_file.writeDataset("/sample/radius", p.radius, {n}, "m");
+  m_file.writeDataset("/sample/initial_position", xyz(p.x, p.y, p.z), {n, 3}, "m");
+  m_file.writeDataset("/sample/bonds", bondPairs(system.bonds), {system.bonds.size(), 2}, "1");
+  std::vector<std::int32_t> group(n, 0);
+  for (std::int32_t k : geometry.xmin) group[k] = 1;
+  for (std::int32_t k : geometry.xmax) group[k] = 2;
+  m_file.writeDataset("/sample/face_group", group, {n}, "1");
+  std::vector<double> pores;
+  for (const Pore& pore : report.pores)
+    pores.insert(pores.end(), {pore.centre[0], pore.centre[1], pore.centre[2], pore.radius});
+  m_file.writeDataset("/sample/pores", pores, {report.pores.size(), 4}, "m");
+}
+
+void TensionRecorder::writeAttributes(const std::string& group, const nlohmann::json& values,
+                                      const std::map<std::string, std::string>& units) {
+  m_file.createGroup(group);
+  for (const auto& [name, v] : values.items()) {
+    if (v.is_boolean()) m_file.setAttribute(group, name, std::int64_t{v.get<bool>() ? 1 : 0});
+    else if (v.is_number_integer()) m_file.setAttribute(group, name, v.get<std::int64_t>());
+    else if (v.is_number()) m_file.setAttribute(group, name, v.get<double>());
+    else if (v.is_string()) m_file.setAttribute(group, name, v.get<std::string>());
+    else if (v.is_null()) m_file.setAttribute(group, name, std::numeric_limits<double>::quiet_NaN());
+    else m_file.setAttribute(group, name, v.dump());
+    if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
+  }
+}
+
+void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFraction, double thickness2d,
+                                    double strain, const std::string& trigger) {
+  const ParticleStore& p = system.particles;
+  const std::size_t n = p.size();
+  char name[32];
+  std::snprintf(name, sizeof name, "/snapshots/%06zu", m_snapshots);
+  const std::string base = name;
+  m_file.createGroup(base);
+  m_file.setAttribute(base, "time", system.time);
+  m_file.setAttribute(base, "strain", strain);
+  m_file.setAttribute(base, "step", static_cast<std::int64_t>(system.steps));
+  m_file.setAttribute(base, "trigger", trigger);
+  m_file.writeDataset(base + "/position", xyz(p.x, p.y, p.z), {n, 3}, "m");
+  m_file.writeDataset(base + "/velocity", xyz(p.vx, p.vy, p.vz), {n, 3}, "m/s");
+  m_file.writeDataset(base + "/stress", virialStress(system, packingFraction, thickness2d), {n, 3, 3}, "Pa");
+  m_file.writeDataset(base + "/damage", elementDamage(system.bonds, n), {n}, "1");
+  m_file.writeDataset(base + "/radius", p.radius, {n}, "m");
+  std::vector<std::uint8_t> intact(system.bonds.size());
+  for (std::size_t b = 0; b < intact.size(); ++b) intact[b] = system.bonds.intact[b] > 0.5 ? 1 : 0;
+  m_file.writeDataset(base + "/bond_intact", intact, {intact.size()}, "1");
+  ++m_snapshots;
+}
+
+void TensionRecorder::finish(bool completed) {
+  const auto& names = seriesNamesAndUnits();
+  const std::size_t rows = m_rows.size();
+  std::vector<std::vector<double>> columns(names.size(), std::vector<double>(rows));
+  for (std::size_t r = 0; r < rows; ++r) {
+    const SeriesRow& row = m_rows[r];
+    const double values[] = {row.time,        row.strain,        row.stressXmin,
+                             row.stressXmax,  row.stressMean,    row.brokenBondFraction,
+                             row.kineticEnergy, row.elasticEnergy, row.faceVelocity};
+    for (std::size_t c = 0; c < names.size(); ++c) columns[c][r] = values[c];
+  }
+  m_file.createGroup("/series");
+  for (std::size_t c = 0; c < names.size(); ++c)
+    m_file.writeDataset("/series/" + names[c].first, columns[c], {rows}, names[c].second);
+  m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
+  m_file.close();
+  fs::rename(m_partPath, m_resultPath);
+  m_done = true;
+}
+
+void TensionRecorder::abandon() noexcept {
+  try {
+    m_file.close();
+  } catch (...) {
+  }
+  std::error_code ec;
+  fs::remove(m_partPath, ec);
+  m_done = true;
+}
+
+}  // namespace rupture

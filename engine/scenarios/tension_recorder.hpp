@@ -1,0 +1,75 @@
+#pragma once
+// The result file of one dynamic-tension run (layout in docs/dynamic-tension.md):
+//   /            attributes scenario, rupture_version, completed (1/0)
+//   /spec        attributes json (the resolved spec, defaults filled in) and input (as submitted)
+//   /sample      attributes (elements, bonds, ...); datasets radius {n}, initial_position {n,3},
+//                bonds {m,2} (int32 element indices), face_group {n} (int32: 0, 1 X_min, 2 X_max),
+//                pores {p,4} (centre x, y, z, radius; m)
+//   /preliminary attributes of the VH preliminary run (or used = 0)
+//   /series/<name>     1-D float64 datasets with a "unit" attribute, one row per output interval
+//   /snapshots/<k>     position {n,3}, velocity {n,3}, stress {n,3,3}, damage {n}, radius {n},
+//                      bond_intact {m} (uint8; rows of /sample/bonds); attributes time, strain, step, trigger
+//   /summary     attributes (SI), each with a companion "<name>_unit"
+// Everything goes to RESULT.part, renamed to RESULT by finish(); abandon() (or the destructor of an
+// unfinished recorder) deletes the partial file.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dem/bonded_system.hpp"
+#include "dem/sample_builder.hpp"
+#include "io/hdf5_file.hpp"
+#include "scenarios/tension_loading.hpp"
+
+namespace rupture {
+
+/// One row of /series.
+struct SeriesRow {
+  double time, strain, stressXmin, stressXmax, stressMean, brokenBondFraction, kineticEnergy, elasticEnergy,
+      faceVelocity;
+};
+
+class TensionRecorder {
+public:
+  explicit TensionRecorder(std::string resultPath);
+  ~TensionRecorder();
+  TensionRecorder(const TensionRecorder&) = delete;
+  TensionRecorder& operator=(const TensionRecorder&) = delete;
+
+  const std::string& partPath() const { return m_partPath; }
+
+  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input);
+  void writeSample(const BondedSystem& system, const SampleReport& report, const TensionGeometry& geometry);
+  /// Writes each member of `values` as an attribute of `group` (numbers, strings, booleans as 1/0,
+  /// null as NaN), plus "<name>_unit" for the names found in `units`.
+  void writeAttributes(const std::string& group, const nlohmann::json& values,
+                       const std::map<std::string, std::string>& units);
+
+  void appendRow(const SeriesRow& row) { m_rows.push_back(row); }
+  std::size_t rowCount() const { return m_rows.size(); }
+
+  /// Writes /snapshots/<k> (k = 0, 1, ... zero-padded) from the current state of the system.
+  void writeSnapshot(const BondedSystem& system, double packingFraction, double thickness2d, double strain,
+                     const std::string& trigger);
+  std::size_t snapshotCount() const { return m_snapshots; }
+
+  /// Writes /series, marks "/" completed, closes and renames the partial file onto the result.
+  void finish(bool completed);
+  /// Closes and deletes the partial file.
+  void abandon() noexcept;
+
+private:
+  std::string m_resultPath, m_partPath;
+  io::Hdf5File m_file;
+  std::vector<SeriesRow> m_rows;
+  std::size_t m_snapshots = 0;
+  bool m_done = false;
+};
+
+/// Names and units of the /series datasets, in file order.
+const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits();
+
+}  // namespace rupture

@@ -1,0 +1,164 @@
+#include "scenarios/vh_preliminary.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "scenarios/bond_network.hpp"
+
+namespace rupture {
+
+namespace {
+
+/// Fields kept during the run, at strains a factor kLadder apart.
+constexpr double kLadder = 1.05;
+
+struct SavedField {
+  VelocityField field;
+  double strain, time, faceVelocity;
+  std::int64_t steps;
+};
+
+VelocityField copyVelocities(const ParticleStore& p) {
+  return {p.vx, p.vy, p.vz, p.wx, p.wy, p.wz};
+}
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, const TensionGeometry& geometry,
+                                                const PreliminaryParameters& params, RunControl& control,
+                                                const std::function<void(double)>& progress) {
+  const auto wallStart = std::chrono::steady_clock::now();
+  BondedSystem system = initial;
+  TensionLoading loading(geometry, params.strainRate, params.rampTime);
+  loading.install(system);
+  const double dt = params.timeStep;
+
+  // Per-step record after the ramp, for the modulus fit and the equilibrium check.
+  struct Sample { double strain, xmin, xmax, mean; };
+  std::vector<Sample> record;
+  std::deque<SavedField> ladder;
+  double nextLevel = 0;  // strain at which the next field is kept (0: at the first post-ramp step)
+
+  std::size_t broken = 0;
+  double onset = std::numeric_limits<double>::quiet_NaN();
+  std::optional<SavedField> captured;
+  auto lastReport = wallStart;
+
+  while (true) {
+    if (control.cancel.load(std::memory_order_relaxed)) return std::nullopt;
+    system.step(dt);
+    const double strain = loading.strain(system.particles);
+    broken += system.brokenLastStep;
+    const auto steps = static_cast<std::int64_t>(system.steps);
+
+    if (broken > 0) {
+      onset = strain;
+      if (params.captureStrain)
+        throw SpecError("loading.vh_capture_strain", format(*params.captureStrain),
+                        "a strain below the first bond break of the VH preliminary run (a bond broke at strain " +
+                            format(strain) + " at " + format(params.strainRate) + " /s)");
+      break;
+    }
+    const bool afterRamp = system.time >= params.rampTime;
+    if (afterRamp) {
+      const FaceStresses s = loading.stresses(system.particles);
+      record.push_back({strain, s.xmin, s.xmax, s.mean});
+    }
+    if (params.captureStrain) {
+      if (strain >= *params.captureStrain) {
+        captured = SavedField{copyVelocities(system.particles), strain, system.time,
+                              loading.ramp().velocity(system.time), steps};
+        break;
+      }
+    } else if (afterRamp && strain >= nextLevel) {
+      ladder.push_back({copyVelocities(system.particles), strain, system.time,
+                        loading.ramp().velocity(system.time), steps});
+      nextLevel = strain * kLadder;
+      // The target ½ ε_onset is at least ½ ε now: keep the largest field below ½ ε and those above.
+      while (ladder.size() > 1 && ladder[1].strain <= 0.5 * strain) ladder.pop_front();
+    }
+    if (strain >= params.maxStrain || steps >= params.maxSteps)
+      throw std::runtime_error("VH preliminary run: " +
+                               (params.captureStrain ? "the capture strain was not reached"
+                                                     : std::string("no bond broke")) +
+                               " within run.max_strain = " + format(params.maxStrain) + " and run.max_steps = " +
+                               std::to_string(params.maxSteps) + " (reached strain " + format(strain) + ")" +
+                               (params.captureStrain ? "" : "; set loading.vh_capture_strain"));
+
+    const auto now = std::chrono::steady_clock::now();
+    if (progress && now - lastReport > std::chrono::milliseconds(100)) {
+      lastReport = now;
+      // Target strain: the capture strain, or the first break, extrapolated from the worst bond
+      // (its stress grows about linearly with ε); progress = time over the time to reach it.
+      double target = params.captureStrain ? *params.captureStrain : 0.0;
+      if (!params.captureStrain) {
+        const double ratio = maxStressRatio(system.bonds, system.beam.failureStress);
+        target = ratio > 1e-3 ? strain / ratio : params.maxStrain;
+      }
+      const double end = loading.ramp().timeToReach(target * geometry.gaugeLength);
+      progress(end > 0 ? std::clamp(system.time / end, 0.0, 1.0) : 0.0);
+    }
+  }
+
+  if (captured && captured->time < params.rampTime)
+    throw SpecError("loading.vh_capture_strain", format(*params.captureStrain),
+                    "a strain reached after the end of the VH preliminary run's ramp (ramp time " +
+                        format(params.rampTime) + " s, face displacement strain " +
+                        format(0.5 * params.strainRate * params.rampTime) + " at its end)");
+  if (!captured) {
+    // Default rule: the field nearest below ½ ε_onset.
+    const double target = 0.5 * onset;
+    for (const SavedField& f : ladder)
+      if (f.strain <= target) captured = f;
+    if (!captured)
+      throw std::runtime_error(
+          "VH preliminary run: the first bond broke at strain " + format(onset) +
+          " before a post-ramp field below half that strain could be kept (ramp time " + format(params.rampTime) +
+          " s); lower loading.vh_preliminary_strain_rate or set loading.vh_capture_strain");
+  }
+
+  PreliminaryResult r;
+  r.field = std::move(captured->field);
+  r.faceVelocity = captured->faceVelocity;
+  r.strainRate = params.strainRate;
+  r.rampTime = params.rampTime;
+  r.timeStep = dt;
+  r.captureStrain = captured->strain;
+  r.captureTime = captured->time;
+  r.captureSteps = captured->steps;
+  r.steps = static_cast<std::int64_t>(system.steps);
+  r.onsetStrain = onset;
+
+  // Modulus: σ̄ = E ε fitted through the origin over [½ ε_c, ε_c]; equilibrium over the same window.
+  double sxy = 0, sxx = 0, gap = 0, mean = 0;
+  std::size_t count = 0;
+  for (const Sample& s : record) {
+    if (s.strain < 0.5 * r.captureStrain || s.strain > r.captureStrain) continue;
+    sxy += s.mean * s.strain;
+    sxx += s.strain * s.strain;
+    gap += std::abs(s.xmin - s.xmax);
+    mean += s.mean;
+    ++count;
+  }
+  if (count == 0 || !(sxx > 0) || !(sxy > 0))
+    throw std::runtime_error("VH preliminary run: no post-ramp stress record to measure the sample's modulus");
+  r.modulus = sxy / sxx;
+  r.waveSpeed = std::sqrt(r.modulus / geometry.bulkDensity);
+  r.equilibriumRatio = gap / std::abs(mean);
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  if (progress) progress(1.0);
+  return r;
+}
+
+}  // namespace rupture

@@ -1,0 +1,164 @@
+// `rupture run` through the real binary: a run writes RUN.h5 + RUN.xdmf2 and prints the summary
+// JSON; invalid specs exit 2 naming the field; Ctrl-C (SIGINT) leaves a valid file marked
+// incomplete and exits 130.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <random>
+#include <regex>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+#include "io/hdf5_file.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rupture::testing::readWhole;
+using rupture::testing::runCli;
+using rupture::testing::writeSpec;
+
+nlohmann::json smallExample() {
+  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+}
+
+/// A scratch directory for result files, removed at the end of the test.
+struct Scratch {
+  fs::path path;
+  Scratch() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("rupture-cli-run-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+TEST(CliRun, WritesResultSidecarAndSummary) {
+  Scratch dir;
+  nlohmann::json spec = smallExample();
+  spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
+  spec["run"]["snapshot_strains"] = {0.0, 3e-4};
+  const fs::path out = dir.path / "run.h5";
+  const auto r = runCli("run " + writeSpec(spec, "cli-run-ok.json") + " -o " + out.string() + " --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(r.out);  // stdout is exactly the summary
+  EXPECT_EQ(summary["completed"], 1);
+  EXPECT_GT(summary["peak_stress"].get<double>(), 1e7);
+  EXPECT_TRUE(summary.contains("crack_onset_strain"));
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out.string() + ".part"));
+  // Not a terminal: plain progress lines, no bar.
+  EXPECT_NE(r.err.find("100 %"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos);
+
+  const fs::path sidecar = dir.path / "run.xdmf2";
+  ASSERT_TRUE(fs::exists(sidecar));
+  const std::string xml = readWhole(sidecar);
+  rupture::io::Hdf5File file = rupture::io::Hdf5File::openReadOnly(out.string());
+  const std::regex ref(R"(>\s*([^<>:\s]+\.h5):(/[^<\s]+)\s*<)");
+  int refs = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), ref); it != std::sregex_iterator(); ++it, ++refs)
+    EXPECT_TRUE(file.exists((*it)[2].str())) << (*it)[2].str();
+  EXPECT_EQ(refs, 3 * 5);  // snapshots at 0, 3e-4 and the final one
+  EXPECT_DOUBLE_EQ(file.readAttributeDouble("/summary", "peak_stress"), summary["peak_stress"].get<double>());
+}
+
+struct BadRunSpec {
+  const char* name;
+  const char* pointer;
+  nlohmann::json value;  // null: remove the field
+  const char* field;
+};
+
+void PrintTo(const BadRunSpec& bad, std::ostream* os) { *os << bad.name; }
+
+class CliRunBadSpec : public ::testing::TestWithParam<BadRunSpec> {};
+
+TEST_P(CliRunBadSpec, ExitsTwoNamingTheField) {
+  const BadRunSpec& bad = GetParam();
+  nlohmann::json spec = smallExample();
+  const nlohmann::json::json_pointer pointer(bad.pointer);
+  if (bad.value.is_null()) spec[pointer.parent_pointer()].erase(pointer.back());
+  else spec[pointer] = bad.value;
+  Scratch dir;
+  const fs::path out = dir.path / "never.h5";
+  const auto r = runCli("run " + writeSpec(spec, std::string("cli-run-") + bad.name + ".json") + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find(std::string("field '") + bad.field + "'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("allowed"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_FALSE(fs::exists(out));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Specs, CliRunBadSpec,
+    ::testing::Values(BadRunSpec{"unknown-field", "/loading/initial_velocity", "VZ", "loading.initial_velocity"},
+                      BadRunSpec{"negative-rate", "/loading/strain_rate", -1e6, "loading.strain_rate"},
+                      BadRunSpec{"missing-scenario", "/scenario", nullptr, "scenario"},
+                      BadRunSpec{"unknown-key", "/run/snapshots", 3, "run.snapshots"}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      for (char& c : n) if (c == '-') c = '_';
+      return n;
+    });
+
+TEST(CliRun, UsageErrorsExitTwo) {
+  EXPECT_EQ(runCli("run").exitCode, 2);
+  EXPECT_EQ(runCli("run " + writeSpec(smallExample(), "cli-run-noout.json")).exitCode, 2);  // no -o
+  EXPECT_EQ(runCli("run a.json -o x.h5 --threads 0").exitCode, 2);
+  EXPECT_EQ(runCli("run a.json -o x.h5 --fast").exitCode, 2);
+  const auto missing = runCli("run /nonexistent/spec.json -o x.h5");
+  EXPECT_EQ(missing.exitCode, 2);
+}
+
+TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
+  Scratch dir;
+  nlohmann::json spec = smallExample();
+  // A long run without preliminary: from rest at 2e4 /s (about 15 s of computing).
+  spec["loading"] = {{"strain_rate", 2e4}, {"initial_velocity", "V0"}, {"ramp_time", 1e-9}};
+  const std::string specPath = writeSpec(spec, "cli-run-interrupt.json");
+  const fs::path out = dir.path / "cut.h5";
+  const fs::path stdoutPath = dir.path / "stdout.txt", stderrPath = dir.path / "stderr.txt";
+
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int o = ::open(stdoutPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(stderrPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    ::execl(RUPTURE_CLI, RUPTURE_CLI, "run", specPath.c_str(), "-o", out.c_str(), "--threads", "1",
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait until the main run has started, then press Ctrl-C.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (readWhole(stderrPath).find("main run") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << readWhole(stderrPath);
+  EXPECT_EQ(WEXITSTATUS(status), 130) << readWhole(stderrPath);
+
+  const nlohmann::json summary = nlohmann::json::parse(readWhole(stdoutPath));
+  EXPECT_EQ(summary["completed"], 0);
+  EXPECT_EQ(summary["stop_reason"], "cancelled");
+  rupture::io::Hdf5File file = rupture::io::Hdf5File::openReadOnly(out.string());
+  EXPECT_EQ(file.readAttributeInt("/summary", "completed"), 0);
+  EXPECT_GT(file.datasetDims("/series/time")[0], 1u);
+  EXPECT_TRUE(fs::exists(dir.path / "cut.xdmf2"));
+  EXPECT_FALSE(fs::exists(out.string() + ".part"));
+}
+
+}  // namespace
