@@ -1,5 +1,7 @@
 #include "dem/beam_forces.hpp"
 
+#include "core/parallel.hpp"
+
 namespace rupture {
 
 BeamResponse beamResponseOf(const BeamParameters& beam, const ParticleStore& p, const BondStore& bonds,
@@ -27,9 +29,10 @@ std::size_t computeBeamLoads(const BeamParameters& beam, const ParticleStore& p,
   // σ_f <= 0 means unbreakable.
   const double threshold = law.failureStress > 0 ? law.failureStress : 1e308;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
+  const bool parallel = worthParallel(bonds.size());
   std::size_t broken = 0;
 
-#pragma omp parallel for simd schedule(static) reduction(+ : broken) firstprivate(law, threshold)
+#pragma omp parallel for simd schedule(static) reduction(+ : broken) firstprivate(law, threshold) if (parallel)
   for (std::ptrdiff_t b = 0; b < n; ++b) {
     const std::int32_t i = bi[b], j = bj[b];
     const BeamResponse r =
@@ -55,7 +58,7 @@ void gatherBondLoads(const BondStore& bonds, ParticleStore& p) {
   const double *tix = bonds.tix.data(), *tiy = bonds.tiy.data(), *tiz = bonds.tiz.data();
   const double *tjx = bonds.tjx.data(), *tjy = bonds.tjy.data(), *tjz = bonds.tjz.data();
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthParallel(p.size()))
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
     for (std::int32_t s = start[k]; s < start[k + 1]; ++s) {

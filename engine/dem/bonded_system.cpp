@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.hpp"
 #include "dem/beam_forces.hpp"
 
 namespace rupture {
@@ -22,7 +23,7 @@ void BondedSystem::computeLoads() {
     for (std::size_t b = 0; b < bonds.size(); ++b) {
       if (m_wasIntact[b] && bonds.intact[b] < 0.5) {
         m_wasIntact[b] = 0;
-        contact.onBondBroken(bonds.i[b], bonds.j[b]);
+        contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
       }
     }
   }
@@ -59,7 +60,7 @@ void kickLoop(ParticleStore& p, double halfDt, double gamma) {
       return f;
     }
   };
-#pragma omp parallel for simd schedule(static)
+#pragma omp parallel for simd schedule(static) if (worthParallel(p.size()))
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const unsigned f = fixed[k];
     const double a = halfDt / mass[k], b = halfDt / inertia[k];
@@ -84,7 +85,7 @@ void BondedSystem::kick(double halfDt) {
 void BondedSystem::drift(double dt) {
   ParticleStore& p = particles;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
-#pragma omp parallel for simd schedule(static)
+#pragma omp parallel for simd schedule(static) if (worthParallel(p.size()))
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     p.x[k] += dt * p.vx[k];
     p.y[k] += dt * p.vy[k];

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.hpp"
+
 namespace rupture {
 
 namespace {
@@ -14,17 +16,17 @@ struct PairLoad {
 };
 
 // Hertz–Coulomb load on i from k (see header); torques from the friction force at the contact point.
+// reach: the centre distance at which the pair starts to touch.
 inline PairLoad pairLoad(const ContactParameters& c, const ParticleStore& p, std::int32_t i,
-                         std::int32_t k) {
+                         std::int32_t k, double reach) {
   PairLoad out{};
   const double dx = p.x[k] - p.x[i], dy = p.y[k] - p.y[i], dz = p.z[k] - p.z[i];
   const double d2 = dx * dx + dy * dy + dz * dz;
-  const double reach = p.radius[i] + p.radius[k];
   if (d2 >= reach * reach || d2 == 0.0) return out;
   const double d = std::sqrt(d2);
   const double nx = dx / d, ny = dy / d, nz = dz / d;
   const double overlap = reach - d;
-  const double rStar = p.radius[i] * p.radius[k] / reach;
+  const double rStar = p.radius[i] * p.radius[k] / (p.radius[i] + p.radius[k]);
   const double eStar = c.youngModulus / (2.0 * (1.0 - c.poissonRatio * c.poissonRatio));
   const double mStar = p.mass[i] * p.mass[k] / (p.mass[i] + p.mass[k]);
   const double sqrtRd = std::sqrt(rStar * overlap);
@@ -62,12 +64,17 @@ inline PairLoad pairLoad(const ContactParameters& c, const ParticleStore& p, std
   return out;
 }
 
-bool bonded(const BondStore& bonds, std::int32_t i, std::int32_t k) {
+// The contact distance of a pair: R_i + R_k, or the rest length of their broken bond if shorter;
+// negative when an intact bond holds the pair (no contact then).
+double contactReach(const ParticleStore& p, const BondStore& bonds, std::int32_t i, std::int32_t k) {
+  double reach = p.radius[i] + p.radius[k];
   for (std::int32_t s = bonds.incidenceStart[i]; s < bonds.incidenceStart[i + 1]; ++s) {
     const std::int32_t b = bonds.incidence[s] >> 1;
-    if (bonds.intact[b] > 0.5 && (bonds.i[b] == k || bonds.j[b] == k)) return true;
+    if (bonds.i[b] != k && bonds.j[b] != k) continue;
+    if (bonds.intact[b] > 0.5) return -1.0;
+    reach = std::min(reach, bonds.restLength[b]);
   }
-  return false;
+  return reach;
 }
 
 }  // namespace
@@ -76,7 +83,7 @@ bool HertzContact::needsRebuild(const ParticleStore& p) const {
   if (!m_listValid || m_x0.size() != p.size()) return true;
   const double limit2 = 0.25 * m_skin * m_skin;
   bool moved = false;
-#pragma omp parallel for reduction(|| : moved) schedule(static)
+#pragma omp parallel for reduction(|| : moved) schedule(static) if (worthParallel(p.size()))
   for (std::size_t k = 0; k < p.size(); ++k) {
     const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
     moved = moved || (dx * dx + dy * dy + dz * dz > limit2);
@@ -92,24 +99,29 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
   m_skin = 0.3 * meanRadius;
   m_cells.build(p, 2.0 * maxRadius + m_skin);
 
-  std::vector<std::vector<std::int32_t>> perParticle(n);
-#pragma omp parallel for schedule(dynamic, 256)
+  std::vector<std::vector<std::pair<std::int32_t, double>>> perParticle(n);
+#pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
     const auto i = static_cast<std::int32_t>(a);
     m_cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
       if (k == i) return;
       const double dx = p.x[k] - p.x[a], dy = p.y[k] - p.y[a], dz = p.z[k] - p.z[a];
-      const double reach = p.radius[a] + p.radius[k] + m_skin;
-      if (dx * dx + dy * dy + dz * dz < reach * reach && !bonded(bonds, i, k))
-        perParticle[a].push_back(k);
+      const double search = p.radius[a] + p.radius[k] + m_skin;
+      if (dx * dx + dy * dy + dz * dz >= search * search) return;
+      const double reach = contactReach(p, bonds, i, k);
+      if (reach > 0) perParticle[a].push_back({k, reach});
     });
     std::sort(perParticle[a].begin(), perParticle[a].end());  // fixed order: determinism
   }
   m_start.assign(n + 1, 0);
   for (std::size_t a = 0; a < n; ++a) m_start[a + 1] = m_start[a] + perParticle[a].size();
   m_neighbors.resize(m_start[n]);
+  m_reach.resize(m_start[n]);
   for (std::size_t a = 0; a < n; ++a)
-    std::copy(perParticle[a].begin(), perParticle[a].end(), m_neighbors.begin() + m_start[a]);
+    for (std::size_t e = 0; e < perParticle[a].size(); ++e) {
+      m_neighbors[m_start[a] + e] = perParticle[a][e].first;
+      m_reach[m_start[a] + e] = perParticle[a][e].second;
+    }
   m_x0 = p.x; m_y0 = p.y; m_z0 = p.z;
   m_brokenPairs.clear();
   m_listValid = true;
@@ -120,10 +132,10 @@ void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
   if (needsRebuild(p)) rebuild(p, bonds);
   const std::size_t n = p.size();
   // Full list: each particle sums the loads it receives; no two threads write the same particle.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
     for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s) {
-      const PairLoad l = pairLoad(m_params, p, static_cast<std::int32_t>(a), m_neighbors[s]);
+      const PairLoad l = pairLoad(m_params, p, static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
       if (!l.active) continue;
       p.fx[a] += l.fx; p.fy[a] += l.fy; p.fz[a] += l.fz;
       p.tx[a] += l.tix; p.ty[a] += l.tiy; p.tz[a] += l.tiz;
@@ -131,7 +143,7 @@ void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
   }
   // Pairs whose bond broke since the last rebuild: few, handled serially on both particles.
   for (const Pair& pair : m_brokenPairs) {
-    const PairLoad l = pairLoad(m_params, p, pair.i, pair.j);
+    const PairLoad l = pairLoad(m_params, p, pair.i, pair.j, std::min(p.radius[pair.i] + p.radius[pair.j], pair.restLength));
     if (!l.active) continue;
     p.fx[pair.i] += l.fx; p.fy[pair.i] += l.fy; p.fz[pair.i] += l.fz;
     p.tx[pair.i] += l.tix; p.ty[pair.i] += l.tiy; p.tz[pair.i] += l.tiz;
@@ -143,10 +155,10 @@ void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
 double HertzContact::energy(const ParticleStore& p) const {
   if (!m_params.enabled || !m_listValid) return 0.0;
   const double eStar = m_params.youngModulus / (2.0 * (1.0 - m_params.poissonRatio * m_params.poissonRatio));
-  auto pairEnergy = [&](std::int32_t i, std::int32_t k) {
+  auto pairEnergy = [&](std::int32_t i, std::int32_t k, double reach) {
     const double dx = p.x[k] - p.x[i], dy = p.y[k] - p.y[i], dz = p.z[k] - p.z[i];
     const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double overlap = p.radius[i] + p.radius[k] - d;
+    const double overlap = reach - d;
     if (overlap <= 0) return 0.0;
     const double rStar = p.radius[i] * p.radius[k] / (p.radius[i] + p.radius[k]);
     return 8.0 / 15.0 * eStar * std::sqrt(rStar) * std::pow(overlap, 2.5);
@@ -154,8 +166,9 @@ double HertzContact::energy(const ParticleStore& p) const {
   double e = 0;
   for (std::size_t a = 0; a < p.size(); ++a)
     for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s)
-      if (static_cast<std::int32_t>(a) < m_neighbors[s]) e += pairEnergy(static_cast<std::int32_t>(a), m_neighbors[s]);
-  for (const Pair& pair : m_brokenPairs) e += pairEnergy(pair.i, pair.j);
+      if (static_cast<std::int32_t>(a) < m_neighbors[s]) e += pairEnergy(static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
+  for (const Pair& pair : m_brokenPairs)
+    e += pairEnergy(pair.i, pair.j, std::min(p.radius[pair.i] + p.radius[pair.j], pair.restLength));
   return e;
 }
 

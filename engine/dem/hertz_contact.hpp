@@ -5,6 +5,9 @@
 //   F_n = (4/3) E* √R* δ^{3/2} + c_n δ̇,   c_n = 2 ζ √(m* k_n),  k_n = 2 E* √(R* δ)  (tangent stiffness)
 //   F_t = −min(μ F_n, c_n |v_t|) v_t/|v_t|   (Coulomb limit, viscous regularisation: no history)
 // The normal force never pulls (F_n >= 0). Energy stored: (8/15) E* √R* δ^{5/2}.
+// A pair whose bond broke touches at min(R_i + R_k, L0): packings leave bonded pairs slightly
+// overlapping, and measuring the overlap from R_i + R_k would push them apart with a force of the
+// order of the bond's strength at the very step it breaks.
 // Neighbour search: cell list and a Verlet list with a skin, rebuilt when a particle has moved more
 // than half the skin; pairs whose bond breaks between rebuilds join the list at once.
 #include <cstdint>
@@ -33,8 +36,9 @@ public:
   /// Adds contact forces and torques on every particle (after the bond loads were gathered).
   void addForces(ParticleStore& p, const BondStore& bonds);
 
-  /// Call when bond b broke: its pair becomes a contact candidate immediately.
-  void onBondBroken(std::int32_t i, std::int32_t j) { m_brokenPairs.push_back({i, j}); }
+  /// Call when a bond broke: its pair becomes a contact candidate immediately, touching at
+  /// min(R_i + R_j, restLength).
+  void onBondBroken(std::int32_t i, std::int32_t j, double restLength) { m_brokenPairs.push_back({i, j, restLength}); }
 
   /// Elastic energy stored in the current contacts (J).
   double energy(const ParticleStore& p) const;
@@ -50,8 +54,9 @@ private:
   double m_skin = 0;
   CellList m_cells;
   std::vector<std::int32_t> m_start, m_neighbors;     // full list: both (i, k) and (k, i)
+  std::vector<double> m_reach;                        // contact distance of each listed pair (m)
   std::vector<double> m_x0, m_y0, m_z0;               // positions at the last rebuild
-  struct Pair { std::int32_t i, j; };
+  struct Pair { std::int32_t i, j; double restLength; };
   std::vector<Pair> m_brokenPairs;                    // since the last rebuild
 };
 

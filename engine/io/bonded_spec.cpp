@@ -59,7 +59,9 @@ MaterialSpec parseMaterial(const SpecReader& root) {
   m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
   m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
   beam.finish();
-  m.contact.youngModulus = m.beam.youngModulus;
+  // Default contact modulus ~ the macroscopic modulus the beams give (E_M ∝ E_μ r_μ², see
+  // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
+  m.contact.youngModulus = m.beam.youngModulus * m.beam.radiusRatio * m.beam.radiusRatio;
   m.contact.poissonRatio = m.beam.poissonRatio;
   if (auto contact = material.optionalObject("contact")) {
     m.contact.enabled = contact->boolean("enabled", true);
