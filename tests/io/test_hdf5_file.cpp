@@ -3,6 +3,9 @@
 #include "io/hdf5_file.hpp"
 
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <hdf5.h>
 
 #include <atomic>
@@ -530,8 +533,16 @@ TEST_F(Hdf5FileTest, CopyFileIntoRefusesReferenceAttributesAndLeavesNothing) {
 //   rupture run examples/dynamic-tension-small.json -o run.h5
 //   RUPTURE_TEST_RUN_FILE=$PWD/run.h5 tests/io_tests
 TEST_F(Hdf5FileTest, CopyFileIntoCopiesEngineRunFile) {
-  const char* run = std::getenv("RUPTURE_TEST_RUN_FILE");
-  if (run == nullptr || *run == '\0') GTEST_SKIP() << "RUPTURE_TEST_RUN_FILE is not set";
+  // A real run file from the CLI: the small example at 1e7 /s with the linear field (no
+  // preliminary run), well under a second.
+  std::ifstream example(std::string(RUPTURE_SOURCE_DIR) + "/examples/dynamic-tension-small.json");
+  nlohmann::json spec = nlohmann::json::parse(example);
+  spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
+  const std::string specPath = file("spec.json");
+  std::ofstream(specPath) << spec.dump();
+  const std::string runPath = file("run.h5");
+  ASSERT_EQ(std::system((std::string(RUPTURE_CLI) + " run " + specPath + " -o " + runPath + " > /dev/null 2>&1").c_str()), 0);
+  const char* run = runPath.c_str();
   const std::string merged = file("merged.h5");
   {
     Hdf5File m = Hdf5File::create(merged);
