@@ -18,14 +18,16 @@ for _ in $(seq 1 100); do
   sleep 0.1
 done
 echo "== submitting the example sweep (examples/sweep-small.json)"
-curl -sS --json @examples/sweep-small.json "http://127.0.0.1:$PORT/processes/dynamic-tension/execution"
-echo
+response=$(curl -sS -D - --json @examples/sweep-small.json "http://127.0.0.1:$PORT/processes/dynamic-tension/execution")
+echo "$response"
+job=$(printf '%s\n' "$response" | tr -d '\r' | sed -n 's|^[Ll]ocation: */jobs/\([0-9]*\).*|\1|p')
+job=${job:-1}
 cat <<MSG
 == rupture-server is running on http://127.0.0.1:$PORT (data in $DATA/); the sweep runs in the background.
-   curl -s http://127.0.0.1:$PORT/jobs/1                           # status and per-run progress
-   curl -s "http://127.0.0.1:$PORT/jobs/1/summary?format=csv"      # peak stress versus strain rate
-   curl -s -o plot.svg "http://127.0.0.1:$PORT/jobs/1/summary.svg?x=loading.strain_rate&y=peak_stress"
-   curl -s -o results.h5 http://127.0.0.1:$PORT/jobs/1/results     # every run's HDF5 groups, once finished
+   curl -s http://127.0.0.1:$PORT/jobs/$job                           # status and per-run progress
+   curl -s "http://127.0.0.1:$PORT/jobs/$job/summary?format=csv"      # peak stress versus strain rate
+   curl -s -o plot.svg "http://127.0.0.1:$PORT/jobs/$job/summary.svg?x=loading.strain_rate&y=peak_stress"
+   curl -s -o results.h5 http://127.0.0.1:$PORT/jobs/$job/results     # every run's HDF5 groups, once finished
 Ctrl-C stops the server.
 MSG
 wait "$server"

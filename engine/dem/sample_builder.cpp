@@ -23,13 +23,15 @@ double elementVolume(int dimension, double r) {
 
 /// Jacobi relaxation of overlaps between elements and with the box walls; returns the largest
 /// remaining overlap divided by the mean radius.
-double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double meanRadius) {
+double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double meanRadius,
+                     const std::atomic<bool>* cancel) {
   const std::size_t n = p.size();
   const double maxRadius = *std::max_element(p.radius.begin(), p.radius.end());
   std::vector<double> dx(n), dy(n), dz(n);
   CellList cells;
   double worst = 0;
   for (int sweep = 0; sweep < kMaxRelaxationSweeps; ++sweep) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
     cells.build(p, 2.0 * maxRadius);
     worst = 0;
 #pragma omp parallel for schedule(static) reduction(max : worst)
@@ -119,7 +121,8 @@ std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::
 
 }  // namespace
 
-SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system) {
+SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
+                         const std::atomic<bool>* cancel) {
   system = BondedSystem{};
   ParticleStore& p = system.particles;
   p.dimension = s.dimension;
@@ -143,7 +146,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   double meanRadius = 0;
   for (double r : p.radius) meanRadius += r;
   meanRadius /= static_cast<double>(p.size());
-  report.relaxationOverlap = relaxOverlaps(p, s.size, meanRadius);
+  report.relaxationOverlap = relaxOverlaps(p, s.size, meanRadius, cancel);
 
   bondNeighbours(system, s.bondGap);
 

@@ -197,7 +197,7 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   // Sample, loaded faces, time step.
   log(control, "building the sample");
   BondedSystem system;
-  const SampleReport report = buildSample(spec.sample, spec.material, system);
+  const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
   const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
   const double criticalStep = system.criticalTimeStep();
   if (!std::isfinite(criticalStep) || !(criticalStep > 0))
