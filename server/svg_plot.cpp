@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/xml_escape.hpp"
 #include "problem.hpp"
 
 namespace rupture::server {
@@ -16,23 +17,6 @@ constexpr double kWidth = 800, kHeight = 500;
 constexpr double kLeft = 95, kTop = 60, kBottom = 75;
 constexpr const char* kPalette[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                                     "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
-
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') break;  // not allowed in XML 1.0
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string num(double v) {
   char buf[32];
@@ -229,16 +213,16 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
       << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight
       << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n"
-      << "<title>" << xmlEscape(title) << "</title>\n"
+      << "<title>" << io::xmlEscape(title) << "</title>\n"
       << "<rect x=\"0\" y=\"0\" width=\"" << kWidth << "\" height=\"" << kHeight << "\" fill=\"white\"/>\n"
       << "<text x=\"" << num(kLeft + plotW / 2) << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" "
-      << "font-weight=\"bold\">" << xmlEscape(title) << "</text>\n";
+      << "font-weight=\"bold\">" << io::xmlEscape(title) << "</text>\n";
 
   if (xs.empty()) {
     svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << num(plotW) << "\" height=\""
         << num(plotH) << "\" fill=\"none\" stroke=\"#333\"/>\n"
         << "<text x=\"" << num(kLeft + plotW / 2) << "\" y=\"" << num(kTop + plotH / 2)
-        << "\" text-anchor=\"middle\" fill=\"#666\">no finished runs with " << xmlEscape(request.y)
+        << "\" text-anchor=\"middle\" fill=\"#666\">no finished runs with " << io::xmlEscape(request.y)
         << " yet</text>\n</svg>\n";
     return svg.str();
   }
@@ -253,7 +237,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
     xAxis.categorical = true;
     xAxis.lo = -0.5;
     xAxis.hi = static_cast<double>(categories.size()) - 0.5;
-    for (std::size_t i = 0; i < categories.size(); ++i) xAxis.ticks.push_back({double(i), xmlEscape(categories[i])});
+    for (std::size_t i = 0; i < categories.size(); ++i) xAxis.ticks.push_back({double(i), io::xmlEscape(categories[i])});
   } else {
     xAxis = numericAxis(xs, request.xScale, request.x);
   }
@@ -291,10 +275,10 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
   svg << "</g>\n";
   // Axis labels.
   svg << "<text class=\"x-label\" x=\"" << num(kLeft + plotW / 2) << "\" y=\"" << num(kHeight - 22)
-      << "\" text-anchor=\"middle\" font-size=\"13\">" << xmlEscape(axisLabel(request.x, unitOf))
+      << "\" text-anchor=\"middle\" font-size=\"13\">" << io::xmlEscape(axisLabel(request.x, unitOf))
       << (xAxis.log ? " (log scale)" : "") << "</text>\n";
   svg << "<text class=\"y-label\" transform=\"translate(22," << num(kTop + plotH / 2)
-      << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">" << xmlEscape(axisLabel(request.y, unitOf))
+      << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">" << io::xmlEscape(axisLabel(request.y, unitOf))
       << (yAxis.log ? " (log scale)" : "") << "</text>\n";
 
   // Series.
@@ -302,7 +286,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
     const std::string colour = kPalette[s % std::size(kPalette)];
     std::vector<Point> pts = series[seriesOrder[s]];
     std::stable_sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
-    svg << "<g class=\"series\" data-label=\"" << xmlEscape(seriesOrder[s]) << "\">\n";
+    svg << "<g class=\"series\" data-label=\"" << io::xmlEscape(seriesOrder[s]) << "\">\n";
     if (pts.size() > 1) {
       svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\" points=\"";
       for (const Point& p : pts) svg << num(px(p.x)) << ',' << num(py(p.y)) << ' ';
@@ -310,8 +294,8 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
     }
     for (const Point& p : pts) {
       svg << "<circle cx=\"" << num(px(p.x)) << "\" cy=\"" << num(py(p.y)) << "\" r=\"4\" fill=\"" << colour
-          << "\"><title>run " << p.run << ": " << xmlEscape(request.x) << "=" << xmlEscape(valueText(p.xRaw))
-          << ", " << xmlEscape(request.y) << "=" << xmlEscape(tickLabel(p.y)) << "</title></circle>\n";
+          << "\"><title>run " << p.run << ": " << io::xmlEscape(request.x) << "=" << io::xmlEscape(valueText(p.xRaw))
+          << ", " << io::xmlEscape(request.y) << "=" << io::xmlEscape(tickLabel(p.y)) << "</title></circle>\n";
     }
     svg << "</g>\n";
   }
@@ -323,14 +307,14 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
     std::string heading;
     for (const auto& p : others) heading += (heading.empty() ? "" : ", ") + p;
     svg << "<g class=\"legend\">\n<text x=\"" << num(lx) << "\" y=\"" << num(ly) << "\" font-weight=\"bold\">"
-        << xmlEscape(others.size() > 1 ? std::string("series") : heading) << "</text>\n";
+        << io::xmlEscape(others.size() > 1 ? std::string("series") : heading) << "</text>\n";
     for (std::size_t s = 0; s < seriesOrder.size(); ++s) {
       ly += 20;
       const std::string colour = kPalette[s % std::size(kPalette)];
       svg << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 22) << "\" y2=\""
           << num(ly - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2\"/><circle cx=\"" << num(lx + 11)
           << "\" cy=\"" << num(ly - 4) << "\" r=\"4\" fill=\"" << colour << "\"/><text x=\"" << num(lx + 30)
-          << "\" y=\"" << num(ly) << "\">" << xmlEscape(seriesOrder[s]) << "</text>\n";
+          << "\" y=\"" << num(ly) << "\">" << io::xmlEscape(seriesOrder[s]) << "</text>\n";
     }
     svg << "</g>\n";
   }

@@ -1,5 +1,7 @@
 #include "io/xdmf_writer.hpp"
 
+#include "io/xml_escape.hpp"
+
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -18,22 +20,6 @@ namespace rupture::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 /// Shortest text that reads back to the same double, independent of the global locale.
 std::string formatDouble(double value) {

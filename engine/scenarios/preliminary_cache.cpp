@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "io/hdf5_file.hpp"
+#include "io/interleave.hpp"
 
 namespace rupture {
 
@@ -18,17 +19,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::int64_t kFormatVersion = 1;
-
-std::vector<double> interleave(const std::vector<double>& a, const std::vector<double>& b,
-                               const std::vector<double>& c) {
-  std::vector<double> out(3 * a.size());
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    out[3 * k] = a[k];
-    out[3 * k + 1] = b[k];
-    out[3 * k + 2] = c[k];
-  }
-  return out;
-}
 
 void split(const std::vector<double>& in, std::vector<double>& a, std::vector<double>& b, std::vector<double>& c) {
   const std::size_t n = in.size() / 3;
@@ -129,8 +119,8 @@ bool storePreliminary(const std::string& file, const nlohmann::json& key, const 
       f.setAttribute("/", "equilibrium_ratio", r.equilibriumRatio);
       f.setAttribute("/", "wall_time_s", r.wallTime);
       const std::size_t n = r.field.vx.size();
-      f.writeDataset("/velocity", interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
-      f.writeDataset("/angular_velocity", interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
+      f.writeDataset("/velocity", io::interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
+      f.writeDataset("/angular_velocity", io::interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
       f.close();
     }
     fs::rename(tmp, target);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <system_error>
 
+#include "io/interleave.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/virial_stress.hpp"
 
@@ -14,16 +15,6 @@ namespace rupture {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::vector<double> xyz(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c) {
-  std::vector<double> out(3 * a.size());
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    out[3 * k] = a[k];
-    out[3 * k + 1] = b[k];
-    out[3 * k + 2] = c[k];
-  }
-  return out;
-}
 
 std::vector<std::int32_t> bondPairs(const BondStore& bonds) {
   std::vector<std::int32_t> pairs(2 * bonds.size());
@@ -94,7 +85,7 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
                    {"gauge_length", "m"},
                    {"section", "m^2"}});
   m_file.writeDataset("/sample/radius", p.radius, {n}, "m");
-  m_file.writeDataset("/sample/initial_position", xyz(p.x, p.y, p.z), {n, 3}, "m");
+  m_file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
   m_file.writeDataset("/sample/bonds", bondPairs(system.bonds), {system.bonds.size(), 2}, "1");
   std::vector<std::int32_t> group(n, 0);
   for (std::int32_t k : geometry.xmin) group[k] = 1;
@@ -132,8 +123,8 @@ void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFr
   m_file.setAttribute(base, "strain", strain);
   m_file.setAttribute(base, "step", static_cast<std::int64_t>(system.steps));
   m_file.setAttribute(base, "trigger", trigger);
-  m_file.writeDataset(base + "/position", xyz(p.x, p.y, p.z), {n, 3}, "m");
-  m_file.writeDataset(base + "/velocity", xyz(p.vx, p.vy, p.vz), {n, 3}, "m/s");
+  m_file.writeDataset(base + "/position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
+  m_file.writeDataset(base + "/velocity", io::interleave(p.vx, p.vy, p.vz), {n, 3}, "m/s");
   m_file.writeDataset(base + "/stress", virialStress(system, packingFraction, thickness2d), {n, 3, 3}, "Pa");
   m_file.writeDataset(base + "/damage", elementDamage(system.bonds, n), {n}, "1");
   m_file.writeDataset(base + "/radius", p.radius, {n}, "m");
