@@ -116,6 +116,15 @@ Axis numericAxis(const std::vector<double>& values, AxisScale scale, const std::
   return axis;
 }
 
+// The visible title must fit the picture: bold 15 px DejaVu Sans is about 9.5 px per character.
+std::string fitTitle(const std::string& title) {
+  const std::size_t maxChars = static_cast<std::size_t>((kWidth - 20) / 9.5);
+  if (title.size() <= maxChars) return title;
+  std::size_t cut = maxChars - 3;
+  while (cut > 0 && (static_cast<unsigned char>(title[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+  return title.substr(0, cut) + "...";
+}
+
 }  // namespace
 
 bool prefersLogScale(const std::vector<double>& values) {
@@ -215,8 +224,8 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
       << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n"
       << "<title>" << io::xmlEscape(title) << "</title>\n"
       << "<rect x=\"0\" y=\"0\" width=\"" << kWidth << "\" height=\"" << kHeight << "\" fill=\"white\"/>\n"
-      << "<text x=\"" << num(kLeft + plotW / 2) << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" "
-      << "font-weight=\"bold\">" << io::xmlEscape(title) << "</text>\n";
+      << "<text x=\"" << num(kWidth / 2) << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" "
+      << "font-weight=\"bold\">" << io::xmlEscape(fitTitle(title)) << "</text>\n";
 
   if (xs.empty()) {
     svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << num(plotW) << "\" height=\""
