@@ -1,5 +1,7 @@
 #include "dem/bonded_system.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,17 +18,31 @@ void BondedSystem::initialize() {
   computeLoads();
 }
 
+void BondedSystem::handOverBrokenBonds() {
+  // Find the bonds that just broke (a parallel scan: each thread keeps its own list, and the lists
+  // are joined in thread order, so the order does not depend on timing) and hand their pairs to
+  // the contact search.
+  std::vector<std::vector<std::size_t>> found;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
+#pragma omp parallel if (worthParallel(bonds.size()))
+  {
+#pragma omp single
+    found.resize(omp_get_num_threads());
+    std::vector<std::size_t>& mine = found[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t b = 0; b < n; ++b)
+      if (m_wasIntact[b] && bonds.intact[b] < 0.5) mine.push_back(b);
+  }
+  for (const auto& list : found)
+    for (std::size_t b : list) {
+      m_wasIntact[b] = 0;
+      contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
+    }
+}
+
 void BondedSystem::computeLoads() {
   brokenLastStep = computeBeamLoads(beam, particles, bonds);
-  if (brokenLastStep > 0) {
-    // Rare event: find the bonds that just broke and hand their pairs to the contact search.
-    for (std::size_t b = 0; b < bonds.size(); ++b) {
-      if (m_wasIntact[b] && bonds.intact[b] < 0.5) {
-        m_wasIntact[b] = 0;
-        contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
-      }
-    }
-  }
+  if (brokenLastStep > 0) handOverBrokenBonds();
   gatherBondLoads(bonds, particles);
   contact.addForces(particles, bonds);
   if (particles.dimension == 2) {

@@ -46,6 +46,7 @@ public:
 
 private:
   void computeLoads();
+  void handOverBrokenBonds();
   void kick(double halfDt);
   void drift(double dt);
   std::vector<std::uint8_t> m_wasIntact;

@@ -132,7 +132,8 @@ void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
   if (needsRebuild(p)) rebuild(p, bonds);
   const std::size_t n = p.size();
   // Full list: each particle sums the loads it receives; no two threads write the same particle.
-#pragma omp parallel for schedule(static) if (worthParallel(n))
+  // Contacts cluster where fragments are: dynamic chunks balance the threads.
+#pragma omp parallel for schedule(dynamic, 2048) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
     for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s) {
       const PairLoad l = pairLoad(m_params, p, static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
