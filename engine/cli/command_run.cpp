@@ -21,6 +21,7 @@
 
 #include "cli/cli.hpp"
 #include "cli/spec_file.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/xdmf_writer.hpp"
 #include "rupture/run.hpp"
 
@@ -200,16 +201,20 @@ int runCommand(const Args& args) {
   }
 
   int code = outcome.completed ? 0 : kExitInterrupted;
-  const std::string sidecar = sidecarPath(output);
+  // A ParaView sidecar only for results with particle snapshots (elastic-properties has none).
+  std::string sidecar;
   try {
-    io::writeXdmfSidecar(output, sidecar);
+    if (io::Hdf5File::openReadOnly(output).exists("/snapshots")) {
+      sidecar = sidecarPath(output);
+      io::writeXdmfSidecar(output, sidecar);
+    }
   } catch (const std::exception& e) {
     std::cerr << "rupture run: cannot write the ParaView sidecar '" << sidecar << "': " << e.what() << "\n";
     code = code == 0 ? 1 : code;
   }
   std::cout << outcome.summary.dump(2) << std::endl;
   std::cerr << "rupture run: " << (outcome.completed ? "done" : "interrupted, result marked incomplete") << ": "
-            << output << " (+ " << sidecar << ")\n";
+            << output << (sidecar.empty() ? "" : " (+ " + sidecar + ")") << "\n";
   return code;
 }
 

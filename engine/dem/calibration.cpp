@@ -99,9 +99,13 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
   // transits of the sample, counted in steps from the element count across).
   const double across = std::sqrt(static_cast<double>(n));
   const std::size_t interval = std::max<std::size_t>(200, static_cast<std::size_t>(4 * across));
+  // Cancel is polled every step (one relaxed load), so a large sample stops within one step.
+  auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
   ElasticProperties previous = measure(), current = previous;
-  while (s.steps < options.maxSteps) {
-    for (std::size_t k = 0; k < interval; ++k) s.step(dt);
+  double firstChange = 0;  // the change at the first check, for the progress estimate
+  while (s.steps < options.maxSteps && !cancelled()) {
+    for (std::size_t k = 0; k < interval && !cancelled(); ++k) s.step(dt);
+    if (cancelled()) break;
     current = measure();
     const double dE = std::abs(current.youngModulus - previous.youngModulus) / std::abs(current.youngModulus);
     const double dNu = std::abs(current.poissonRatio - previous.poissonRatio);
@@ -109,59 +113,89 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
       current.converged = true;
       break;
     }
+    if (options.progress) {
+      // The changes fall roughly geometrically: estimate the fraction done on a log scale
+      // between the first change and the tolerance, bounded by the step budget.
+      const double change = std::max({dE, dNu, options.tolerance});
+      if (firstChange == 0) firstChange = std::max(change, options.tolerance * 1.0001);
+      const double byChange = std::log(firstChange / change) / std::log(firstChange / options.tolerance);
+      const double bySteps = static_cast<double>(s.steps) / static_cast<double>(options.maxSteps);
+      options.progress(std::clamp(std::max(byChange, bySteps), 0.0, 1.0));
+    }
     previous = current;
   }
+  current.steps = s.steps;
   return current;
 }
 
 BeamFit fitBeamParameters(const BondedSystem& sample, const SampleSpec& spec, double targetYoung,
                           double targetPoisson, const CalibrationOptions& options) {
   BeamFit fit;
+  fit.beam = sample.beam;
   BondedSystem trial = sample;
+  struct Cancelled {};  // unwinds the fit between tension tests
+  auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+  // One tension test; the caller's progress sees the fraction of the fit's test budget.
+  auto measureTrial = [&] {
+    if (cancelled()) throw Cancelled{};
+    CalibrationOptions inner = options;
+    const int done = fit.evaluations++;
+    if (options.progress)
+      inner.progress = [&options, done](double f) { options.progress((done + f) / kMaxFitEvaluations); };
+    const ElasticProperties measured = measureElasticProperties(trial, spec, inner);
+    if (cancelled()) {
+      fit.achieved = measured;
+      throw Cancelled{};
+    }
+    if (options.progress) options.progress(static_cast<double>(done + 1) / kMaxFitEvaluations);
+    return measured;
+  };
   auto evaluate = [&](double ratio) {
     trial.beam.radiusRatio = ratio;
-    ++fit.evaluations;
-    return measureElasticProperties(trial, spec, options);
+    return measureTrial();
   };
-  constexpr double kMinRatio = 0.02, kMaxRatio = 1.0;
-  // ν_M falls as the radius ratio grows: bracket the target, then regula falsi on ν(ratio).
-  double a = std::clamp(sample.beam.radiusRatio, kMinRatio, kMaxRatio);
-  ElasticProperties pa = evaluate(a);
-  double b = a;
-  ElasticProperties pb = pa;
-  const double direction = pa.poissonRatio > targetPoisson ? 1.5 : 1.0 / 1.5;
-  for (int k = 0; k < 12 && (pb.poissonRatio - targetPoisson) * (pa.poissonRatio - targetPoisson) > 0; ++k) {
-    a = b; pa = pb;
-    const double next = std::clamp(b * direction, kMinRatio, kMaxRatio);
-    if (next == b) {
-      std::ostringstream msg;
-      msg << "--target-poisson-ratio " << targetPoisson << " is out of reach on this sample: radius ratio "
-          << b << " gives " << pb.poissonRatio << " (the beams' Poisson ratio falls as the radius ratio grows, "
-          << "from about 0.25 at small ratios)";
-      throw CalibrationError(msg.str());
+  try {
+    constexpr double kMinRatio = 0.02, kMaxRatio = 1.0;
+    // ν_M falls as the radius ratio grows: bracket the target, then regula falsi on ν(ratio).
+    double a = std::clamp(sample.beam.radiusRatio, kMinRatio, kMaxRatio);
+    ElasticProperties pa = evaluate(a);
+    double b = a;
+    ElasticProperties pb = pa;
+    const double direction = pa.poissonRatio > targetPoisson ? 1.5 : 1.0 / 1.5;
+    for (int k = 0; k < 12 && (pb.poissonRatio - targetPoisson) * (pa.poissonRatio - targetPoisson) > 0; ++k) {
+      a = b; pa = pb;
+      const double next = std::clamp(b * direction, kMinRatio, kMaxRatio);
+      if (next == b) {
+        std::ostringstream msg;
+        msg << "--target-poisson-ratio " << targetPoisson << " is out of reach on this sample: radius ratio "
+            << b << " gives " << pb.poissonRatio << " (the beams' Poisson ratio falls as the radius ratio grows, "
+            << "from about 0.25 at small ratios)";
+        throw CalibrationError(msg.str());
+      }
+      b = next;
+      pb = evaluate(b);
     }
-    b = next;
-    pb = evaluate(b);
-  }
-  ElasticProperties best = std::abs(pa.poissonRatio - targetPoisson) < std::abs(pb.poissonRatio - targetPoisson) ? pa : pb;
-  double bestRatio = best.poissonRatio == pa.poissonRatio ? a : b;
-  for (int k = 0; k < 10 && std::abs(best.poissonRatio - targetPoisson) > 2e-3; ++k) {
-    const double c = a + (targetPoisson - pa.poissonRatio) * (b - a) / (pb.poissonRatio - pa.poissonRatio);
-    const ElasticProperties pc = evaluate(c);
-    if (std::abs(pc.poissonRatio - targetPoisson) < std::abs(best.poissonRatio - targetPoisson)) {
-      best = pc;
-      bestRatio = c;
+    ElasticProperties best = std::abs(pa.poissonRatio - targetPoisson) < std::abs(pb.poissonRatio - targetPoisson) ? pa : pb;
+    double bestRatio = best.poissonRatio == pa.poissonRatio ? a : b;
+    for (int k = 0; k < 10 && std::abs(best.poissonRatio - targetPoisson) > 2e-3; ++k) {
+      const double c = a + (targetPoisson - pa.poissonRatio) * (b - a) / (pb.poissonRatio - pa.poissonRatio);
+      const ElasticProperties pc = evaluate(c);
+      if (std::abs(pc.poissonRatio - targetPoisson) < std::abs(best.poissonRatio - targetPoisson)) {
+        best = pc;
+        bestRatio = c;
+      }
+      if ((pc.poissonRatio - targetPoisson) * (pa.poissonRatio - targetPoisson) > 0) { a = c; pa = pc; }
+      else { b = c; pb = pc; }
     }
-    if ((pc.poissonRatio - targetPoisson) * (pa.poissonRatio - targetPoisson) > 0) { a = c; pa = pc; }
-    else { b = c; pb = pc; }
+    // E_M is proportional to E_μ at a fixed radius ratio.
+    fit.beam = sample.beam;
+    fit.beam.radiusRatio = bestRatio;
+    fit.beam.youngModulus = sample.beam.youngModulus * targetYoung / best.youngModulus;
+    trial.beam = fit.beam;
+    fit.achieved = measureTrial();
+  } catch (const Cancelled&) {
+    fit.cancelled = true;
   }
-  // E_M is proportional to E_μ at a fixed radius ratio.
-  fit.beam = sample.beam;
-  fit.beam.radiusRatio = bestRatio;
-  fit.beam.youngModulus = sample.beam.youngModulus * targetYoung / best.youngModulus;
-  trial.beam = fit.beam;
-  ++fit.evaluations;
-  fit.achieved = measureElasticProperties(trial, spec, options);
   return fit;
 }
 

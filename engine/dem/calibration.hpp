@@ -9,6 +9,8 @@
 //   ν = −ε_lat / ε with ε_lat the least-squares slope of u_y(y) (and u_z(z), averaged, in 3D).
 // Fit: ν_M depends almost only on the beam radius ratio (decreasing), E_M is linear in E_μ: find the
 // radius ratio for the target ν by bracketing and regula falsi, then rescale E_μ by E_target / E_M.
+#include <atomic>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +33,12 @@ struct CalibrationOptions {
   double timeStepSafety = 0.3; ///< quasi-static: no wave accuracy needed
   double tolerance = 2e-5;     ///< relative change of E and ν between checks to stop
   std::size_t maxSteps = 400000;
+  /// When given and set, a measurement stops at its next check interval (returning the current,
+  /// unconverged values) and a fit runs no further tension test (it returns what it has).
+  const std::atomic<bool>* cancel = nullptr;
+  /// When given, called after each convergence check of a measurement with its estimated fraction
+  /// done in [0, 1] (not necessarily monotone; the relaxation has no known length).
+  std::function<void(double)> progress;
 };
 
 /// Thrown when a target cannot be reached (the message names the option and the reachable range).
@@ -47,10 +55,17 @@ struct BeamFit {
   BeamParameters beam;          ///< fitted E_μ and radius ratio (ν_μ and σ_f kept)
   ElasticProperties achieved;   ///< re-measured with the fitted beams
   int evaluations = 0;          ///< number of tension tests run
+  bool cancelled = false;       ///< options.cancel was set: the fit stopped early; beam is the fitted
+                                ///< one only if the last test was reached, achieved the last test's values
 };
+
+/// Upper bound on the tension tests of one fitBeamParameters call (for progress estimates).
+constexpr int kMaxFitEvaluations = 1 + 12 + 10 + 1;
 
 /// Fits the beam Young's modulus and radius ratio so that the sample reaches targetYoung (Pa) and
 /// targetPoisson. Throws CalibrationError if ν is out of reach for radius ratios in [0.02, 1].
+/// On cancel (options.cancel set) it returns early with cancelled = true. options.progress, when
+/// given, receives the fraction of the fit's test budget (kMaxFitEvaluations) done.
 BeamFit fitBeamParameters(const BondedSystem& sample, const SampleSpec& spec, double targetYoung,
                           double targetPoisson, const CalibrationOptions& options = {});
 

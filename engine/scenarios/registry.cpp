@@ -9,9 +9,10 @@ namespace rupture {
 
 // One factory per scenario file.
 Scenario dynamicTensionScenario();
+Scenario elasticPropertiesScenario();
 
 const std::vector<Scenario>& scenarioRegistry() {
-  static const std::vector<Scenario> registry = {dynamicTensionScenario()};
+  static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario()};
   return registry;
 }
 

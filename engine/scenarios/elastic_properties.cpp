@@ -1,0 +1,243 @@
+#include "scenarios/elastic_properties.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <system_error>
+
+#include "dem/sample_builder.hpp"
+#include "io/bonded_spec.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/spec_reader.hpp"
+
+namespace rupture {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using io::Range;
+using io::SpecReader;
+
+constexpr const char* kScenarioName = "elastic-properties";
+/// Share of the progress bar given to building the sample (it reports no progress of its own).
+constexpr double kBuildShare = 0.05;
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void log(const RunControl& control, const std::string& message) {
+  if (control.log) control.log(message);
+}
+
+/// Monotone progress in [0, 1].
+void reportProgress(RunControl& control, double fraction) {
+  fraction = std::clamp(fraction, 0.0, 1.0);
+  if (fraction > control.progress.load(std::memory_order_relaxed)) control.progress.store(fraction);
+}
+
+/// The result file: everything goes to RESULT.part, renamed to RESULT by finish(); the destructor
+/// of an unfinished one (an exception during the run) removes the .part file.
+class ResultFile {
+public:
+  explicit ResultFile(std::string resultPath)
+      : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"),
+        m_file(io::Hdf5File::create(m_partPath)) {
+    m_file.setAttribute("/", "scenario", std::string(kScenarioName));
+    m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
+    m_file.setAttribute("/", "completed", std::int64_t{0});
+  }
+  ResultFile(const ResultFile&) = delete;
+  ResultFile& operator=(const ResultFile&) = delete;
+  ~ResultFile() {
+    if (m_done) return;
+    try {
+      m_file.close();
+    } catch (...) {
+    }
+    std::error_code ec;
+    fs::remove(m_partPath, ec);
+  }
+
+  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) {
+    m_file.createGroup("/spec");
+    m_file.setAttribute("/spec", "json", resolved.dump());
+    m_file.setAttribute("/spec", "input", input.dump());
+  }
+
+  /// Same conventions as the dynamic-tension file: booleans as int64 0/1, null as NaN, a
+  /// "<name>_unit" string attribute beside each value that has a unit.
+  void writeAttributes(const std::string& group, const nlohmann::json& values,
+                       const std::map<std::string, std::string>& units) {
+    m_file.createGroup(group);
+    for (const auto& [name, v] : values.items()) {
+      if (v.is_boolean()) m_file.setAttribute(group, name, std::int64_t{v.get<bool>() ? 1 : 0});
+      else if (v.is_number_integer()) m_file.setAttribute(group, name, v.get<std::int64_t>());
+      else if (v.is_number()) m_file.setAttribute(group, name, v.get<double>());
+      else if (v.is_string()) m_file.setAttribute(group, name, v.get<std::string>());
+      else if (v.is_null()) m_file.setAttribute(group, name, std::numeric_limits<double>::quiet_NaN());
+      else m_file.setAttribute(group, name, v.dump());
+      if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
+    }
+  }
+
+  void finish(bool completed) {
+    m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
+    m_file.close();
+    fs::rename(m_partPath, m_resultPath);
+    m_done = true;
+  }
+
+private:
+  std::string m_resultPath, m_partPath;
+  io::Hdf5File m_file;
+  bool m_done = false;
+};
+
+nlohmann::json orNull(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
+  const SpecReader root(json, "");
+  root.choice("scenario", {kScenarioName});
+  ElasticPropertiesSpec s;
+  s.description = root.string("description", "");
+  s.sample = io::parseSample(root);
+  s.material = io::parseMaterial(root);
+  if (const auto target = root.optionalObject("target")) {
+    ElasticTarget t;
+    t.youngModulus = target->number("young_modulus", Range::positive(), "Pa");
+    t.poissonRatio = target->number("poisson_ratio", {-1.0, 0.5, true, true}, "1");
+    target->finish();
+    s.target = t;
+  }
+  if (const auto calibration = root.optionalObject("calibration")) {
+    CalibrationOptions& o = s.calibration;
+    o.strain = calibration->number("strain", {0.0, 0.01, true, false}, "1", o.strain);
+    o.damping = calibration->number("damping", {0.0, 1.0, true, true}, "1", o.damping);
+    o.tolerance = calibration->number("tolerance", {0.0, 0.1, true, false}, "1", o.tolerance);
+    calibration->finish();
+  }
+  root.finish();
+  return s;
+}
+
+nlohmann::json toJson(const ElasticPropertiesSpec& s) {
+  nlohmann::json j;
+  j["scenario"] = kScenarioName;
+  if (!s.description.empty()) j["description"] = s.description;
+  j["dimension"] = s.sample.dimension;
+  j["sample"] = io::toJson(s.sample);
+  j["material"] = io::toJson(s.material);
+  if (s.target)
+    j["target"] = {{"young_modulus", s.target->youngModulus}, {"poisson_ratio", s.target->poissonRatio}};
+  j["calibration"] = {{"strain", s.calibration.strain},
+                      {"damping", s.calibration.damping},
+                      {"tolerance", s.calibration.tolerance}};
+  return j;
+}
+
+const std::map<std::string, std::string>& elasticPropertiesSummaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"young_modulus", "Pa"},        {"poisson_ratio", "1"},         {"converged", "1"},
+      {"relaxation_steps", "1"},      {"elements", "1"},              {"bonds", "1"},
+      {"mean_coordination", "1"},     {"porosity", "1"},              {"wall_time_s", "s"},
+      {"completed", "1"},             {"beam_young_modulus", "Pa"},   {"beam_radius_ratio", "1"},
+      {"target_young_modulus", "Pa"}, {"target_poisson_ratio", "1"},  {"evaluations", "1"}};
+  return units;
+}
+
+RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const ElasticPropertiesSpec spec = parseElasticPropertiesSpec(json);
+  control.progress.store(0.0);
+
+  log(control, "building the sample");
+  BondedSystem system;
+  const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
+  ResultFile file(resultPath);
+  file.writeSpec(toJson(spec), json);
+
+  auto cancelled = [&] { return control.cancel.load(std::memory_order_relaxed); };
+  CalibrationOptions options = spec.calibration;
+  options.cancel = &control.cancel;
+  options.progress = [&control](double f) { reportProgress(control, kBuildShare + (1.0 - kBuildShare) * f); };
+
+  bool measured = false, fitted = false;
+  ElasticProperties result;
+  BeamFit fit;
+  if (!cancelled()) {  // a cancelled build leaves a sample not for use
+    reportProgress(control, kBuildShare);
+    log(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
+                     " bonds, porosity " + format(report.porosity));
+    if (spec.target) {
+      log(control, "fitting the beams to E = " + format(spec.target->youngModulus) + " Pa, nu = " +
+                       format(spec.target->poissonRatio));
+      try {
+        fit = fitBeamParameters(system, spec.sample, spec.target->youngModulus, spec.target->poissonRatio, options);
+      } catch (const CalibrationError& e) {
+        throw SpecError("target.poisson_ratio", format(spec.target->poissonRatio),
+                        std::string("a Poisson ratio the beams can reach on this sample (") + e.what() + ")");
+      }
+      fitted = !fit.cancelled;  // a cancelled fit's last test is not of the fitted beams: not reported
+      measured = fitted;
+      result = fit.achieved;
+    } else {
+      log(control, "quasi-static tension test at strain " + format(options.strain));
+      result = measureElasticProperties(system, spec.sample, options);
+      measured = true;
+    }
+  }
+  const bool completed = !cancelled();
+
+  nlohmann::json summary = {
+      {"young_modulus", orNull(measured, result.youngModulus)},
+      {"poisson_ratio", orNull(measured, result.poissonRatio)},
+      {"converged", result.converged && completed ? 1 : 0},
+      {"relaxation_steps", static_cast<std::int64_t>(result.steps)},
+      {"elements", static_cast<std::int64_t>(report.elements)},
+      {"bonds", static_cast<std::int64_t>(report.bonds)},
+      {"mean_coordination", report.meanCoordination},
+      {"porosity", report.porosity},
+      {"completed", completed ? 1 : 0},
+  };
+  if (spec.target) {
+    summary["beam_young_modulus"] = orNull(fitted, fit.beam.youngModulus);
+    summary["beam_radius_ratio"] = orNull(fitted, fit.beam.radiusRatio);
+    summary["target_young_modulus"] = spec.target->youngModulus;
+    summary["target_poisson_ratio"] = spec.target->poissonRatio;
+    summary["evaluations"] = fit.evaluations;
+  }
+  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  file.writeAttributes("/summary", summary, elasticPropertiesSummaryUnits());
+  file.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  log(control, completed ? "done: E = " + format(result.youngModulus) + " Pa, nu = " + format(result.poissonRatio)
+                         : "cancelled: file marked incomplete");
+  return {summary, completed};
+}
+
+Scenario elasticPropertiesScenario() {
+  Scenario s;
+  s.info.name = kScenarioName;
+  s.info.title = "Macroscopic Young's modulus and Poisson ratio of a bonded sample (beam calibration)";
+  s.info.description =
+      "A bonded discrete-element sample is stretched quasi-statically along x: every element starts on an affine "
+      "field at a small strain, the X_min and X_max faces are held in x (free laterally), and damped dynamics "
+      "relaxes the interior to equilibrium without failure or contact. Outputs the macroscopic Young's modulus "
+      "(mean face stress over strain) and Poisson ratio (lateral contraction). With a target E and nu, the beams' "
+      "Young's modulus and radius ratio are fitted to reach them (André et al. 2012), up to about 20 tension "
+      "tests, and the fitted beams are reported with the values they achieve.";
+  s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
+  s.run = runElasticProperties;
+  return s;
+}
+
+}  // namespace rupture

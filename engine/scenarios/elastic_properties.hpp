@@ -1,0 +1,54 @@
+#pragma once
+// Scenario "elastic-properties": the beam calibration of dem/calibration.hpp as a registered
+// scenario, so that `rupture run` and rupture-server can measure (or fit) the macroscopic Young's
+// modulus and Poisson ratio of a bonded sample, e.g. over a porosity sweep.
+//
+// One run: build the sample → either one quasi-static tension test (measureElasticProperties) or,
+// with a "target", the beam fit (fitBeamParameters: up to kMaxFitEvaluations tension tests) → one
+// HDF5 file: root attributes scenario, rupture_version, completed; /spec (json, input); /snapshots
+// (empty: no particle field is written, but `rupture run` writes an XDMF sidecar over it);
+// /summary with the scalars below and their "<name>_unit" attributes. Written as RESULT.part and
+// renamed when closed. Cancel stops the relaxation at the next step and leaves a valid file with
+// completed = 0. Documentation: engine/dem/README.md; spec: api/schemas/elastic-properties.schema.json.
+#include <map>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "dem/calibration.hpp"
+#include "dem/sample_spec.hpp"
+#include "rupture/run.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace rupture {
+
+struct ElasticTarget {
+  double youngModulus = 0;  ///< Pa
+  double poissonRatio = 0;  ///< 1
+};
+
+struct ElasticPropertiesSpec {
+  std::string description;
+  SampleSpec sample;
+  MaterialSpec material;
+  std::optional<ElasticTarget> target;  ///< present: fit the beams to it
+  CalibrationOptions calibration;       ///< strain, damping and tolerance from the spec
+};
+
+/// Parses and checks a whole spec; throws SpecError naming the dotted field.
+ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json);
+
+/// The resolved spec (defaults filled in), as written to /spec "json"; parses back to the same struct.
+nlohmann::json toJson(const ElasticPropertiesSpec& spec);
+
+/// Runs a spec already validated by parseElasticPropertiesSpec (it is parsed again here).
+RunOutcome runElasticProperties(const nlohmann::json& spec, const std::string& resultPath, RunControl& control);
+
+/// Units of the summary scalars (the "<name>_unit" attributes of /summary).
+const std::map<std::string, std::string>& elasticPropertiesSummaryUnits();
+
+/// The registry entry (declared in scenarios/registry.cpp).
+Scenario elasticPropertiesScenario();
+
+}  // namespace rupture
