@@ -120,8 +120,15 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
                       (field == InitialVelocityField::V0 && !spec.loading.rampTime && !spec.loading.waveSpeed);
   if (!needed) return out;
   const PreliminaryPlan plan = planPreliminary(spec, system, geometry, timeStep);
+  std::optional<CacheEntryLock> lock;
   if (spec.output.cachePreliminary) {
     out.cacheFile = preliminaryCacheFile(preliminaryCacheDirectory(resultPath), plan.key);
+    // Held until this function returns: a run that waited here finds the entry computed.
+    lock.emplace(out.cacheFile, control.cancel);
+    if (!lock->held()) {
+      out.cancelled = true;
+      return out;
+    }
     out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
     out.fromCache = out.result.has_value();
     if (out.fromCache) {

@@ -13,6 +13,7 @@
 //
 // Cache directory: $RUPTURE_CACHE_DIR if set; else $XDG_CACHE_HOME/rupture; else $HOME/.cache/rupture;
 // else a ".rupture-cache" directory beside the result file.
+#include <atomic>
 #include <optional>
 #include <string>
 
@@ -36,5 +37,23 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
 
 /// Stores atomically; returns false (and leaves nothing behind) if the directory is not writable.
 bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& result);
+
+/// An exclusive lock on one cache entry (flock on FILE.lock), so that runs starting together on the
+/// same sample (a sweep's workers, or several processes) compute its preliminary run once: the
+/// others wait, then read the cache. Waiting polls `cancel` every 50 ms.
+class CacheEntryLock {
+public:
+  /// Blocks until the lock is held or `cancel` is set; held() tells which. If the lock file cannot
+  /// be created (read-only cache), held() is true and nothing is locked: the run goes on uncached.
+  CacheEntryLock(const std::string& file, const std::atomic<bool>& cancel);
+  ~CacheEntryLock();
+  CacheEntryLock(const CacheEntryLock&) = delete;
+  CacheEntryLock& operator=(const CacheEntryLock&) = delete;
+  bool held() const { return m_held; }
+
+private:
+  int m_fd = -1;
+  bool m_held = false;
+};
 
 }  // namespace rupture

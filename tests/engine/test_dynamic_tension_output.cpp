@@ -230,6 +230,26 @@ TEST(DynamicTensionOutput, XdmfSidecarReferencesExistingDatasets) {
   EXPECT_EQ(count, 3u * 5u);  // 3 snapshots × (position, velocity, stress, damage, radius)
 }
 
+TEST(DynamicTensionOutput, ConcurrentRunsOnOneSampleComputeThePreliminaryRunOnce) {
+  // Two workers of a sweep start VH runs on the same new sample at once: one computes the
+  // preliminary run while the other waits on the cache entry's lock, then reads it.
+  useTestCache();
+  ScratchDir dir;
+  ::setenv("RUPTURE_CACHE_DIR", (dir / "cache").c_str(), 1);
+  RunControl c1, c2;
+  RunOutcome first, second;
+  std::thread other([&] { second = runSpec(smallSpec(1e7, "VH"), (dir / "b.h5").string(), c2, 1); });
+  first = runSpec(smallSpec(2e6, "VH"), (dir / "a.h5").string(), c1, 1);
+  other.join();
+  ::setenv("RUPTURE_CACHE_DIR", useTestCache().c_str(), 1);
+  io::Hdf5File a = io::Hdf5File::openReadOnly((dir / "a.h5").string());
+  io::Hdf5File b = io::Hdf5File::openReadOnly((dir / "b.h5").string());
+  EXPECT_EQ(a.readAttributeInt("/preliminary", "from_cache") + b.readAttributeInt("/preliminary", "from_cache"), 1);
+  EXPECT_EQ(a.readAttributeString("/preliminary", "cache_file"), b.readAttributeString("/preliminary", "cache_file"));
+  EXPECT_EQ(first.summary["completed"], 1);
+  EXPECT_EQ(second.summary["completed"], 1);
+}
+
 TEST(DynamicTensionOutput, PreliminaryRunIsCached) {
   useTestCache();
   ScratchDir dir;
