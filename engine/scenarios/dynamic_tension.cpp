@@ -17,6 +17,7 @@
 #include "scenarios/tension_observables.hpp"
 #include "scenarios/tension_recorder.hpp"
 #include "scenarios/vh_preliminary.hpp"
+#include "scenarios/run_support.hpp"
 
 namespace rupture {
 
@@ -26,22 +27,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
-
-std::string format(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-void log(const RunControl& control, const std::string& message) {
-  if (control.log) control.log(message);
-}
-
-/// Monotone progress in [0, 1].
-void reportProgress(RunControl& control, double fraction) {
-  fraction = std::clamp(fraction, 0.0, 1.0);
-  if (fraction > control.progress.load(std::memory_order_relaxed)) control.progress.store(fraction);
-}
 
 /// The preliminary run's parameters and cache key. Its ramp uses eq. 6 with loading.wave_speed
 /// when given, else the affine wave speed of the bond network (an upper bound: a shorter ramp).
@@ -132,19 +117,19 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
     out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
     out.fromCache = out.result.has_value();
     if (out.fromCache) {
-      log(control, "preliminary run read from the cache " + out.cacheFile);
+      logStage(control, "preliminary run read from the cache " + out.cacheFile);
       return out;
     }
   }
   const double r = 0.7 * spec.loading.strainRate / plan.params.strainRate;  // cost ratio, roughly
   out.progressWeight = r / (1.0 + r);
-  log(control, "preliminary run from rest at " + format(plan.params.strainRate) + " /s");
+  logStage(control, "preliminary run from rest at " + formatNumber(plan.params.strainRate) + " /s");
   out.result = runPreliminary(system, geometry, plan.params, control,
                               [&](double f) { reportProgress(control, out.progressWeight * f); });
   if (!out.result) {
     out.cancelled = true;
   } else if (spec.output.cachePreliminary && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
-    log(control, "cannot write the preliminary-run cache " + out.cacheFile + " (continuing without it)");
+    logStage(control, "cannot write the preliminary-run cache " + out.cacheFile + " (continuing without it)");
     out.cacheFile.clear();
   }
   return out;
@@ -202,7 +187,7 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   control.progress.store(0.0);
 
   // Sample, loaded faces, time step.
-  log(control, "building the sample");
+  logStage(control, "building the sample");
   BondedSystem system;
   const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
   const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
@@ -210,8 +195,8 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   if (!std::isfinite(criticalStep) || !(criticalStep > 0))
     throw std::runtime_error("dynamic-tension: the sample has no bond with a finite stiffness (no stable time step)");
   const double dt = spec.run.timeStepSafety * criticalStep;
-  log(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
-                   " bonds, time step " + format(dt) + " s");
+  logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
+                   " bonds, time step " + formatNumber(dt) + " s");
 
   TensionRecorder recorder(resultPath);
   recorder.writeSpec(toJson(spec), json);
@@ -251,13 +236,13 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested strains
     if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
     recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
-                           "strain " + format(snapshotStrains[nextSnapshot]));
+                           "strain " + formatNumber(snapshotStrains[nextSnapshot]));
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
   };
 
   if (!pre.cancelled) {
-    log(control, "main run: " + toString(field) + " at " + format(spec.loading.strainRate) + " /s, V_max " +
-                     format(maxVelocity) + " m/s, ramp " + format(rampTime) + " s");
+    logStage(control, "main run: " + toString(field) + " at " + formatNumber(spec.loading.strainRate) + " /s, V_max " +
+                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s");
     record();
     snapshotsDue();
     double nextOutput = outputInterval;
@@ -318,14 +303,14 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
       {"section", geometry.section},
   });
   if (field == InitialVelocityField::V0 && onsetTime < rampTime)
-    log(control, "note: the first bond broke during the V0 ramp, at " +
-                     format(summary["strain_rate_at_onset"].get<double>()) +
+    logStage(control, "note: the first bond broke during the V0 ramp, at " +
+                     formatNumber(summary["strain_rate_at_onset"].get<double>()) +
                      " /s: the requested strain rate is above eq. 7's limit for this ramp time");
   summary["wall_time_s"] = seconds(wallStart);
   recorder.writeAttributes("/summary", summary, dynamicTensionSummaryUnits());
   recorder.finish(completed);
   if (completed) reportProgress(control, 1.0);
-  log(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
+  logStage(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
   return {summary, completed};
 }
 

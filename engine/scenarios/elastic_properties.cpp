@@ -12,6 +12,8 @@
 #include "io/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
+#include "io/json_attributes.hpp"
+#include "scenarios/run_support.hpp"
 
 namespace rupture {
 
@@ -25,22 +27,6 @@ using io::SpecReader;
 constexpr const char* kScenarioName = "elastic-properties";
 /// Share of the progress bar given to building the sample (it reports no progress of its own).
 constexpr double kBuildShare = 0.05;
-
-std::string format(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-void log(const RunControl& control, const std::string& message) {
-  if (control.log) control.log(message);
-}
-
-/// Monotone progress in [0, 1].
-void reportProgress(RunControl& control, double fraction) {
-  fraction = std::clamp(fraction, 0.0, 1.0);
-  if (fraction > control.progress.load(std::memory_order_relaxed)) control.progress.store(fraction);
-}
 
 /// The result file: everything goes to RESULT.part, renamed to RESULT by finish(); the destructor
 /// of an unfinished one (an exception during the run) removes the .part file.
@@ -72,19 +58,9 @@ public:
   }
 
   /// Same conventions as the dynamic-tension file: booleans as int64 0/1, null as NaN, a
-  /// "<name>_unit" string attribute beside each value that has a unit.
   void writeAttributes(const std::string& group, const nlohmann::json& values,
                        const std::map<std::string, std::string>& units) {
-    m_file.createGroup(group);
-    for (const auto& [name, v] : values.items()) {
-      if (v.is_boolean()) m_file.setAttribute(group, name, std::int64_t{v.get<bool>() ? 1 : 0});
-      else if (v.is_number_integer()) m_file.setAttribute(group, name, v.get<std::int64_t>());
-      else if (v.is_number()) m_file.setAttribute(group, name, v.get<double>());
-      else if (v.is_string()) m_file.setAttribute(group, name, v.get<std::string>());
-      else if (v.is_null()) m_file.setAttribute(group, name, std::numeric_limits<double>::quiet_NaN());
-      else m_file.setAttribute(group, name, v.dump());
-      if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
-    }
+    io::writeJsonAttributes(m_file, group, values, units);
   }
 
   void finish(bool completed) {
@@ -159,7 +135,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   const ElasticPropertiesSpec spec = parseElasticPropertiesSpec(json);
   control.progress.store(0.0);
 
-  log(control, "building the sample");
+  logStage(control, "building the sample");
   BondedSystem system;
   const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
   ResultFile file(resultPath);
@@ -175,22 +151,22 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   BeamFit fit;
   if (!cancelled()) {  // a cancelled build leaves a sample not for use
     reportProgress(control, kBuildShare);
-    log(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
-                     " bonds, porosity " + format(report.porosity));
+    logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
+                     " bonds, porosity " + formatNumber(report.porosity));
     if (spec.target) {
-      log(control, "fitting the beams to E = " + format(spec.target->youngModulus) + " Pa, nu = " +
-                       format(spec.target->poissonRatio));
+      logStage(control, "fitting the beams to E = " + formatNumber(spec.target->youngModulus) + " Pa, nu = " +
+                       formatNumber(spec.target->poissonRatio));
       try {
         fit = fitBeamParameters(system, spec.sample, spec.target->youngModulus, spec.target->poissonRatio, options);
       } catch (const CalibrationError& e) {
-        throw SpecError("target.poisson_ratio", format(spec.target->poissonRatio),
+        throw SpecError("target.poisson_ratio", formatNumber(spec.target->poissonRatio),
                         std::string("a Poisson ratio the beams can reach on this sample (") + e.what() + ")");
       }
       fitted = !fit.cancelled;  // a cancelled fit's last test is not of the fitted beams: not reported
       measured = fitted;
       result = fit.achieved;
     } else {
-      log(control, "quasi-static tension test at strain " + format(options.strain));
+      logStage(control, "quasi-static tension test at strain " + formatNumber(options.strain));
       result = measureElasticProperties(system, spec.sample, options);
       measured = true;
     }
@@ -219,7 +195,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   file.writeAttributes("/summary", summary, elasticPropertiesSummaryUnits());
   file.finish(completed);
   if (completed) reportProgress(control, 1.0);
-  log(control, completed ? "done: E = " + format(result.youngModulus) + " Pa, nu = " + format(result.poissonRatio)
+  logStage(control, completed ? "done: E = " + formatNumber(result.youngModulus) + " Pa, nu = " + formatNumber(result.poissonRatio)
                          : "cancelled: file marked incomplete");
   return {summary, completed};
 }

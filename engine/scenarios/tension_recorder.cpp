@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "io/interleave.hpp"
+#include "io/json_attributes.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/virial_stress.hpp"
 
@@ -99,16 +100,7 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
 
 void TensionRecorder::writeAttributes(const std::string& group, const nlohmann::json& values,
                                       const std::map<std::string, std::string>& units) {
-  m_file.createGroup(group);
-  for (const auto& [name, v] : values.items()) {
-    if (v.is_boolean()) m_file.setAttribute(group, name, std::int64_t{v.get<bool>() ? 1 : 0});
-    else if (v.is_number_integer()) m_file.setAttribute(group, name, v.get<std::int64_t>());
-    else if (v.is_number()) m_file.setAttribute(group, name, v.get<double>());
-    else if (v.is_string()) m_file.setAttribute(group, name, v.get<std::string>());
-    else if (v.is_null()) m_file.setAttribute(group, name, std::numeric_limits<double>::quiet_NaN());
-    else m_file.setAttribute(group, name, v.dump());
-    if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
-  }
+  io::writeJsonAttributes(m_file, group, values, units);
 }
 
 void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFraction, double thickness2d,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "scenarios/bond_network.hpp"
+#include "scenarios/run_support.hpp"
 
 namespace rupture {
 
@@ -25,12 +26,6 @@ struct SavedField {
 
 VelocityField copyVelocities(const ParticleStore& p) {
   return {p.vx, p.vy, p.vz, p.wx, p.wy, p.wz};
-}
-
-std::string format(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 }  // namespace
@@ -65,9 +60,9 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
     if (broken > 0) {
       onset = strain;
       if (params.captureStrain)
-        throw SpecError("loading.vh_capture_strain", format(*params.captureStrain),
+        throw SpecError("loading.vh_capture_strain", formatNumber(*params.captureStrain),
                         "a strain below the first bond break of the VH preliminary run (a bond broke at strain " +
-                            format(strain) + " at " + format(params.strainRate) + " /s)");
+                            formatNumber(strain) + " at " + formatNumber(params.strainRate) + " /s)");
       break;
     }
     const bool afterRamp = system.time >= params.rampTime;
@@ -92,8 +87,8 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
       throw std::runtime_error("VH preliminary run: " +
                                (params.captureStrain ? "the capture strain was not reached"
                                                      : std::string("no bond broke")) +
-                               " within run.max_strain = " + format(params.maxStrain) + " and run.max_steps = " +
-                               std::to_string(params.maxSteps) + " (reached strain " + format(strain) + ")" +
+                               " within run.max_strain = " + formatNumber(params.maxStrain) + " and run.max_steps = " +
+                               std::to_string(params.maxSteps) + " (reached strain " + formatNumber(strain) + ")" +
                                (params.captureStrain ? "" : "; set loading.vh_capture_strain"));
 
     const auto now = std::chrono::steady_clock::now();
@@ -112,10 +107,10 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   }
 
   if (captured && captured->time < params.rampTime)
-    throw SpecError("loading.vh_capture_strain", format(*params.captureStrain),
+    throw SpecError("loading.vh_capture_strain", formatNumber(*params.captureStrain),
                     "a strain reached after the end of the VH preliminary run's ramp (ramp time " +
-                        format(params.rampTime) + " s, face displacement strain " +
-                        format(0.5 * params.strainRate * params.rampTime) + " at its end)");
+                        formatNumber(params.rampTime) + " s, face displacement strain " +
+                        formatNumber(0.5 * params.strainRate * params.rampTime) + " at its end)");
   if (!captured) {
     // Default rule: the field nearest below ½ ε_onset.
     const double target = 0.5 * onset;
@@ -123,8 +118,8 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
       if (f.strain <= target) captured = f;
     if (!captured)
       throw std::runtime_error(
-          "VH preliminary run: the first bond broke at strain " + format(onset) +
-          " before a post-ramp field below half that strain could be kept (ramp time " + format(params.rampTime) +
+          "VH preliminary run: the first bond broke at strain " + formatNumber(onset) +
+          " before a post-ramp field below half that strain could be kept (ramp time " + formatNumber(params.rampTime) +
           " s); lower loading.vh_preliminary_strain_rate or set loading.vh_capture_strain");
   }
 
