@@ -48,8 +48,4 @@ void ParticleStore::setMassFromDensity(double elementDensity, double thickness2d
   }
 }
 
-void ParticleStore::clearLoads() {
-  for (auto* v : {&fx, &fy, &fz, &tx, &ty, &tz}) std::fill(v->begin(), v->end(), 0.0);
-}
-
 }  // namespace rupture

@@ -43,7 +43,6 @@ struct ParticleStore {
   /// (sphere 4/3 π R³; in 2D a disk π R² × thickness). Inertia: 2/5 m R² (sphere), 1/2 m R² (disk).
   void setMassFromDensity(double elementDensity, double thickness2d);
 
-  void clearLoads();
 };
 
 }  // namespace rupture

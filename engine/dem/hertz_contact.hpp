@@ -43,7 +43,6 @@ public:
   /// Elastic energy stored in the current contacts (J).
   double energy(const ParticleStore& p) const;
 
-  std::size_t candidatePairs() const { return m_neighbors.size() / 2 + m_brokenPairs.size(); }
 
 private:
   void rebuild(const ParticleStore& p, const BondStore& bonds);

@@ -104,4 +104,15 @@ nlohmann::json toJson(const MaterialSpec& m) {
             {"damping_ratio", m.contact.dampingRatio}}}};
 }
 
+nlohmann::json bondedSpecJson(const std::string& scenario, const std::string& description,
+                              const SampleSpec& sample, const MaterialSpec& material) {
+  nlohmann::json j;
+  j["scenario"] = scenario;
+  if (!description.empty()) j["description"] = description;
+  j["dimension"] = sample.dimension;
+  j["sample"] = toJson(sample);
+  j["material"] = toJson(material);
+  return j;
+}
+
 }  // namespace rupture::io

@@ -1,6 +1,8 @@
 #pragma once
 // Parsing and validation of the bonded sample + material part of a spec, and its resolved JSON
 // (with defaults filled in) for the result file.
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "dem/sample_spec.hpp"
@@ -15,5 +17,10 @@ MaterialSpec parseMaterial(const SpecReader& root);
 
 nlohmann::json toJson(const SampleSpec& sample);
 nlohmann::json toJson(const MaterialSpec& material);
+
+/// The part every bonded scenario's resolved spec starts with: scenario, description (if any),
+/// dimension, sample, material.
+nlohmann::json bondedSpecJson(const std::string& scenario, const std::string& description,
+                              const SampleSpec& sample, const MaterialSpec& material);
 
 }  // namespace rupture::io

@@ -93,12 +93,7 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
 }
 
 nlohmann::json toJson(const DynamicTensionSpec& s) {
-  nlohmann::json j;
-  j["scenario"] = kScenarioName;
-  if (!s.description.empty()) j["description"] = s.description;
-  j["dimension"] = s.sample.dimension;
-  j["sample"] = io::toJson(s.sample);
-  j["material"] = io::toJson(s.material);
+  nlohmann::json j = io::bondedSpecJson(kScenarioName, s.description, s.sample, s.material);
   j["loading"] = {{"strain_rate", s.loading.strainRate},
                   {"initial_velocity", toString(s.loading.initialVelocity)},
                   {"ramp_wave_round_trips", s.loading.rampWaveRoundTrips},

@@ -12,7 +12,7 @@
 #include "io/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
-#include "io/json_attributes.hpp"
+#include "io/result_file.hpp"
 #include "scenarios/run_support.hpp"
 
 namespace rupture {
@@ -27,54 +27,6 @@ using io::SpecReader;
 constexpr const char* kScenarioName = "elastic-properties";
 /// Share of the progress bar given to building the sample (it reports no progress of its own).
 constexpr double kBuildShare = 0.05;
-
-/// The result file: everything goes to RESULT.part, renamed to RESULT by finish(); the destructor
-/// of an unfinished one (an exception during the run) removes the .part file.
-class ResultFile {
-public:
-  explicit ResultFile(std::string resultPath)
-      : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"),
-        m_file(io::Hdf5File::create(m_partPath)) {
-    m_file.setAttribute("/", "scenario", std::string(kScenarioName));
-    m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
-    m_file.setAttribute("/", "completed", std::int64_t{0});
-  }
-  ResultFile(const ResultFile&) = delete;
-  ResultFile& operator=(const ResultFile&) = delete;
-  ~ResultFile() {
-    if (m_done) return;
-    try {
-      m_file.close();
-    } catch (...) {
-    }
-    std::error_code ec;
-    fs::remove(m_partPath, ec);
-  }
-
-  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) {
-    m_file.createGroup("/spec");
-    m_file.setAttribute("/spec", "json", resolved.dump());
-    m_file.setAttribute("/spec", "input", input.dump());
-  }
-
-  /// Same conventions as the dynamic-tension file: booleans as int64 0/1, null as NaN, a
-  void writeAttributes(const std::string& group, const nlohmann::json& values,
-                       const std::map<std::string, std::string>& units) {
-    io::writeJsonAttributes(m_file, group, values, units);
-  }
-
-  void finish(bool completed) {
-    m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
-    m_file.close();
-    fs::rename(m_partPath, m_resultPath);
-    m_done = true;
-  }
-
-private:
-  std::string m_resultPath, m_partPath;
-  io::Hdf5File m_file;
-  bool m_done = false;
-};
 
 nlohmann::json orNull(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
@@ -106,12 +58,7 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
 }
 
 nlohmann::json toJson(const ElasticPropertiesSpec& s) {
-  nlohmann::json j;
-  j["scenario"] = kScenarioName;
-  if (!s.description.empty()) j["description"] = s.description;
-  j["dimension"] = s.sample.dimension;
-  j["sample"] = io::toJson(s.sample);
-  j["material"] = io::toJson(s.material);
+  nlohmann::json j = io::bondedSpecJson(kScenarioName, s.description, s.sample, s.material);
   if (s.target)
     j["target"] = {{"young_modulus", s.target->youngModulus}, {"poisson_ratio", s.target->poissonRatio}};
   j["calibration"] = {{"strain", s.calibration.strain},
@@ -138,7 +85,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   logStage(control, "building the sample");
   BondedSystem system;
   const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
-  ResultFile file(resultPath);
+  io::ResultFile file(resultPath, kScenarioName);
   file.writeSpec(toJson(spec), json);
 
   auto cancelled = [&] { return control.cancel.load(std::memory_order_relaxed); };

@@ -7,7 +7,6 @@
 #include <system_error>
 
 #include "io/interleave.hpp"
-#include "io/json_attributes.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/virial_stress.hpp"
 
@@ -44,22 +43,8 @@ const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
 }
 
 TensionRecorder::TensionRecorder(std::string resultPath)
-    : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"),
-      m_file(io::Hdf5File::create(m_partPath)) {
-  m_file.setAttribute("/", "scenario", std::string("dynamic-tension"));
-  m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
-  m_file.setAttribute("/", "completed", std::int64_t{0});
+    : m_result(std::move(resultPath), "dynamic-tension"), m_file(m_result.file()) {
   m_file.createGroup("/snapshots");
-}
-
-TensionRecorder::~TensionRecorder() {
-  if (!m_done) abandon();
-}
-
-void TensionRecorder::writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) {
-  m_file.createGroup("/spec");
-  m_file.setAttribute("/spec", "json", resolved.dump());
-  m_file.setAttribute("/spec", "input", input.dump());
 }
 
 void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport& report,
@@ -72,6 +57,7 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
                    {"bonds", static_cast<std::int64_t>(report.bonds)},
                    {"mean_coordination", report.meanCoordination},
                    {"packing_fraction", report.packingFraction},
+                   {"packing_residual_overlap", report.relaxationOverlap},
                    {"porosity", report.porosity},
                    {"thickness", report.thickness},
                    {"element_density", report.elementDensity},
@@ -96,11 +82,6 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
   for (const Pore& pore : report.pores)
     pores.insert(pores.end(), {pore.centre[0], pore.centre[1], pore.centre[2], pore.radius});
   m_file.writeDataset("/sample/pores", pores, {report.pores.size(), 4}, "m");
-}
-
-void TensionRecorder::writeAttributes(const std::string& group, const nlohmann::json& values,
-                                      const std::map<std::string, std::string>& units) {
-  io::writeJsonAttributes(m_file, group, values, units);
 }
 
 void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFraction, double thickness2d,
@@ -140,20 +121,7 @@ void TensionRecorder::finish(bool completed) {
   m_file.createGroup("/series");
   for (std::size_t c = 0; c < names.size(); ++c)
     m_file.writeDataset("/series/" + names[c].first, columns[c], {rows}, names[c].second);
-  m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
-  m_file.close();
-  fs::rename(m_partPath, m_resultPath);
-  m_done = true;
-}
-
-void TensionRecorder::abandon() noexcept {
-  try {
-    m_file.close();
-  } catch (...) {
-  }
-  std::error_code ec;
-  fs::remove(m_partPath, ec);
-  m_done = true;
+  m_result.finish(completed);
 }
 
 }  // namespace rupture

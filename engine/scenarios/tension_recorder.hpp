@@ -10,8 +10,8 @@
 //   /snapshots/<k>     position {n,3}, velocity {n,3}, stress {n,3,3}, damage {n}, radius {n},
 //                      bond_intact {m} (uint8; rows of /sample/bonds); attributes time, strain, step, trigger
 //   /summary     attributes (SI), each with a companion "<name>_unit"
-// Everything goes to RESULT.part, renamed to RESULT by finish(); abandon() (or the destructor of an
-// unfinished recorder) deletes the partial file.
+// The file's life cycle (RESULT.part renamed by finish(), deleted if unfinished), /, /spec and the
+// scalar groups are io::ResultFile's.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -21,7 +21,7 @@
 
 #include "dem/bonded_system.hpp"
 #include "dem/sample_builder.hpp"
-#include "io/hdf5_file.hpp"
+#include "io/result_file.hpp"
 #include "scenarios/tension_loading.hpp"
 
 namespace rupture {
@@ -35,18 +35,15 @@ struct SeriesRow {
 class TensionRecorder {
 public:
   explicit TensionRecorder(std::string resultPath);
-  ~TensionRecorder();
-  TensionRecorder(const TensionRecorder&) = delete;
-  TensionRecorder& operator=(const TensionRecorder&) = delete;
 
-  const std::string& partPath() const { return m_partPath; }
-
-  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input);
+  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) { m_result.writeSpec(resolved, input); }
   void writeSample(const BondedSystem& system, const SampleReport& report, const TensionGeometry& geometry);
   /// Writes each member of `values` as an attribute of `group` (numbers, strings, booleans as 1/0,
   /// null as NaN), plus "<name>_unit" for the names found in `units`.
   void writeAttributes(const std::string& group, const nlohmann::json& values,
-                       const std::map<std::string, std::string>& units);
+                       const std::map<std::string, std::string>& units) {
+    m_result.writeAttributes(group, values, units);
+  }
 
   void appendRow(const SeriesRow& row) { m_rows.push_back(row); }
   std::size_t rowCount() const { return m_rows.size(); }
@@ -58,15 +55,12 @@ public:
 
   /// Writes /series, marks "/" completed, closes and renames the partial file onto the result.
   void finish(bool completed);
-  /// Closes and deletes the partial file.
-  void abandon() noexcept;
 
 private:
-  std::string m_resultPath, m_partPath;
-  io::Hdf5File m_file;
+  io::ResultFile m_result;
+  io::Hdf5File& m_file;  ///< m_result's open file
   std::vector<SeriesRow> m_rows;
   std::size_t m_snapshots = 0;
-  bool m_done = false;
 };
 
 /// Names and units of the /series datasets, in file order.

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.hpp"
 #include "cli_runner.hpp"
 #include "io/hdf5_file.hpp"
 
@@ -23,31 +24,18 @@ namespace fs = std::filesystem;
 using rupture::testing::readWhole;
 using rupture::testing::runCli;
 using rupture::testing::writeSpec;
+using rupture::testing::ScratchDir;
 
 nlohmann::json smallExample() {
   return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
 }
 
-/// A scratch directory for result files, removed at the end of the test.
-struct Scratch {
-  fs::path path;
-  Scratch() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("rupture-cli-run-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 TEST(CliRun, WritesResultSidecarAndSummary) {
-  Scratch dir;
+  ScratchDir dir;
   nlohmann::json spec = smallExample();
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   spec["run"]["snapshot_strains"] = {0.0, 3e-4};
-  const fs::path out = dir.path / "run.h5";
+  const fs::path out = dir.path() / "run.h5";
   const auto r = runCli("run " + writeSpec(spec, "cli-run-ok.json") + " -o " + out.string() + " --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);  // stdout is exactly the summary
@@ -60,7 +48,7 @@ TEST(CliRun, WritesResultSidecarAndSummary) {
   EXPECT_NE(r.err.find("100 %"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos);
 
-  const fs::path sidecar = dir.path / "run.xdmf2";
+  const fs::path sidecar = dir.path() / "run.xdmf2";
   ASSERT_TRUE(fs::exists(sidecar));
   const std::string xml = readWhole(sidecar);
   rupture::io::Hdf5File file = rupture::io::Hdf5File::openReadOnly(out.string());
@@ -89,8 +77,8 @@ TEST_P(CliRunBadSpec, ExitsTwoNamingTheField) {
   const nlohmann::json::json_pointer pointer(bad.pointer);
   if (bad.value.is_null()) spec[pointer.parent_pointer()].erase(pointer.back());
   else spec[pointer] = bad.value;
-  Scratch dir;
-  const fs::path out = dir.path / "never.h5";
+  ScratchDir dir;
+  const fs::path out = dir.path() / "never.h5";
   const auto r = runCli("run " + writeSpec(spec, std::string("cli-run-") + bad.name + ".json") + " -o " + out.string());
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find(std::string("field '") + bad.field + "'"), std::string::npos) << r.err;
@@ -121,13 +109,13 @@ TEST(CliRun, UsageErrorsExitTwo) {
 }
 
 TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
-  Scratch dir;
+  ScratchDir dir;
   nlohmann::json spec = smallExample();
   // A long run without preliminary: from rest at 2e4 /s (about 15 s of computing).
   spec["loading"] = {{"strain_rate", 2e4}, {"initial_velocity", "V0"}, {"ramp_time", 1e-9}};
   const std::string specPath = writeSpec(spec, "cli-run-interrupt.json");
-  const fs::path out = dir.path / "cut.h5";
-  const fs::path stdoutPath = dir.path / "stdout.txt", stderrPath = dir.path / "stderr.txt";
+  const fs::path out = dir.path() / "cut.h5";
+  const fs::path stdoutPath = dir.path() / "stdout.txt", stderrPath = dir.path() / "stderr.txt";
 
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
@@ -157,7 +145,7 @@ TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
   rupture::io::Hdf5File file = rupture::io::Hdf5File::openReadOnly(out.string());
   EXPECT_EQ(file.readAttributeInt("/summary", "completed"), 0);
   EXPECT_GT(file.datasetDims("/series/time")[0], 1u);
-  EXPECT_TRUE(fs::exists(dir.path / "cut.xdmf2"));
+  EXPECT_TRUE(fs::exists(dir.path() / "cut.xdmf2"));
   EXPECT_FALSE(fs::exists(out.string() + ".part"));
 }
 

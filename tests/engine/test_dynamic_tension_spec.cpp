@@ -8,16 +8,6 @@
 namespace rupture::test {
 namespace {
 
-/// The field named by the SpecError that validateSpec throws, or "" if it accepts the spec.
-std::string rejectedField(const nlohmann::json& spec) {
-  try {
-    validateSpec(spec);
-  } catch (const SpecError& e) {
-    return e.field();
-  }
-  return "";
-}
-
 nlohmann::json minimalSpec() {
   nlohmann::json spec = readJson(examplePath("dynamic-tension-small.json"));
   spec.erase("run");

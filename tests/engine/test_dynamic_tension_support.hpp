@@ -13,11 +13,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/test_support.hpp"
 #include "rupture/run.hpp"
 
 namespace rupture::test {
 
 namespace fs = std::filesystem;
+using rupture::testing::ScratchDir;
+using rupture::testing::rejectedField;
 
 inline nlohmann::json readJson(const fs::path& path) {
   std::ifstream in(path);
@@ -43,25 +46,6 @@ inline nlohmann::json smallSpec(double strainRate, const std::string& field) {
   spec["run"].erase("snapshot_strains");
   return spec;
 }
-
-/// A fresh directory under the system temporary directory, removed at destruction.
-class ScratchDir {
-public:
-  ScratchDir() {
-    std::random_device rd;
-    m_path = fs::temp_directory_path() / ("rupture-dt-test-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
-    fs::create_directories(m_path);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(m_path, ec);
-  }
-  const fs::path& path() const { return m_path; }
-  fs::path operator/(const std::string& name) const { return m_path / name; }
-
-private:
-  fs::path m_path;
-};
 
 /// Points RUPTURE_CACHE_DIR at a cache directory of this test process (removed at exit), so that
 /// the runs of one test share their preliminary run and no test reads a stale entry.

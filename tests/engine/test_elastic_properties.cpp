@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "../cli/cli_runner.hpp"
 #include "dem/calibration.hpp"
 #include "dem/sample_builder.hpp"
@@ -23,6 +24,8 @@ namespace rupture {
 namespace {
 
 namespace fs = std::filesystem;
+using rupture::testing::ScratchDir;
+using rupture::testing::rejectedField;
 
 nlohmann::json smallSpec() {
   return {{"scenario", "elastic-properties"},
@@ -32,28 +35,6 @@ nlohmann::json smallSpec() {
            {{"model", "beam"},
             {"density", 6060.0},
             {"beam", {{"young_modulus", 2865e9}, {"poisson_ratio", 0.3}, {"radius_ratio", 0.3}, {"failure_stress", 4e9}}}}}};
-}
-
-struct Scratch {
-  fs::path path;
-  Scratch() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("rupture-ep-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string rejectedField(const nlohmann::json& spec) {
-  try {
-    validateSpec(spec);
-  } catch (const SpecError& e) {
-    return e.field();
-  }
-  return "";
 }
 
 const std::vector<std::string> kAlways = {"young_modulus", "poisson_ratio", "converged", "relaxation_steps",
@@ -139,18 +120,18 @@ TEST(ElasticPropertiesScenario, InvalidSpecsNameTheField) {
   s["material"]["beam"]["colour"] = "red";
   EXPECT_EQ(rejectedField(s), "material.beam.colour");
   // runSpec validates too, and writes nothing.
-  Scratch dir;
+  ScratchDir dir;
   RunControl control;
   s = smallSpec();
   s["sample"]["porosity"] = 0.9;
-  EXPECT_THROW(runSpec(s, (dir.path / "bad.h5").string(), control), SpecError);
-  EXPECT_FALSE(fs::exists(dir.path / "bad.h5"));
-  EXPECT_FALSE(fs::exists(dir.path / "bad.h5.part"));
+  EXPECT_THROW(runSpec(s, (dir.path() / "bad.h5").string(), control), SpecError);
+  EXPECT_FALSE(fs::exists(dir.path() / "bad.h5"));
+  EXPECT_FALSE(fs::exists(dir.path() / "bad.h5.part"));
 }
 
 TEST(ElasticPropertiesScenario, MeasuresLikeTheCalibrationAndWritesEveryAttribute) {
-  Scratch dir;
-  const fs::path out = dir.path / "ep.h5";
+  ScratchDir dir;
+  const fs::path out = dir.path() / "ep.h5";
   RunControl control;
   const RunOutcome r = runSpec(smallSpec(), out.string(), control);
   EXPECT_TRUE(r.completed);
@@ -196,8 +177,8 @@ TEST(ElasticPropertiesScenario, MeasuresLikeTheCalibrationAndWritesEveryAttribut
 }
 
 TEST(ElasticPropertiesScenario, FitsTheBeamsToATarget) {
-  Scratch dir;
-  const fs::path out = dir.path / "fit.h5";
+  ScratchDir dir;
+  const fs::path out = dir.path() / "fit.h5";
   nlohmann::json spec = smallSpec();
   spec["target"] = {{"young_modulus", 150e9}, {"poisson_ratio", 0.4}};
   RunControl control;
@@ -222,8 +203,8 @@ TEST(ElasticPropertiesScenario, FitsTheBeamsToATarget) {
 TEST(ElasticPropertiesScenario, CancelledRunLeavesAValidIncompleteFile) {
   for (const bool withTarget : {false, true}) {
     SCOPED_TRACE(withTarget ? "fit" : "measurement");
-    Scratch dir;
-    const fs::path out = dir.path / "cancelled.h5";
+    ScratchDir dir;
+    const fs::path out = dir.path() / "cancelled.h5";
     nlohmann::json spec = smallSpec();
     if (withTarget) spec["target"] = {{"young_modulus", 150e9}, {"poisson_ratio", 0.4}};
     RunControl control;
@@ -282,16 +263,16 @@ TEST(ElasticPropertiesScenario, CancelStopsAMeasurementAndAFit) {
 
 TEST(ElasticPropertiesScenario, RunsThroughTheCli) {
   using rupture::testing::runCli;
-  Scratch dir;
+  ScratchDir dir;
   const std::string specPath = rupture::testing::writeSpec(smallSpec(), "elastic-properties-cli.json");
-  const fs::path out = dir.path / "cli.h5";
+  const fs::path out = dir.path() / "cli.h5";
   const auto r = runCli("run " + specPath + " -o " + out.string() + " --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["completed"], 1);
   EXPECT_GT(summary["young_modulus"].get<double>(), 0);
   ASSERT_TRUE(fs::exists(out));
-  EXPECT_FALSE(fs::exists(dir.path / "cli.xdmf2"));  // no particle snapshots, no ParaView sidecar
+  EXPECT_FALSE(fs::exists(dir.path() / "cli.xdmf2"));  // no particle snapshots, no ParaView sidecar
   const io::Hdf5File file = io::Hdf5File::openReadOnly(out.string());
   EXPECT_DOUBLE_EQ(file.readAttributeDouble("/summary", "young_modulus"), summary["young_modulus"].get<double>());
 

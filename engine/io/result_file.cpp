@@ -1,0 +1,58 @@
+#include "io/result_file.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <system_error>
+
+namespace rupture::io {
+
+ResultFile::ResultFile(std::string resultPath, const std::string& scenario)
+    : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"), m_file(Hdf5File::create(m_partPath)) {
+  m_file.setAttribute("/", "scenario", scenario);
+  m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
+  m_file.setAttribute("/", "completed", std::int64_t{0});
+}
+
+ResultFile::~ResultFile() {
+  if (!m_done) abandon();
+}
+
+void ResultFile::writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) {
+  m_file.createGroup("/spec");
+  m_file.setAttribute("/spec", "json", resolved.dump());
+  m_file.setAttribute("/spec", "input", input.dump());
+}
+
+void ResultFile::writeAttributes(const std::string& group, const nlohmann::json& values,
+                                 const std::map<std::string, std::string>& units) {
+  m_file.createGroup(group);
+  for (const auto& [name, v] : values.items()) {
+    if (v.is_boolean()) m_file.setAttribute(group, name, std::int64_t{v.get<bool>() ? 1 : 0});
+    else if (v.is_number_integer()) m_file.setAttribute(group, name, v.get<std::int64_t>());
+    else if (v.is_number()) m_file.setAttribute(group, name, v.get<double>());
+    else if (v.is_string()) m_file.setAttribute(group, name, v.get<std::string>());
+    else if (v.is_null()) m_file.setAttribute(group, name, std::numeric_limits<double>::quiet_NaN());
+    else m_file.setAttribute(group, name, v.dump());
+    if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
+  }
+}
+
+void ResultFile::finish(bool completed) {
+  m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
+  m_file.close();
+  std::filesystem::rename(m_partPath, m_resultPath);
+  m_done = true;
+}
+
+void ResultFile::abandon() noexcept {
+  try {
+    m_file.close();
+  } catch (...) {
+  }
+  std::error_code ec;
+  std::filesystem::remove(m_partPath, ec);
+  m_done = true;
+}
+
+}  // namespace rupture::io

@@ -1,0 +1,44 @@
+#pragma once
+// The life cycle every scenario's result file shares. Everything is written to RESULT.part, which
+// finish() renames onto RESULT, so a reader never sees a half-written file; an unfinished file (an
+// exception during the run) is deleted by the destructor. Common layout:
+//   /        attributes scenario, rupture_version, completed (int64 1/0)
+//   /spec    attributes json (the resolved spec, defaults filled in) and input (as submitted)
+// Scalar groups (/summary, ...) are written by writeAttributes: booleans as int64 0/1, integers as
+// int64, numbers as double, null as NaN, strings as strings, anything else as its JSON text, each
+// with a "<name>_unit" string attribute when its unit is known.
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/hdf5_file.hpp"
+
+namespace rupture::io {
+
+class ResultFile {
+public:
+  ResultFile(std::string resultPath, const std::string& scenario);
+  ~ResultFile();
+  ResultFile(const ResultFile&) = delete;
+  ResultFile& operator=(const ResultFile&) = delete;
+
+  /// The open partial file, for datasets and groups of the scenario's own layout.
+  Hdf5File& file() { return m_file; }
+
+  void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input);
+  void writeAttributes(const std::string& group, const nlohmann::json& values,
+                       const std::map<std::string, std::string>& units);
+
+  /// Marks "/" completed (1/0), closes, and renames the partial file onto the result.
+  void finish(bool completed);
+  /// Closes and deletes the partial file.
+  void abandon() noexcept;
+
+private:
+  std::string m_resultPath, m_partPath;
+  Hdf5File m_file;
+  bool m_done = false;
+};
+
+}  // namespace rupture::io
