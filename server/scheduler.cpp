@@ -1,5 +1,6 @@
 #include "scheduler.hpp"
 
+#include <cstdlib>
 #include <chrono>
 #include <exception>
 #include <system_error>
@@ -127,6 +128,10 @@ void Scheduler::workerLoop() {
   while (true) {
     RunKey key;
     auto control = std::make_shared<rupture::RunControl>();
+    // The VH preliminary-run cache lives with the data unless the operator chose a place: a sweep
+    // over one sample then runs its preliminary run once, and the cache leaves with the data dir.
+    if (const char* env = std::getenv("RUPTURE_CACHE_DIR"); env == nullptr || *env == '\0')
+      control->cacheDirectory = (m_dataDir / "cache").string();
     {
       std::unique_lock lock(m_mutex);
       m_wake.wait(lock, [this] { return m_stopping || !m_queue.empty(); });

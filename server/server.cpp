@@ -1,6 +1,5 @@
 #include "server.hpp"
 
-#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -14,10 +13,6 @@ RuptureServer::RuptureServer(ServerConfig config) {
   m_context.config = std::move(config);
   m_context.dataDir = std::filesystem::absolute(m_context.config.dataDir);
   std::filesystem::create_directories(m_context.dataDir / "jobs");
-  // The VH preliminary-run cache lives with the data unless the operator chose a place: a sweep
-  // over one sample then runs its preliminary run once, and the cache leaves with the data dir.
-  if (const char* cache = std::getenv("RUPTURE_CACHE_DIR"); cache == nullptr || *cache == '\0')
-    ::setenv("RUPTURE_CACHE_DIR", (m_context.dataDir / "cache").c_str(), 1);
   m_store = std::make_unique<JobStore>((m_context.dataDir / "rupture.sqlite").string());
   m_scheduler = std::make_unique<Scheduler>(*m_store, m_context.dataDir, effectiveWorkers(m_context.config),
                                             m_context.config.threadsPerRun);

@@ -107,7 +107,7 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
   const PreliminaryPlan plan = planPreliminary(spec, system, geometry, timeStep);
   std::optional<CacheEntryLock> lock;
   if (spec.output.cachePreliminary) {
-    out.cacheFile = preliminaryCacheFile(preliminaryCacheDirectory(resultPath), plan.key);
+    out.cacheFile = preliminaryCacheFile(preliminaryCacheDirectory(control.cacheDirectory, resultPath), plan.key);
     // Held until this function returns: a run that waited here finds the entry computed.
     lock.emplace(out.cacheFile, control.cancel);
     if (!lock->held()) {

@@ -45,7 +45,8 @@ std::string fnv1aHex(const std::string& text) {
   return buffer;
 }
 
-std::string preliminaryCacheDirectory(const std::string& resultPath) {
+std::string preliminaryCacheDirectory(const std::string& configured, const std::string& resultPath) {
+  if (!configured.empty()) return configured;
   if (const char* dir = std::getenv("RUPTURE_CACHE_DIR"); dir && *dir) return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (fs::path(xdg) / "rupture").string();
   if (const char* home = std::getenv("HOME"); home && *home) return (fs::path(home) / ".cache" / "rupture").string();

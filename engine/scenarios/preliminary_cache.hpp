@@ -26,7 +26,9 @@ namespace rupture {
 /// 64-bit FNV-1a of the text, as 16 lower-case hex digits.
 std::string fnv1aHex(const std::string& text);
 
-std::string preliminaryCacheDirectory(const std::string& resultPath);
+/// `configured` if not empty, else $RUPTURE_CACHE_DIR, $XDG_CACHE_HOME/rupture, ~/.cache/rupture,
+/// or .rupture-cache beside the result file.
+std::string preliminaryCacheDirectory(const std::string& configured, const std::string& resultPath);
 
 /// The cache file of a key (the key's compact JSON dump is hashed).
 std::string preliminaryCacheFile(const std::string& directory, const nlohmann::json& key);

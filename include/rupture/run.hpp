@@ -20,6 +20,9 @@ struct RunControl {
   std::atomic<double> progress{0.0};
   /// Optional human-readable stage messages ("preliminary VH run", "main run").
   std::function<void(const std::string&)> log;
+  /// Where reusable intermediate results (the VH preliminary run) are cached; empty: the
+  /// environment's choice ($RUPTURE_CACHE_DIR, $XDG_CACHE_HOME/rupture, ~/.cache/rupture).
+  std::string cacheDirectory;
 };
 
 /// What a run returns once its HDF5 file is closed.

@@ -7,6 +7,7 @@
 
 namespace rupture::server {
 namespace {
+namespace fs = std::filesystem;
 
 using test::expectProblem;
 using test::getJson;
@@ -74,6 +75,12 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
     EXPECT_EQ(run["status"], "successful");
     EXPECT_GT(run["summary"]["peak_stress"].get<double>(), 0);
   }
+  // The V0 runs needed the sample's preliminary run (its wave speed sets the ramp): computed once
+  // for both, and cached inside the data directory.
+  std::size_t cached = 0;
+  for (const auto& entry : fs::directory_iterator(live.dataDir() / "cache"))
+    cached += entry.path().extension() == ".h5";
+  EXPECT_EQ(cached, 1u);
 
   // Summary as JSON: 4 rows, swept values, positive peak stress.
   Json summary = getJson(*client, "/jobs/" + id + "/summary");
