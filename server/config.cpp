@@ -76,6 +76,12 @@ const std::vector<Option>& options() {
       {"max-request-bytes", "RUPTURE_MAX_REQUEST_BYTES", "BYTES",
        "largest request body accepted; larger ones get 413", "1048576",
        intSetter(&ServerConfig::maxRequestBytes, 1, std::numeric_limits<int>::max())},
+      {"max-elements", "RUPTURE_MAX_ELEMENTS", "N",
+       "most elements (or particles) one run may hold, from the spec's size estimate; larger runs get 400",
+       "5000000", intSetter(&ServerConfig::maxElements, 1, 5'000'000)},
+      {"min-free-bytes", "RUPTURE_MIN_FREE_BYTES", "BYTES",
+       "free space the data directory must keep: below it, queued runs wait instead of starting", "268435456",
+       intSetter(&ServerConfig::minFreeBytes, 0, std::numeric_limits<long long>::max())},
       {"token", "RUPTURE_TOKEN", "SECRET",
        "when set, POST and DELETE need 'Authorization: Bearer SECRET' (prefer the variable: "
        "flags show in ps)",

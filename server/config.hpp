@@ -17,6 +17,8 @@ struct ServerConfig {
   int threadsPerRun = 1;                  ///< OpenMP threads given to each run
   int maxRuns = 1000;                     ///< most runs one sweep may expand to
   std::size_t maxRequestBytes = 1 << 20;  ///< largest request body accepted (413 above)
+  long long maxElements = 5'000'000;      ///< most elements/particles one run may hold (400 above)
+  long long minFreeBytes = 256LL << 20;   ///< free disk in the data directory below which no run starts
   std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
   int httpThreads = 8;                    ///< threads answering HTTP requests
   bool logRequests = false;               ///< one line per request on stderr

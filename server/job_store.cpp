@@ -352,6 +352,14 @@ std::vector<RunKey> JobStore::unfinishedRuns() {
   return out;
 }
 
+std::vector<RunKey> JobStore::failedRuns() {
+  std::lock_guard lock(m_mutex);
+  Stmt q(m_db, "SELECT job_id, idx FROM runs WHERE status = 'failed' ORDER BY job_id, idx");
+  std::vector<RunKey> out;
+  while (q.step()) out.push_back({q.i64(0), static_cast<int>(q.i64(1))});
+  return out;
+}
+
 int JobStore::queueDepth() {
   std::lock_guard lock(m_mutex);
   Stmt q(m_db,

@@ -97,6 +97,8 @@ public:
   std::vector<RunKey> queuedRuns();
   /// Runs accepted or running, in any job (for crash recovery).
   std::vector<RunKey> unfinishedRuns();
+  /// Runs recorded failed, in any job (for the start-up repair of outcomes recorded wrongly).
+  std::vector<RunKey> failedRuns();
   /// After a crash: runs left `running` go back to `accepted` (or `dismissed` in a dismissed job).
   /// Returns how many.
   int requeueInterrupted();

@@ -350,6 +350,8 @@ public:
     doc["threads_per_run"] = m_ctx.scheduler->threadsPerRun();
     doc["running"] = m_ctx.store->runningCount();  // the store's view, as GET /jobs shows it
     doc["queue_depth"] = m_ctx.store->queueDepth();
+    doc["waiting_for_disk"] = m_ctx.scheduler->waitingForDisk();          // below --min-free-bytes
+    doc["unrecorded_outcomes"] = m_ctx.scheduler->unrecordedOutcomes();   // finished on disk, store retrying
     doc["uptime_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_ctx.startedAt).count();
     Json scenarios = Json::array();
     for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);
@@ -482,7 +484,7 @@ public:
     const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
     const std::vector<SweepPoint> points =
         expandSweep(scenario, inputs, plan, static_cast<std::size_t>(m_ctx.config.maxRuns));
-    validateSweepPoints(points, plan);
+    validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements));
 
     NewJob job;
     job.processId = scenario;

@@ -1,7 +1,8 @@
 #include "scheduler.hpp"
 
-#include <cstdlib>
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <exception>
 #include <system_error>
 
@@ -31,6 +32,17 @@ void removeQuietly(const fs::path& p) {
   fs::remove(p, ec);
 }
 
+/// The error is the disk filling up (HDF5 and SQLite report errno 28 in their own words).
+bool isDiskFull(const std::string& message) {
+  for (const char* sign : {"No space left on device", "errno = 28", "database or disk is full"})
+    if (message.find(sign) != std::string::npos) return true;
+  return false;
+}
+
+// A run that failed because the disk filled up goes back to the queue (where it waits for the
+// floor) at most this many times in all before it is recorded failed.
+constexpr int kDiskFullAttempts = 3;
+
 }  // namespace
 
 Scheduler::Scheduler(JobStore& store, fs::path dataDir, int workers, int threadsPerRun, RunExecutor executor)
@@ -56,7 +68,14 @@ int Scheduler::running() const {
 }
 
 void Scheduler::recoverFinishedFiles() {
-  for (RunKey key : m_store.unfinishedRuns()) {
+  // A run whose result and summary files are complete finished, whatever the store says: it may
+  // have stopped before the store took the outcome, or the store may have taken a wrong one (a
+  // full disk once made the success unrecordable and the failure recordable).
+  std::vector<RunKey> candidates = m_store.unfinishedRuns();
+  const std::vector<RunKey> failed = m_store.failedRuns();
+  candidates.insert(candidates.end(), failed.begin(), failed.end());
+  for (RunKey key : candidates) {
+    const bool wasFailed = std::find(failed.begin(), failed.end(), key) != failed.end();
     const fs::path file = runFile(key);
     if (!regularFileSize(file)) continue;
     auto text = readFile(summaryFile(file));
@@ -67,11 +86,12 @@ void Scheduler::recoverFinishedFiles() {
       summary = Json();
     }
     if (!summary.is_object()) {
-      removeQuietly(file);  // not recorded as complete: it runs again
+      if (!wasFailed) removeQuietly(file);  // not recorded as complete: it runs again
       continue;
     }
     m_store.finishSuccessful(key, summary, fs::relative(file, m_dataDir).string());
-    logLine(describe(key) + " had finished before the last stop; recorded from its files");
+    logLine(describe(key) + (wasFailed ? " was recorded failed but its files are complete; recorded successful"
+                                       : " had finished before the last stop; recorded from its files"));
   }
 }
 
@@ -122,6 +142,58 @@ void Scheduler::shutdown() {
     if (t.joinable()) t.join();
   }
   if (m_monitor.joinable()) m_monitor.join();
+  retryUnrecorded();  // what still fails is repaired from the files on the next start
+}
+
+bool Scheduler::diskHasRoom() const {
+  if (m_minFreeBytes == 0) return true;
+  std::error_code ec;
+  const fs::space_info space = fs::space(m_dataDir, ec);
+  return ec || space.available >= m_minFreeBytes;  // an unknown free space does not stop the queue
+}
+
+int Scheduler::unrecordedOutcomes() const {
+  std::lock_guard lock(m_mutex);
+  return static_cast<int>(m_unrecorded.size());
+}
+
+bool Scheduler::tryRecord(const Outcome& o) {
+  try {
+    switch (o.kind) {
+      case Outcome::Kind::Successful:
+        m_store.finishSuccessful(o.key, o.summary, fs::relative(runFile(o.key), m_dataDir).string());
+        break;
+      case Outcome::Kind::Failed: m_store.finishFailed(o.key, o.message); break;
+      case Outcome::Kind::Dismissed: m_store.finishDismissed(o.key); break;
+      case Outcome::Kind::Requeued: m_store.requeueRun(o.key); break;
+    }
+    return true;
+  } catch (const std::exception& e) {
+    logLine(describe(o.key) + ": cannot record the outcome yet (" + e.what() + "); retrying every second");
+    return false;
+  }
+}
+
+void Scheduler::record(const Outcome& outcome) {
+  if (tryRecord(outcome)) return;
+  std::lock_guard lock(m_mutex);
+  m_unrecorded.push_back(outcome);
+}
+
+void Scheduler::retryUnrecorded() {
+  std::vector<Outcome> pending;
+  {
+    std::lock_guard lock(m_mutex);
+    pending.swap(m_unrecorded);
+  }
+  std::vector<Outcome> still;
+  for (const Outcome& o : pending) {
+    if (tryRecord(o)) logLine(describe(o.key) + ": outcome recorded");
+    else still.push_back(o);
+  }
+  if (still.empty()) return;
+  std::lock_guard lock(m_mutex);
+  m_unrecorded.insert(m_unrecorded.begin(), still.begin(), still.end());
 }
 
 void Scheduler::workerLoop() {
@@ -136,6 +208,14 @@ void Scheduler::workerLoop() {
       std::unique_lock lock(m_mutex);
       m_wake.wait(lock, [this] { return m_stopping || !m_queue.empty(); });
       if (m_stopping) return;
+      if (!diskHasRoom()) {  // leave the run queued; look again in a second
+        if (!m_waitingForDisk.exchange(true))
+          logLine("less than " + std::to_string(m_minFreeBytes) + " bytes free in " + m_dataDir.string() +
+                  ": queued runs wait for disk space");
+        m_wake.wait_for(lock, std::chrono::seconds(1), [this] { return m_stopping; });
+        continue;
+      }
+      if (m_waitingForDisk.exchange(false)) logLine("disk space is back: runs start again");
       key = m_queue.front();
       m_queue.pop_front();
       m_active.emplace(key, control);
@@ -165,57 +245,64 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     std::lock_guard lock(m_mutex);
     return m_stopping;
   };
+  auto removeLeftovers = [&] {
+    for (const fs::path& stale : {file, partial, fs::path(partial.string() + ".part"), summaryFile(file)})
+      removeQuietly(stale);
+  };
+  Outcome outcome{Outcome::Kind::Failed, key, Json(), std::string()};
+  int attempts = 0;
   try {
     auto run = m_store.run(key);
     if (!run) throw std::runtime_error("run vanished from the store");
+    attempts = run->attempts;
     fs::create_directories(file.parent_path());
-    // Anything here is left over from an interrupted attempt.
-    for (const fs::path& stale : {file, partial, fs::path(partial.string() + ".part"), summaryFile(file)}) {
-      removeQuietly(stale);
-    }
+    removeLeftovers();  // anything here is left over from an interrupted attempt
     logLine(describe(key) + " started");
     control->log = [key](const std::string& msg) { logLine(describe(key) + ": " + msg); };
-    rupture::RunOutcome outcome = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
-    if (outcome.completed) {
-      Json summary = outcome.summary.is_object() ? Json(outcome.summary) : Json::object();
+    rupture::RunOutcome result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
+    if (result.completed) {
+      Json summary = result.summary.is_object() ? Json(result.summary) : Json::object();
       writeFileAtomic(summaryFile(file), summary.dump(2) + "\n");
       renameDurable(partial, file);
-      m_store.finishSuccessful(key, summary, fs::relative(file, m_dataDir).string());
+      // From here the files say the run succeeded, whatever happens to the store.
+      outcome = {Outcome::Kind::Successful, key, summary, {}};
       logLine(describe(key) + " successful after " + elapsed() + " s");
-      return;
-    }
-    removeQuietly(partial);
-    if (stopping()) {
-      m_store.requeueRun(key);
-      logLine(describe(key) + " interrupted by shutdown; re-queued");
-    } else if (control->cancel) {
-      m_store.finishDismissed(key);
-      logLine(describe(key) + " cancelled after " + elapsed() + " s");
     } else {
-      m_store.finishFailed(key, "the run ended without completing (nobody cancelled it)");
-      logLine(describe(key) + " ended incomplete after " + elapsed() + " s");
+      removeQuietly(partial);
+      if (stopping()) {
+        outcome.kind = Outcome::Kind::Requeued;
+        logLine(describe(key) + " interrupted by shutdown; re-queued");
+      } else if (control->cancel) {
+        outcome.kind = Outcome::Kind::Dismissed;
+        logLine(describe(key) + " cancelled after " + elapsed() + " s");
+      } else {
+        outcome.message = "the run ended without completing (nobody cancelled it)";
+        logLine(describe(key) + " ended incomplete after " + elapsed() + " s");
+      }
     }
   } catch (const std::exception& e) {
-    removeQuietly(partial);
-    removeQuietly(fs::path(partial.string() + ".part"));
-    try {
-      if (control->cancel && stopping()) {
-        m_store.requeueRun(key);
-      } else if (control->cancel) {
-        m_store.finishDismissed(key);
-      } else {
-        m_store.finishFailed(key, e.what());
-        logLine(describe(key) + " failed: " + e.what());
-      }
-    } catch (const std::exception& e2) {
-      logLine(describe(key) + ": cannot record the outcome: " + e2.what());
+    const bool diskFull = isDiskFull(e.what()) || !diskHasRoom();
+    removeLeftovers();
+    if (control->cancel && stopping()) {
+      outcome.kind = Outcome::Kind::Requeued;
+    } else if (control->cancel) {
+      outcome.kind = Outcome::Kind::Dismissed;
+    } else if (diskFull && attempts < kDiskFullAttempts) {
+      outcome.kind = Outcome::Kind::Requeued;
+      logLine(describe(key) + ": the disk is full (" + e.what() + "); re-queued to wait for space");
+    } else {
+      outcome.message = e.what();
+      logLine(describe(key) + " failed: " + e.what());
     }
   } catch (...) {
-    removeQuietly(partial);
-    try {
-      m_store.finishFailed(key, "unknown error (non-standard exception)");
-    } catch (...) {
-    }
+    removeLeftovers();
+    outcome.message = "unknown error (non-standard exception)";
+  }
+  record(outcome);
+  // Re-queued for the disk, not for a shutdown: back in this server's queue, behind the floor.
+  if (outcome.kind == Outcome::Kind::Requeued && !stopping()) {
+    std::lock_guard lock(m_mutex);
+    m_queue.push_back(key);
   }
 }
 
@@ -226,12 +313,14 @@ void Scheduler::monitorLoop() {
     if (m_stopping) break;
     std::vector<std::pair<RunKey, double>> progress;
     for (const auto& [key, control] : m_active) progress.emplace_back(key, control->progress.load());
+    const bool retry = !m_unrecorded.empty();
     lock.unlock();
     try {
       m_store.setProgress(progress);
     } catch (const std::exception& e) {
       logLine(std::string("cannot store progress: ") + e.what());
     }
+    if (retry) retryUnrecorded();
     lock.lock();
   }
 }

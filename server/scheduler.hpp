@@ -8,6 +8,13 @@
 // run-<k>.summary.json, then the file is renamed to run-<k>.h5, then the store is updated. A crash
 // between the rename and the store update is repaired on the next start from the summary file, so a
 // finished result is never recomputed.
+//
+// The files are the truth about a run's outcome, the store a record of it: an outcome the store
+// cannot take (disk full, database locked) is kept in memory and retried every second, and the
+// start-up repair records as successful every run, failed or unfinished in the store, whose
+// result and summary files are complete. Below the disk-space floor (setMinFreeBytes) no run
+// starts; a run that fails because the disk filled up is re-queued (three attempts) rather than failed.
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -47,6 +54,12 @@ public:
   std::optional<JobRecord> dismiss(std::int64_t jobId);
   /// Stops the workers: running runs are cancelled and re-queued for the next start. Idempotent.
   void shutdown();
+  /// Free bytes the data directory must keep for a run to start (0: no floor). Call before start().
+  void setMinFreeBytes(std::uintmax_t bytes) { m_minFreeBytes = bytes; }
+  /// True while queued runs wait for disk space.
+  bool waitingForDisk() const { return m_waitingForDisk.load(); }
+  /// Outcomes finished on disk that the store has not taken yet (retried every second).
+  int unrecordedOutcomes() const;
 
   int workers() const { return m_workerCount; }
   int threadsPerRun() const { return m_threadsPerRun; }
@@ -57,7 +70,19 @@ public:
   std::filesystem::path jobDir(std::int64_t jobId) const;
 
 private:
+  /// How a run ended, to be written to the store.
+  struct Outcome {
+    enum class Kind { Successful, Failed, Dismissed, Requeued } kind;
+    RunKey key;
+    Json summary;         ///< Successful
+    std::string message;  ///< Failed
+  };
   void workerLoop();
+  bool diskHasRoom() const;
+  /// Writes an outcome to the store; if the store fails, keeps it for the monitor to retry.
+  void record(const Outcome& outcome);
+  bool tryRecord(const Outcome& outcome);
+  void retryUnrecorded();
   void monitorLoop();
   void execute(RunKey key, const std::shared_ptr<rupture::RunControl>& control);
   void recoverFinishedFiles();
@@ -80,6 +105,9 @@ private:
   std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
   bool m_stopping = false;
   bool m_started = false;
+  std::vector<Outcome> m_unrecorded;  // guarded by m_mutex
+  std::uintmax_t m_minFreeBytes = 0;
+  std::atomic<bool> m_waitingForDisk{false};
   std::vector<std::thread> m_threads;
   std::thread m_monitor;
 };

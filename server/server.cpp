@@ -16,6 +16,7 @@ RuptureServer::RuptureServer(ServerConfig config) {
   m_store = std::make_unique<JobStore>((m_context.dataDir / "rupture.sqlite").string());
   m_scheduler = std::make_unique<Scheduler>(*m_store, m_context.dataDir, effectiveWorkers(m_context.config),
                                             m_context.config.threadsPerRun);
+  m_scheduler->setMinFreeBytes(static_cast<std::uintmax_t>(m_context.config.minFreeBytes));
   m_context.store = m_store.get();
   m_context.scheduler = m_scheduler.get();
 

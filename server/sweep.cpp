@@ -1,5 +1,9 @@
 #include "sweep.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
 #include <charconv>
 #include <limits>
 
@@ -190,10 +194,21 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
   return points;
 }
 
-void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan) {
+void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements) {
   for (std::size_t k = 0; k < points.size(); ++k) {
     try {
-      rupture::validateSpec(nlohmann::json(points[k].spec));
+      const nlohmann::json spec(points[k].spec);
+      const rupture::RunEstimate estimate = rupture::estimateRun(spec);  // validates first
+      if (estimate.particles > maxElements) {
+        std::string pointer = "/" + estimate.field;
+        std::replace(pointer.begin(), pointer.end(), '.', '/');
+        const nlohmann::json::json_pointer at(pointer);
+        std::ostringstream allowed;
+        allowed << "a run of at most " << maxElements << " elements (this server's --max-elements); this spec needs about "
+                << std::llround(estimate.particles) << " elements and " << std::llround(estimate.memoryBytes / 1048576.0)
+                << " MiB of memory";
+        throw rupture::SpecError(estimate.field, spec.contains(at) ? spec.at(at).dump() : "(default)", allowed.str());
+      }
     } catch (const rupture::SpecError& e) {
       Json extra = Json::object();
       extra["in"] = "inputs";

@@ -201,10 +201,12 @@ int runCommand(const Args& args) {
   }
 
   int code = outcome.completed ? 0 : kExitInterrupted;
-  // A ParaView sidecar only for results with particle snapshots (elastic-properties has none).
+  // A ParaView sidecar only for results with particle snapshots (elastic-properties has none, nor
+  // does a run cancelled while its sample was built).
   std::string sidecar;
   try {
-    if (io::Hdf5File::openReadOnly(output).exists("/snapshots")) {
+    const io::Hdf5File result = io::Hdf5File::openReadOnly(output);
+    if (result.exists("/snapshots") && !result.listGroup("/snapshots").empty()) {
       sidecar = sidecarPath(output);
       io::writeXdmfSidecar(output, sidecar);
     }

@@ -1,22 +1,28 @@
 #include "cli/spec_file.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
+#include "io/json_text.hpp"
+
 namespace rupture::cli {
 
 int readSpecFile(const std::string& path, nlohmann::json& spec) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) {
-    std::cerr << "rupture: cannot read spec file '" << path << "'\n";
+    std::cerr << "rupture: cannot read spec file '" << path << "': " << std::strerror(errno) << "\n";
     return 2;
   }
   std::stringstream text;
   text << in.rdbuf();
   try {
-    spec = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
+    spec = io::parseJsonText(text.str());
+  } catch (const SpecError& e) {
+    return reportSpecError(path, e);
+  } catch (const nlohmann::json::exception& e) {
     std::cerr << path << ": not valid JSON: " << e.what() << "\n";
     return 2;
   }

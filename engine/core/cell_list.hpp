@@ -29,6 +29,18 @@ public:
     }
   }
 
+  /// Calls visit(k) for every particle k in the cells overlapping the box [lo, hi] (a superset of
+  /// the particles inside it: the caller tests the exact distance).
+  template <class Visit>
+  void forEachInBox(const double lo[3], const double hi[3], Visit&& visit) const {
+    for (int a = cellCoord(lo[2], 2); a <= cellCoord(hi[2], 2); ++a)
+      for (int b = cellCoord(lo[1], 1); b <= cellCoord(hi[1], 1); ++b)
+        for (int c = cellCoord(lo[0], 0); c <= cellCoord(hi[0], 0); ++c) {
+          const std::size_t cell = (static_cast<std::size_t>(a) * m_dims[1] + b) * m_dims[0] + c;
+          for (std::int32_t s = m_start[cell]; s < m_start[cell + 1]; ++s) visit(m_sorted[s]);
+        }
+  }
+
 private:
   int cellCoord(double v, int axis) const {
     int c = static_cast<int>((v - m_origin[axis]) * m_inverseSize);

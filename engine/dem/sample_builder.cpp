@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/cell_list.hpp"
 
@@ -24,18 +25,20 @@ double elementVolume(int dimension, double r) {
 /// Jacobi relaxation of overlaps between elements and with the box walls; returns the largest
 /// remaining overlap divided by the mean radius.
 double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double meanRadius,
-                     const std::atomic<bool>* cancel) {
+                     const Cancellation& cancel) {
   const std::size_t n = p.size();
   const double maxRadius = *std::max_element(p.radius.begin(), p.radius.end());
   std::vector<double> dx(n), dy(n), dz(n);
   CellList cells;
   double worst = 0;
   for (int sweep = 0; sweep < kMaxRelaxationSweeps; ++sweep) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    cancel.throwIfRequested();
     cells.build(p, 2.0 * maxRadius);
     worst = 0;
 #pragma omp parallel for schedule(static) reduction(max : worst)
     for (std::size_t a = 0; a < n; ++a) {
+      // A sweep over millions of elements takes seconds: once cancelled, skip the rest of it.
+      if (cancel.requested()) continue;
       double mx = 0, my = 0, mz = 0;
       const double ra = p.radius[a];
       cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
@@ -60,6 +63,7 @@ double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double 
       if (p.dimension == 3) wall(p.z[a], box[2], mz);
       dx[a] = mx; dy[a] = my; dz[a] = mz;
     }
+    cancel.throwIfRequested();
     if (worst < kOverlapTolerance * meanRadius) break;
     for (std::size_t a = 0; a < n; ++a) {
       p.x[a] += dx[a]; p.y[a] += dy[a]; p.z[a] += dz[a];
@@ -68,19 +72,24 @@ double relaxOverlaps(ParticleStore& p, const std::array<double, 3>& box, double 
   return worst / meanRadius;
 }
 
-void bondNeighbours(BondedSystem& system, double gap) {
+// How many elements a serial stage handles between two looks at the cancel flag (well under 0.2 s).
+constexpr std::size_t kCancelPollInterval = 1 << 14;
+
+void bondNeighbours(BondedSystem& system, double gap, const Cancellation& cancel) {
   ParticleStore& p = system.particles;
   const double maxRadius = *std::max_element(p.radius.begin(), p.radius.end());
   const double factor = 1.0 + 0.5 * gap;
   CellList cells;
   cells.build(p, 2.0 * maxRadius * factor);
-  for (std::size_t a = 0; a < p.size(); ++a)
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    if (a % kCancelPollInterval == 0) cancel.throwIfRequested();
     cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
       if (static_cast<std::size_t>(k) <= a) return;
       const double ex = p.x[k] - p.x[a], ey = p.y[k] - p.y[a], ez = p.z[k] - p.z[a];
       const double reach = (p.radius[a] + p.radius[k]) * factor;
       if (ex * ex + ey * ey + ez * ez < reach * reach) system.bonds.add(p, a, k);
     });
+  }
 }
 
 void dropUnbonded(BondedSystem& system) {
@@ -91,25 +100,68 @@ void dropUnbonded(BondedSystem& system) {
     system.bonds.remap(system.particles.compact(bonded));
 }
 
-std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::mt19937_64& rng) {
+/// Pores placed so far, binned on a grid of cells of edge 2 r_max (occupied cells only), so the
+/// overlap test of a candidate looks at its 3^d neighbouring cells instead of every pore.
+class PoreGrid {
+public:
+  PoreGrid(int dimension, double maxRadius) : m_dimension(dimension), m_inverseEdge(0.5 / maxRadius) {}
+
+  bool overlapsAny(const Pore& pore, const std::vector<Pore>& pores) const {
+    const auto c = cellOf(pore);
+    const int reach[3] = {1, 1, m_dimension == 3 ? 1 : 0};
+    for (std::int64_t a = -reach[2]; a <= reach[2]; ++a)
+      for (std::int64_t b = -reach[1]; b <= reach[1]; ++b)
+        for (std::int64_t d = -reach[0]; d <= reach[0]; ++d) {
+          auto it = m_cells.find(key({c[0] + d, c[1] + b, c[2] + a}));
+          if (it == m_cells.end()) continue;
+          for (std::size_t index : it->second) {
+            const Pore& q = pores[index];
+            double d2 = 0;
+            for (int ax = 0; ax < 3; ++ax) d2 += (pore.centre[ax] - q.centre[ax]) * (pore.centre[ax] - q.centre[ax]);
+            if (d2 < (pore.radius + q.radius) * (pore.radius + q.radius)) return true;
+          }
+        }
+    return false;
+  }
+  void insert(const Pore& pore, std::size_t index) { m_cells[key(cellOf(pore))].push_back(index); }
+
+private:
+  std::array<std::int64_t, 3> cellOf(const Pore& pore) const {
+    std::array<std::int64_t, 3> c{0, 0, 0};
+    for (int ax = 0; ax < m_dimension; ++ax) c[ax] = static_cast<std::int64_t>(std::floor(pore.centre[ax] * m_inverseEdge));
+    return c;
+  }
+  static std::int64_t key(const std::array<std::int64_t, 3>& c) {  // 21 bits per axis: cells < 2^20 per edge
+    return ((c[2] + (1 << 20)) << 42) | ((c[1] + (1 << 20)) << 21) | (c[0] + (1 << 20));
+  }
+  int m_dimension;
+  double m_inverseEdge;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> m_cells;
+};
+
+/// Random sequential placement of non-overlapping pores until their volume reaches the target.
+/// The spec validation bounds the pore count and the porosity (io/bonded_spec.cpp), so this ends;
+/// a pore that finds no free place in kPlacementAttempts tries means the box is jammed.
+std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::mt19937_64& rng,
+                             const Cancellation& cancel) {
+  constexpr int kPlacementAttempts = 20000;
   std::vector<Pore> pores;
   if (s.porosity <= 0) return pores;
   std::uniform_real_distribution<double> radiusDraw(s.poreRadius[0], s.poreRadius[1]);
+  PoreGrid grid(s.dimension, s.poreRadius[1]);
   double volume = 0;
   while (volume < poreVolumeTarget) {
+    cancel.throwIfRequested();
     const double r = radiusDraw(rng);
     bool placed = false;
-    for (int attempt = 0; attempt < 20000 && !placed; ++attempt) {
+    for (int attempt = 0; attempt < kPlacementAttempts && !placed; ++attempt) {
       Pore pore{{0, 0, 0}, r};
       for (int a = 0; a < s.dimension; ++a)
         pore.centre[a] = std::uniform_real_distribution<double>(r, s.size[a] - r)(rng);
+      if (grid.overlapsAny(pore, pores)) continue;
       placed = true;
-      for (const Pore& q : pores) {
-        double d2 = 0;
-        for (int a = 0; a < 3; ++a) d2 += (pore.centre[a] - q.centre[a]) * (pore.centre[a] - q.centre[a]);
-        if (d2 < (r + q.radius) * (r + q.radius)) { placed = false; break; }
-      }
-      if (placed) pores.push_back(pore);
+      grid.insert(pore, pores.size());
+      pores.push_back(pore);
     }
     if (!placed)
       throw std::runtime_error("sample.porosity: could not place the pores without overlap (" +
@@ -122,7 +174,7 @@ std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::
 }  // namespace
 
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
-                         const std::atomic<bool>* cancel) {
+                         const Cancellation& cancel) {
   system = BondedSystem{};
   ParticleStore& p = system.particles;
   p.dimension = s.dimension;
@@ -135,6 +187,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
                                                     s.elementRadius * (1.0 + s.radiusDispersion));
   double solid = 0;
   while (solid < target * boxVolume) {
+    if (p.size() % kCancelPollInterval == 0) cancel.throwIfRequested();
     const double r = radiusDraw(rng);
     double c[3] = {0, 0, 0};
     for (int a = 0; a < s.dimension; ++a)
@@ -148,7 +201,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   meanRadius /= static_cast<double>(p.size());
   report.relaxationOverlap = relaxOverlaps(p, s.size, meanRadius, cancel);
 
-  bondNeighbours(system, s.bondGap);
+  bondNeighbours(system, s.bondGap, cancel);
 
   // Rattlers (elements of the dense packing with no bond) would float free: drop them first, so
   // that the dense sample is exactly what gets the bulk density.
@@ -164,18 +217,13 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
 
   // Pores: for each element, the smallest common scale s_i of the pore radii that would swallow
   // its centre; removing the elements with s_i < scale gives a porosity that grows with scale.
-  report.pores = placePores(s, s.porosity * boxVolume, rng);
+  report.pores = placePores(s, s.porosity * boxVolume, rng, cancel);
   std::vector<std::uint8_t> keep(p.size(), 1);
   if (!report.pores.empty()) {
-    std::vector<double> swallowScale(p.size(), 1e300);
-    for (std::size_t k = 0; k < p.size(); ++k)
-      for (const Pore& pore : report.pores) {
-        const double ex = p.x[k] - pore.centre[0], ey = p.y[k] - pore.centre[1], ez = p.z[k] - pore.centre[2];
-        swallowScale[k] = std::min(swallowScale[k], std::sqrt(ex * ex + ey * ey + ez * ez) / pore.radius);
-      }
     // The largest scale keeping pores apart and inside the box.
     double maxScale = 1.5;
     for (std::size_t a = 0; a < report.pores.size(); ++a) {
+      if (a % 256 == 0) cancel.throwIfRequested();
       const Pore& pa = report.pores[a];
       for (int ax = 0; ax < s.dimension; ++ax)
         maxScale = std::min({maxScale, pa.centre[ax] / pa.radius, (s.size[ax] - pa.centre[ax]) / pa.radius});
@@ -186,8 +234,25 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
         maxScale = std::min(maxScale, std::sqrt(d2) / (pa.radius + pb.radius));
       }
     }
-    std::vector<std::size_t> order(p.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    // Only elements within maxScale × radius of a pore centre can be carved: visit those through
+    // a cell list instead of testing every element against every pore.
+    std::vector<double> swallowScale(p.size(), 1e300);
+    CellList cells;
+    cells.build(p, 2.0 * s.elementRadius);
+    for (std::size_t q = 0; q < report.pores.size(); ++q) {
+      if (q % 64 == 0) cancel.throwIfRequested();
+      const Pore& pore = report.pores[q];
+      const double reach = maxScale * pore.radius;
+      double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+      for (int ax = 0; ax < 3; ++ax) { lo[ax] = pore.centre[ax] - reach; hi[ax] = pore.centre[ax] + reach; }
+      cells.forEachInBox(lo, hi, [&](std::int32_t k) {
+        const double ex = p.x[k] - pore.centre[0], ey = p.y[k] - pore.centre[1], ez = p.z[k] - pore.centre[2];
+        swallowScale[k] = std::min(swallowScale[k], std::sqrt(ex * ex + ey * ey + ez * ez) / pore.radius);
+      });
+    }
+    std::vector<std::size_t> order;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (swallowScale[k] < maxScale) order.push_back(k);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       return swallowScale[a] < swallowScale[b] || (swallowScale[a] == swallowScale[b] && a < b);
     });
@@ -195,7 +260,6 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
     double removed = 0, scale = 0;
     for (std::size_t n = 0; n < order.size(); ++n) {
       const std::size_t k = order[n];
-      if (swallowScale[k] >= maxScale) break;
       const double v = elementVolume(s.dimension, p.radius[k]);
       // Stop where the removed volume is closest to the target.
       if (removed + v > wanted && (removed + v - wanted) > (wanted - removed)) break;
@@ -213,6 +277,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
 
   system.beam = m.beam;
   system.contact.setParameters(m.contact);
+  cancel.throwIfRequested();
   system.initialize();
   report.elements = p.size();
   report.bonds = system.bonds.size();

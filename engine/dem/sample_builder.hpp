@@ -15,9 +15,9 @@
 // (ρ_el = ρ V_box / Σ V_i); in 2D an element is a disk of thickness t = R_DE (the section S = L × R_DE
 // of the seed's eq. 4).
 #include <array>
-#include <atomic>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "dem/bonded_system.hpp"
 #include "dem/sample_spec.hpp"
 
@@ -40,9 +40,9 @@ struct SampleReport {
 };
 
 /// Fills `system` (particles, bonds, beam and contact parameters) from the spec and initialises it.
-/// `cancel`, when given and set, cuts the packing relaxation short (the longest stage, seconds for
-/// 1e4–1e5 elements) so a cancelled run stops promptly; the sample is then not for use.
+/// Every stage polls `cancel` at least every ~0.1 s of wall time (inside packing sweeps too) and
+/// throws RunCancelled once it is set; `system` is then not for use.
 SampleReport buildSample(const SampleSpec& sample, const MaterialSpec& material, BondedSystem& system,
-                         const std::atomic<bool>* cancel = nullptr);
+                         const Cancellation& cancel = {});
 
 }  // namespace rupture

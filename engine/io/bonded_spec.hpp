@@ -7,11 +7,18 @@
 
 #include "dem/sample_spec.hpp"
 #include "io/spec_reader.hpp"
+#include "rupture/run.hpp"
 
 namespace rupture::io {
 
 /// Reads "dimension" and "sample" from the spec root.
 SampleSpec parseSample(const SpecReader& root);
+/// Elements the sample builder will make (packing fraction × box / mean element, less the pores).
+double estimatedElements(const SampleSpec& sample);
+/// Peak memory of a run on that sample, from measured bytes per element (B).
+double estimatedMemoryBytes(const SampleSpec& sample);
+/// The RunEstimate of a bonded scenario on that sample (field "sample.element_radius").
+RunEstimate estimateBondedRun(const SampleSpec& sample);
 /// Reads "material" from the spec root (dimension-independent).
 MaterialSpec parseMaterial(const SpecReader& root);
 

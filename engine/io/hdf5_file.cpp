@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <hdf5.h>
+#include <unistd.h>
 
 // Version-mapped calls (H5Oget_info*, H5Literate*, H5Ovisit*) are avoided on purpose: Debian maps
 // them to the v18 signatures (dependencies notes §1.2) and 1.12 remaps them again. Everything here
@@ -53,6 +54,10 @@ private:
 // Error stacks and the automatic printer are per thread (notes §1.1), so silence the printer once
 // in every thread that touches a file; failures are reported through Hdf5Error instead.
 void silenceAutoPrint() {
+  // Before the library's first use: no exit handler. HDF5 1.10's H5_term_library crashes on a file
+  // whose close failed (see Hdf5File::close); every file we open is closed explicitly anyway.
+  static const bool noExitHandler = [] { return H5dont_atexit() >= 0; }();
+  (void)noExitHandler;
   thread_local bool silenced = false;
   if (!silenced) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -73,6 +78,15 @@ std::string innermostHdf5Message() {
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take, &message);
   H5Eclear2(H5E_DEFAULT);
   std::replace(message.begin(), message.end(), '\n', ' ');
+  // The file drivers describe a failed system call with its buffer address, sizes and time; the
+  // system's own words are what a reader needs ("... error message = 'No space left on device', ...").
+  const std::string marker = "error message = '";
+  if (const auto at = message.find(marker); at != std::string::npos) {
+    const auto end = message.find('\'', at + marker.size());
+    const auto colon = message.find(':');
+    message = message.substr(0, colon == std::string::npos ? 0 : colon + 2) +
+              message.substr(at + marker.size(), end == std::string::npos ? std::string::npos : end - at - marker.size());
+  }
   return message;
 }
 
@@ -330,6 +344,19 @@ void Hdf5File::close() {
   if (m_id < 0) return;
   silenceAutoPrint();
   const hid_t id = std::exchange(m_id, -1);  // closed (or unusable) from here on, even on failure
+  // A failed flush (a full disk) leaves HDF5 1.10's metadata cache in a state where H5Fclose fails
+  // too ("slist already enabled") and the id stays half-released. Nothing can make that file
+  // consistent: give its blocks back (truncate through the driver's descriptor), leave the id to
+  // the library (silenceAutoPrint switched off the exit handler that would crash on it), report.
+  unsigned intent = 0;
+  if (H5Fget_intent(id, &intent) >= 0 && (intent & H5F_ACC_RDWR) != 0 && H5Fflush(id, H5F_SCOPE_LOCAL) < 0) {
+    const std::string detail = innermostHdf5Message();
+    void* handle = nullptr;
+    if (H5Fget_vfd_handle(id, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
+      [[maybe_unused]] const int rc = ::ftruncate(*static_cast<int*>(handle), 0);
+    if (H5Fclose(id) < 0) H5Eclear2(H5E_DEFAULT);
+    throw Hdf5Error("HDF5: cannot write file '" + m_path + "' (its content is lost): " + detail);
+  }
   checkRc(H5Fclose(id), m_path, "", "cannot close file");
 }
 

@@ -163,6 +163,23 @@ void applyInitialField(BondedSystem& system, InitialVelocityField field, const T
 
 nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+/// A run cancelled while its sample was being built: no sample exists, so the file holds the spec
+/// and a summary saying so (layout otherwise as any incomplete result, with no rows or snapshots).
+RunOutcome cancelledDuringBuild(const DynamicTensionSpec& spec, const nlohmann::json& input,
+                                const std::string& resultPath, RunControl& control, Clock::time_point wallStart) {
+  TensionRecorder recorder(resultPath);
+  recorder.writeSpec(toJson(spec), input);
+  const nlohmann::json summary = {{"completed", 0},
+                                  {"stop_reason", "cancelled"},
+                                  {"strain_rate", spec.loading.strainRate},
+                                  {"initial_velocity", toString(spec.loading.initialVelocity)},
+                                  {"wall_time_s", seconds(wallStart)}};
+  recorder.writeAttributes("/summary", summary, dynamicTensionSummaryUnits());
+  recorder.finish(false);
+  logStage(control, "cancelled while building the sample: file marked incomplete");
+  return {summary, false};
+}
+
 }  // namespace
 
 const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
@@ -189,7 +206,12 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   // Sample, loaded faces, time step.
   logStage(control, "building the sample");
   BondedSystem system;
-  const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
+  SampleReport report;
+  try {
+    report = buildSample(spec.sample, spec.material, system, &control.cancel);
+  } catch (const RunCancelled&) {
+    return cancelledDuringBuild(spec, json, resultPath, control, wallStart);
+  }
   const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
   const double criticalStep = system.criticalTimeStep();
   if (!std::isfinite(criticalStep) || !(criticalStep > 0))
@@ -327,6 +349,7 @@ Scenario dynamicTensionScenario() {
       "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, fragments and "
       "equilibrium ratio.";
   s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
+  s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseDynamicTensionSpec(spec).sample); };
   s.run = runDynamicTension;
   return s;
 }

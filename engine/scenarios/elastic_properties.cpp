@@ -84,7 +84,11 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
 
   logStage(control, "building the sample");
   BondedSystem system;
-  const SampleReport report = buildSample(spec.sample, spec.material, system, &control.cancel);
+  SampleReport report;
+  try {
+    report = buildSample(spec.sample, spec.material, system, &control.cancel);
+  } catch (const RunCancelled&) {  // nothing measured: the summary below reports nulls
+  }
   io::ResultFile file(resultPath, kScenarioName);
   file.writeSpec(toJson(spec), json);
 
@@ -159,6 +163,7 @@ Scenario elasticPropertiesScenario() {
       "Young's modulus and radius ratio are fitted to reach them (André et al. 2012), up to about 20 tension "
       "tests, and the fitted beams are reported with the values they achieve.";
   s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
+  s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseElasticPropertiesSpec(spec).sample); };
   s.run = runElasticProperties;
   return s;
 }

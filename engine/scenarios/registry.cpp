@@ -52,6 +52,12 @@ nlohmann::json scenarioSchema(const std::string& name) {
 
 void validateSpec(const nlohmann::json& spec) { scenarioFor(spec).validate(spec); }
 
+RunEstimate estimateRun(const nlohmann::json& spec) {
+  const Scenario& scenario = scenarioFor(spec);
+  scenario.validate(spec);
+  return scenario.estimate ? scenario.estimate(spec) : RunEstimate{};
+}
+
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control, int threads) {
   const Scenario& scenario = scenarioFor(spec);
   scenario.validate(spec);

@@ -44,12 +44,25 @@ std::vector<ScenarioInfo> listScenarios();
 /// Throws SpecError(field "scenario") for an unknown name.
 nlohmann::json scenarioSchema(const std::string& name);
 
+/// What a run will need, estimated from its spec before anything is built (for operator limits
+/// such as rupture-server's --max-elements, and for the error that names them).
+struct RunEstimate {
+  double particles = 0;    ///< elements or particles the run will hold (0: the scenario gives no estimate)
+  double memoryBytes = 0;  ///< peak resident memory (B), from measured bytes per particle
+  std::string field;       ///< the spec field that sets the size, e.g. "sample.element_radius"
+};
+
+/// The estimate for a valid spec; throws SpecError like validateSpec for an invalid one.
+RunEstimate estimateRun(const nlohmann::json& spec);
+
 /// Checks a whole spec (with its "scenario" key) without running it. Throws SpecError naming the
 /// first offending field; unknown fields are errors too.
 void validateSpec(const nlohmann::json& spec);
 
 /// Runs the spec and writes one HDF5 file at resultPath (written as resultPath + ".part" and renamed
-/// when closed, so a reader never sees a half-written file). Throws SpecError for an invalid spec,
+/// when closed, so a reader never sees a half-written file). A cancelled run (RunControl::cancel)
+/// returns completed = false with its file marked incomplete; a run cancelled while its sample was
+/// being built holds only /spec and /summary. Throws SpecError for an invalid spec,
 /// std::runtime_error for a failure during the run. `threads` = OpenMP threads for this run (>= 1).
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control,
                    int threads = 1);

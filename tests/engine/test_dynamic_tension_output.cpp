@@ -275,7 +275,8 @@ TEST(DynamicTensionOutput, PreliminaryRunIsCached) {
 TEST(DynamicTensionOutput, CancelledRunLeavesAValidIncompleteFile) {
   useTestCache();
   ScratchDir dir;
-  // Cancelled before it starts: no step is taken, the file is still complete in layout.
+  // Cancelled before it starts: the sample build stops at once, and the file holds the spec and a
+  // summary saying so, with empty series and no snapshot (there is no sample to show).
   {
     RunControl control;
     control.cancel = true;
@@ -286,8 +287,10 @@ TEST(DynamicTensionOutput, CancelledRunLeavesAValidIncompleteFile) {
     io::Hdf5File f = io::Hdf5File::openReadOnly((dir / "early.h5").string());
     EXPECT_EQ(f.readAttributeInt("/summary", "completed"), 0);
     EXPECT_EQ(f.readAttributeInt("/", "completed"), 0);
-    EXPECT_TRUE(f.exists("/series/stress_mean"));
-    EXPECT_TRUE(f.exists("/snapshots/000000/position"));
+    EXPECT_TRUE(f.hasAttribute("/spec", "json"));
+    EXPECT_EQ(f.datasetDims("/series/stress_mean"), std::vector<std::size_t>{0});
+    EXPECT_TRUE(f.listGroup("/snapshots").empty());
+    EXPECT_FALSE(f.exists("/sample"));
   }
   // Cancelled from another thread in the middle of a run.
   {
