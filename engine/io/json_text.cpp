@@ -47,7 +47,12 @@ public:
   bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) {
     if (e.id == 406)  // number overflow: say which field, not just which bytes
       throw SpecError(path(), token.substr(0, 40), "a number within the range of a double (magnitude below 1.8e308)");
-    return m_dom.parse_error(position, token, e);  // rethrows e
+    // nlohmann's own DOM parser rethrows `e` by its static type (the base class); keep the real one
+    // so callers can catch json::parse_error.
+    (void)position;
+    if (const auto* parse = dynamic_cast<const Json::parse_error*>(&e)) throw *parse;
+    if (const auto* range = dynamic_cast<const Json::out_of_range*>(&e)) throw *range;
+    return m_dom.parse_error(position, token, e);
   }
 
 private:

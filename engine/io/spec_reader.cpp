@@ -161,7 +161,9 @@ std::vector<double> SpecReader::numbers(const std::string& key, std::size_t minL
 void SpecReader::finish() const {
   for (auto it = m_node.begin(); it != m_node.end(); ++it)
     if (!m_read.count(it.key()))
-      throw SpecError(pathOf(it.key()), describeValue(it.value()), "no such field here (unknown key)");
+      // An empty key would make an empty field name: show it as "" so the message points somewhere.
+      throw SpecError(pathOf(it.key().empty() ? "\"\"" : it.key()), describeValue(it.value()),
+                      "no such field here (unknown key)");
 }
 
 }  // namespace rupture::io
