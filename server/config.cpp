@@ -94,6 +94,50 @@ const std::vector<Option>& options() {
        intSetter(&ServerConfig::httpThreads, 1, 256)},
       {"log-requests", "RUPTURE_LOG_REQUESTS", "", "log one line per HTTP request on stderr", "off",
        [](ServerConfig& c, const std::string& v) { return parseBool(v, c.logRequests); }},
+      {"executor", "RUPTURE_EXECUTOR", "local|slurm",
+       "where runs execute: worker threads of this server, or one sbatch array per job on Slurm", "local",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         if (v != "local" && v != "slurm") return "'" + v + "' is not one of local, slurm";
+         c.executor = v;
+         return "";
+       }},
+      {"shared-dir", "RUPTURE_SHARED_DIR", "DIR",
+       "slurm: directory visible to the server and the compute nodes; holds jobs/ (run files) and cache/",
+       "(required with --executor slurm)",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         if (v.empty()) return "a directory is required";
+         c.sharedDir = v;
+         return "";
+       }},
+      {"slurm-partition", "RUPTURE_SLURM_PARTITION", "NAME", "slurm: sbatch --partition", "(cluster default)",
+       [](ServerConfig& c, const std::string& v) { c.slurmPartition = v; return std::string(); }},
+      {"slurm-account", "RUPTURE_SLURM_ACCOUNT", "NAME", "slurm: sbatch --account", "(none)",
+       [](ServerConfig& c, const std::string& v) { c.slurmAccount = v; return std::string(); }},
+      {"slurm-time", "RUPTURE_SLURM_TIME", "LIMIT", "slurm: sbatch --time per run, e.g. 2:00:00", "(partition default)",
+       [](ServerConfig& c, const std::string& v) { c.slurmTime = v; return std::string(); }},
+      {"slurm-cpus-per-run", "RUPTURE_SLURM_CPUS_PER_RUN", "N",
+       "slurm: sbatch --cpus-per-task, and the OpenMP threads of each run", "1",
+       intSetter(&ServerConfig::slurmCpusPerRun, 1, 1024)},
+      {"slurm-option", "RUPTURE_SLURM_OPTIONS", "OPTION",
+       "slurm: an extra #SBATCH line such as --qos=short; repeat the flag for more (the variable takes one "
+       "per line)",
+       "(none)",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         std::istringstream lines(v);
+         for (std::string line; std::getline(lines, line);) {
+           if (line.empty()) continue;
+           if (line.rfind("-", 0) != 0) return "'" + line + "' is not an sbatch option (it must start with -)";
+           c.slurmOptions.push_back(line);
+         }
+         return "";
+       }},
+      {"rupture-cli", "RUPTURE_CLI", "PATH",
+       "slurm: the rupture binary the batch script runs on the compute nodes", "(the one beside rupture-server)",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         if (v.empty()) return "a path is required";
+         c.ruptureCli = v;
+         return "";
+       }},
   };
   return table;
 }
@@ -163,6 +207,8 @@ ConfigResult parseConfig(const std::vector<std::string>& args, const EnvLookup& 
       return result;
     }
   }
+  if (result.config.executor == "slurm" && result.config.sharedDir.empty())
+    result.error = "--executor slurm needs --shared-dir (a directory the compute nodes see)";
   return result;
 }
 

@@ -22,6 +22,14 @@ struct ServerConfig {
   std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
   int httpThreads = 8;                    ///< threads answering HTTP requests
   bool logRequests = false;               ///< one line per request on stderr
+
+  // Where runs execute (server/executor.hpp).
+  std::string executor = "local";         ///< "local" (worker threads) or "slurm"
+  std::string sharedDir;                  ///< slurm: holds jobs/ and cache/, visible to the compute nodes
+  std::string slurmPartition, slurmAccount, slurmTime;  ///< sbatch --partition/--account/--time when set
+  int slurmCpusPerRun = 1;                ///< sbatch --cpus-per-task, and rupture run --threads
+  std::vector<std::string> slurmOptions;  ///< extra "#SBATCH" lines, e.g. "--qos=short"
+  std::string ruptureCli;                 ///< the `rupture` binary the batch script runs (default: beside the server)
 };
 
 /// Worker threads actually started: `workers` when set, otherwise max(1, cores / threadsPerRun).

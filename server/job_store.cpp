@@ -453,6 +453,28 @@ void JobStore::finishDismissed(RunKey key) {
   finishRun(key, Status::Dismissed, nullptr, &message, nullptr);
 }
 
+std::vector<int> JobStore::retryFailedRuns(std::int64_t jobId) {
+  std::lock_guard lock(m_mutex);
+  const std::string now = utcNow();
+  Transaction tx(m_db);
+  std::vector<int> indices;
+  {
+    Stmt q(m_db,
+           "SELECT r.idx FROM runs r JOIN jobs j ON j.id = r.job_id "
+           "WHERE r.job_id = ? AND r.status = 'failed' AND j.status != 'dismissed' ORDER BY r.idx");
+    q.bind(1, jobId);
+    while (q.step()) indices.push_back(static_cast<int>(q.i64(0)));
+  }
+  if (indices.empty()) return indices;
+  Stmt u(m_db,
+         "UPDATE runs SET status = 'accepted', progress = 0, error = NULL, started = NULL, finished = NULL, "
+         "updated = ? WHERE job_id = ? AND status = 'failed'");
+  u.bind(1, now).bind(2, jobId).run();
+  updateJobStatus(jobId, now);
+  tx.commit();
+  return indices;
+}
+
 void JobStore::requeueRun(RunKey key) {
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();

@@ -113,6 +113,9 @@ public:
   void finishDismissed(RunKey key);
   /// running -> accepted (the server is stopping; the run starts again on the next start).
   void requeueRun(RunKey key);
+  /// failed -> accepted for every failed run of a job that is not dismissed (POST /jobs/{id}/retry);
+  /// their errors are cleared. Returns the run indices, in order (empty: nothing to retry).
+  std::vector<int> retryFailedRuns(std::int64_t jobId);
 
   /// Cancels a job: its accepted runs become dismissed and the job `dismissed`. Jobs already
   /// successful or failed are left as they are. Returns the job after the change, or nullopt.

@@ -346,6 +346,7 @@ public:
     Json doc = Json::object();
     doc["status"] = m_ctx.stopping ? "stopping" : "ok";
     doc["version"] = RUPTURE_VERSION;
+    doc["executor"] = m_ctx.scheduler->name();
     doc["workers"] = m_ctx.scheduler->workers();
     doc["threads_per_run"] = m_ctx.scheduler->threadsPerRun();
     doc["running"] = m_ctx.store->runningCount();  // the store's view, as GET /jobs shows it
@@ -569,6 +570,27 @@ public:
     sendJson(res, statusInfo(*job, &runs));
   }
 
+  void retry(const Request& req, Response& res) {
+    requireToken(req);
+    const std::int64_t id = jobIdFrom(req);
+    if (!m_ctx.store->job(id)) throw noSuchJob(std::to_string(id));
+    const std::vector<int> indices = m_ctx.store->retryFailedRuns(id);
+    if (indices.empty()) {
+      const JobRecord job = *m_ctx.store->job(id);
+      throw ApiError(409, problem::kNothingToRetry, "Nothing to retry",
+                     "job " + std::to_string(id) + " has no failed run to retry (" + toString(job.status) + ": " +
+                         job.message + ")",
+                     "", Json{{"jobStatus", toString(job.status)}});
+    }
+    m_ctx.scheduler->resubmit(id, indices);
+    logLine("job " + std::to_string(id) + ": " + std::to_string(indices.size()) + " failed run(s) re-submitted");
+    auto job = m_ctx.store->job(id);
+    auto runs = m_ctx.store->runs(id);
+    Json doc = statusInfo(*job, &runs);
+    doc["retried_runs"] = indices;
+    sendJson(res, doc);
+  }
+
   void jobResults(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     if (job.runsAccepted + job.runsRunning > 0) {
@@ -583,7 +605,7 @@ public:
       throw ApiError(404, problem::kNoResults, "No results",
                      "job " + std::to_string(job.id) + " has no successful run (" + job.message + ")");
     }
-    const fs::path path = mergedResults(job, m_ctx.store->runs(job.id), m_ctx.dataDir);
+    const fs::path path = mergedResults(job, m_ctx.store->runs(job.id), m_ctx.resultsDir);
     sendFile(res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
   }
 
@@ -605,7 +627,7 @@ public:
   void runResults(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     const RunRecord run = finishedRun(req, job);
-    sendFile(res, m_ctx.dataDir / run.resultPath,
+    sendFile(res, m_ctx.resultsDir / run.resultPath,
              "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index) + ".h5");
   }
 
@@ -613,7 +635,7 @@ public:
     const JobRecord job = loadJob(req);
     const RunRecord run = finishedRun(req, job);
     const bool csv = wantsCsv(req);
-    SeriesTable table = readSeries(m_ctx.dataDir / run.resultPath, paramList(req, "names"));
+    SeriesTable table = readSeries(m_ctx.resultsDir / run.resultPath, paramList(req, "names"));
     if (csv) {
       res.set_content(seriesCsv(table), kCsvType);
       return;
@@ -793,6 +815,7 @@ void registerRoutes(httplib::Server& http, ServerContext& context) {
   http.Get("/jobs", wrap(&Api::jobs));
   http.Get("/jobs/" + id, wrap(&Api::job));
   http.Delete("/jobs/" + id, wrap(&Api::dismiss));
+  http.Post("/jobs/" + id + "/retry", wrap(&Api::retry));
   http.Get("/jobs/" + id + "/results", wrap(&Api::jobResults));
   http.Get("/jobs/" + id + "/runs", wrap(&Api::runsList));
   http.Get("/jobs/" + id + "/runs/" + id, wrap(&Api::run));
@@ -814,6 +837,7 @@ void registerRoutes(httplib::Server& http, ServerContext& context) {
       {"/jobs", {"GET"}},
       {"/jobs/" + id, {"GET", "DELETE"}},
       {"/jobs/" + id + "/results", {"GET"}},
+      {"/jobs/" + id + "/retry", {"POST"}},
       {"/jobs/" + id + "/runs", {"GET"}},
       {"/jobs/" + id + "/runs/" + id, {"GET"}},
       {"/jobs/" + id + "/runs/" + id + "/results", {"GET"}},

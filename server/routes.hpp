@@ -8,7 +8,7 @@
 
 #include "config.hpp"
 #include "job_store.hpp"
-#include "scheduler.hpp"
+#include "executor.hpp"
 
 namespace httplib {
 class Server;
@@ -19,9 +19,10 @@ namespace rupture::server {
 /// What the handlers need; owned by RuptureServer.
 struct ServerContext {
   ServerConfig config;
-  std::filesystem::path dataDir;
+  std::filesystem::path dataDir;     ///< the database (rupture.sqlite) and, locally, the run files
+  std::filesystem::path resultsDir;  ///< holds jobs/<id>/run-<k>.h5: dataDir, or --shared-dir with Slurm
   JobStore* store = nullptr;
-  Scheduler* scheduler = nullptr;
+  Executor* scheduler = nullptr;
   std::atomic<bool> stopping{false};
   std::chrono::steady_clock::time_point startedAt = std::chrono::steady_clock::now();
 };

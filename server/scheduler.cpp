@@ -116,6 +116,14 @@ void Scheduler::enqueue(std::int64_t jobId, int runs) {
   m_wake.notify_all();
 }
 
+void Scheduler::resubmit(std::int64_t jobId, const std::vector<int>& indices) {
+  {
+    std::lock_guard lock(m_mutex);
+    for (int k : indices) m_queue.push_back({jobId, k});
+  }
+  m_wake.notify_all();
+}
+
 std::optional<JobRecord> Scheduler::dismiss(std::int64_t jobId) {
   // Under m_mutex, so that a worker between "registered" and "started in the store" sees either the
   // store's dismissal (startRun fails) or the cancel flag.

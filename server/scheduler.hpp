@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "executor.hpp"
 #include "job_store.hpp"
 #include "rupture/run.hpp"
 
@@ -37,37 +38,41 @@ namespace rupture::server {
 using RunExecutor = std::function<rupture::RunOutcome(const nlohmann::json& spec, const std::string& resultPath,
                                                       rupture::RunControl& control, int threads)>;
 
-class Scheduler {
+/// The local executor.
+class Scheduler : public Executor {
 public:
   Scheduler(JobStore& store, std::filesystem::path dataDir, int workers, int threadsPerRun,
             RunExecutor executor = {});
-  ~Scheduler();
+  ~Scheduler() override;
   Scheduler(const Scheduler&) = delete;
   Scheduler& operator=(const Scheduler&) = delete;
 
   /// Repairs and re-queues what a crash left behind, queues every accepted run, starts the threads.
-  void start();
+  void start() override;
   /// Queues the runs 0..runs-1 of a new job.
-  void enqueue(std::int64_t jobId, int runs);
+  void enqueue(std::int64_t jobId, int runs) override;
+  /// Queues runs put back to accepted by a retry.
+  void resubmit(std::int64_t jobId, const std::vector<int>& indices) override;
   /// Cancels a job: queued runs never start, running ones are told to stop (within a second).
   /// Returns the job after the change, or nullopt when there is no such job.
-  std::optional<JobRecord> dismiss(std::int64_t jobId);
+  std::optional<JobRecord> dismiss(std::int64_t jobId) override;
   /// Stops the workers: running runs are cancelled and re-queued for the next start. Idempotent.
-  void shutdown();
+  void shutdown() override;
   /// Free bytes the data directory must keep for a run to start (0: no floor). Call before start().
   void setMinFreeBytes(std::uintmax_t bytes) { m_minFreeBytes = bytes; }
   /// True while queued runs wait for disk space.
-  bool waitingForDisk() const { return m_waitingForDisk.load(); }
+  bool waitingForDisk() const override { return m_waitingForDisk.load(); }
   /// Outcomes finished on disk that the store has not taken yet (retried every second).
-  int unrecordedOutcomes() const;
+  int unrecordedOutcomes() const override;
 
-  int workers() const { return m_workerCount; }
-  int threadsPerRun() const { return m_threadsPerRun; }
+  const char* name() const override { return "local"; }
+  int workers() const override { return m_workerCount; }
+  int threadsPerRun() const override { return m_threadsPerRun; }
   int running() const;
 
   /// <data-dir>/jobs/<id>/run-<k>.h5
   std::filesystem::path runFile(RunKey key) const;
-  std::filesystem::path jobDir(std::int64_t jobId) const;
+  std::filesystem::path jobDir(std::int64_t jobId) const override;
 
 private:
   /// How a run ended, to be written to the store.

@@ -6,17 +6,49 @@
 #include <httplib.h>
 
 #include "log.hpp"
+#include "scheduler.hpp"
+#include "slurm_executor.hpp"
 
 namespace rupture::server {
+namespace {
+
+/// The `rupture` CLI the Slurm batch scripts run: installed beside rupture-server, or in the build
+/// tree (build/server/rupture-server, build/engine/rupture), else whatever PATH finds.
+std::string defaultRuptureCli() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (const auto& candidate : {self.parent_path() / "rupture", self.parent_path().parent_path() / "engine" / "rupture"})
+      if (std::filesystem::exists(candidate)) return candidate.string();
+  }
+  return "rupture";
+}
+
+}  // namespace
 
 RuptureServer::RuptureServer(ServerConfig config) {
   m_context.config = std::move(config);
   m_context.dataDir = std::filesystem::absolute(m_context.config.dataDir);
   std::filesystem::create_directories(m_context.dataDir / "jobs");
   m_store = std::make_unique<JobStore>((m_context.dataDir / "rupture.sqlite").string());
-  m_scheduler = std::make_unique<Scheduler>(*m_store, m_context.dataDir, effectiveWorkers(m_context.config),
-                                            m_context.config.threadsPerRun);
-  m_scheduler->setMinFreeBytes(static_cast<std::uintmax_t>(m_context.config.minFreeBytes));
+  if (m_context.config.executor == "slurm") {
+    SlurmSettings slurm;
+    slurm.sharedDir = std::filesystem::absolute(m_context.config.sharedDir);
+    slurm.partition = m_context.config.slurmPartition;
+    slurm.account = m_context.config.slurmAccount;
+    slurm.time = m_context.config.slurmTime;
+    slurm.cpusPerRun = m_context.config.slurmCpusPerRun;
+    slurm.options = m_context.config.slurmOptions;
+    slurm.cli = m_context.config.ruptureCli.empty() ? defaultRuptureCli() : m_context.config.ruptureCli;
+    m_context.resultsDir = slurm.sharedDir;
+    m_scheduler = std::make_unique<SlurmExecutor>(*m_store, std::move(slurm));
+  } else {
+    auto local = std::make_unique<Scheduler>(*m_store, m_context.dataDir, effectiveWorkers(m_context.config),
+                                             m_context.config.threadsPerRun);
+    local->setMinFreeBytes(static_cast<std::uintmax_t>(m_context.config.minFreeBytes));
+    m_context.resultsDir = m_context.dataDir;
+    m_scheduler = std::move(local);
+  }
   m_context.store = m_store.get();
   m_context.scheduler = m_scheduler.get();
 

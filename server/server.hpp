@@ -42,7 +42,7 @@ public:
 private:
   ServerContext m_context;
   std::unique_ptr<JobStore> m_store;
-  std::unique_ptr<Scheduler> m_scheduler;
+  std::unique_ptr<Executor> m_scheduler;
   std::unique_ptr<httplib::Server> m_http;
   std::thread m_background;
   std::atomic<bool> m_stopRequested{false};

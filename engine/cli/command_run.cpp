@@ -1,11 +1,12 @@
-// rupture run SPEC.json -o RUN.h5 [--threads N]
+// rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE]
 //
 // Validates the spec (exit 2 naming the field), runs it on a worker thread through rupture::runSpec
 // while this thread shows the progress on stderr (a bar with an ETA on a terminal, a plain line at
 // most every 10 s otherwise), writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary
-// as JSON on stdout. Ctrl-C (SIGINT) asks the run to stop: the file is still written, marked
-// incomplete (/summary completed = 0), the summary is printed and the exit code is 130. A second
-// Ctrl-C kills the process at once.
+// as JSON on stdout. Ctrl-C (SIGINT) or SIGTERM (what Slurm's scancel sends) asks the run to stop:
+// the file is still written, marked incomplete (/summary completed = 0), the summary is printed and
+// the exit code is 130. A second signal kills the process at once. --progress-file keeps a small
+// JSON file up to date (about once a second), for watchers on other machines (the Slurm executor).
 #include <omp.h>
 #include <signal.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <thread>
@@ -49,15 +51,48 @@ public:
     action.sa_handler = onInterrupt;
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &action, &m_previous);
+    sigaction(SIGINT, &action, &m_previousInt);
+    sigaction(SIGTERM, &action, &m_previousTerm);
   }
   ~InterruptGuard() {
-    sigaction(SIGINT, &m_previous, nullptr);
+    sigaction(SIGINT, &m_previousInt, nullptr);
+    sigaction(SIGTERM, &m_previousTerm, nullptr);
     g_cancel = nullptr;
   }
 
 private:
-  struct sigaction m_previous {};
+  struct sigaction m_previousInt {}, m_previousTerm {};
+};
+
+/// {"progress": 0.42, "stage": "...", "elapsed_s": 12.3, "completed": false} written to a temporary
+/// name and renamed, so a reader on another node sees a whole document or the previous one.
+class ProgressFile {
+public:
+  explicit ProgressFile(std::string path) : m_path(std::move(path)), m_start(std::chrono::steady_clock::now()) {}
+  void stage(const std::string& text) {
+    std::lock_guard lock(m_mutex);
+    m_stage = text;
+  }
+  void write(double fraction, bool finished = false) {
+    if (m_path.empty()) return;
+    std::lock_guard lock(m_mutex);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    const nlohmann::json doc = {{"progress", fraction}, {"stage", m_stage}, {"elapsed_s", elapsed}, {"finished", finished}};
+    const std::string temporary = m_path + ".tmp";
+    {
+      std::ofstream out(temporary, std::ios::trunc);
+      out << doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+      if (!out) return;  // a watcher's convenience: never a reason to fail the run
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, m_path, ec);
+  }
+
+private:
+  std::string m_path;
+  std::chrono::steady_clock::time_point m_start;
+  std::mutex m_mutex;
+  std::string m_stage;
 };
 
 std::string sidecarPath(const std::string& h5Path) {
@@ -127,21 +162,23 @@ private:
 }  // namespace
 
 int runCommand(const Args& args) {
-  constexpr const char* usage = "run: usage: rupture run SPEC.json -o RUN.h5 [--threads N]";
-  std::string specPath, output;
+  constexpr const char* usage = "run: usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE]";
+  std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
-    if (a == "-o" || a == "--output" || a == "--threads") {
+    if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file") {
       if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; " + usage);
       if (a == "--threads") {
         if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
+      } else if (a == "--progress-file") {
+        progressPath = args[k + 1];
       } else {
         output = args[k + 1];
       }
       ++k;
     } else if (!a.empty() && a[0] == '-') {
-      return usageError("run: unknown option '" + a + "'; allowed: -o/--output, --threads");
+      return usageError("run: unknown option '" + a + "'; allowed: -o/--output, --threads, --progress-file");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
@@ -161,7 +198,11 @@ int runCommand(const Args& args) {
 
   RunControl control;
   ProgressView view(::isatty(STDERR_FILENO) == 1);
-  control.log = [&view](const std::string& text) { view.message(text); };
+  ProgressFile progressFile(progressPath);
+  control.log = [&view, &progressFile](const std::string& text) {
+    view.message(text);
+    progressFile.stage(text);
+  };
   RunOutcome outcome;
   std::exception_ptr failure;
   std::atomic<bool> finished{false};
@@ -176,8 +217,13 @@ int runCommand(const Args& args) {
       finished.store(true);
     });
     bool noticed = false;
+    auto lastProgressWrite = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     while (!finished.load()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      if (std::chrono::steady_clock::now() - lastProgressWrite >= std::chrono::seconds(1)) {
+        lastProgressWrite = std::chrono::steady_clock::now();
+        progressFile.write(control.progress.load());
+      }
       if (control.cancel.load() && !noticed) {
         noticed = true;
         view.message("interrupted: stopping and writing an incomplete result file (Ctrl-C again to kill)");
@@ -188,6 +234,7 @@ int runCommand(const Args& args) {
   }
   if (!failure) view.update(control.progress.load(), true);
   view.close();
+  progressFile.write(control.progress.load(), true);
 
   if (failure) {
     try {

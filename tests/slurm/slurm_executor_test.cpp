@@ -1,0 +1,160 @@
+// The Slurm executor against a real one-node Slurm (deploy/slurm/test-cluster.sh; ctest label
+// "slurm"; skipped with a message where no cluster answers): the same sweep gives the same results
+// as the local executor, DELETE cancels the cluster's runs, a run killed by scancel from outside is
+// failed with Slurm's reason and can be retried, and a restarted server re-attaches to the runs in
+// the queue instead of submitting them twice.
+#include <chrono>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "command.hpp"
+#include "files.hpp"
+#include "server_test_support.hpp"
+
+namespace rupture::server {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
+
+bool clusterAvailable(std::string& why) {
+  const CommandResult r = runCommand({"sinfo", "-h", "-o", "%T"}, std::chrono::seconds(10));
+  if (r.ok() && !r.output.empty()) return true;
+  why = "no Slurm cluster answers (start one with deploy/slurm/test-cluster.sh and export SLURM_CONF): " + r.error;
+  return false;
+}
+
+#define REQUIRE_CLUSTER()                                     \
+  do {                                                        \
+    std::string why;                                          \
+    if (!clusterAvailable(why)) GTEST_SKIP() << why;          \
+    if (!test::scenarioAvailable()) GTEST_SKIP() << "no scenario"; \
+  } while (0)
+
+std::function<void(ServerConfig&)> slurmConfig(const fs::path& shared) {
+  return [shared](ServerConfig& c) {
+    c.executor = "slurm";
+    c.sharedDir = shared.string();
+  };
+}
+
+std::string arrayOf(const fs::path& shared, std::int64_t job, int run) {
+  auto text = readFile(shared / "jobs" / std::to_string(job) / ("run-" + std::to_string(run) + ".slurm"));
+  return text ? text->substr(0, text->find('\n')) : "";
+}
+
+bool inQueue(const std::string& array) {
+  const CommandResult r = runCommand({"squeue", "-h", "-j", array, "-o", "%i"});
+  return r.ok() && !r.output.empty();
+}
+
+Json summaryRows(httplib::Client& client, std::int64_t job) {
+  Json rows = test::getJson(client, "/jobs/" + std::to_string(job) + "/summary")["rows"];
+  for (Json& row : rows) row.erase("wall_time_s");  // the only value that depends on the machine's load
+  return rows;
+}
+
+TEST(SlurmExecutor, SameSweepSameResultsAsTheLocalExecutor) {
+  REQUIRE_CLUSTER();
+  const Json body = {{"inputs", test::smallInputs()}, {"sweep", {{"loading.strain_rate", test::twoStrainRates()}}}};
+  Json local, cluster;
+  {
+    test::LiveServer server;
+    auto client = server.client();
+    const auto id = test::submit(*client, body);
+    ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
+    local = summaryRows(*client, id);
+  }
+  test::TempDir shared;
+  test::LiveServer server(slurmConfig(shared.path()));
+  auto client = server.client();
+  EXPECT_EQ(test::getJson(*client, "/health")["executor"], "slurm");
+  const auto id = test::submit(*client, body);
+  const Json done = test::waitForJob(*client, id, {"successful", "failed"}, 120);
+  ASSERT_EQ(done["status"], "successful") << done.dump();
+  cluster = summaryRows(*client, id);
+  ASSERT_EQ(local.size(), 2u);
+  EXPECT_EQ(cluster, local) << "the same specs give the same numbers on the cluster";
+  // The run files are served from the shared directory like local ones.
+  auto file = client->Get(("/jobs/" + std::to_string(id) + "/runs/0/results").c_str());
+  ASSERT_TRUE(file);
+  EXPECT_EQ(file->status, 200);
+  EXPECT_EQ(file->body.substr(1, 3), "HDF");
+  EXPECT_TRUE(fs::exists(shared.path() / "jobs" / std::to_string(id) / "run-1.h5"));
+}
+
+TEST(SlurmExecutor, DeleteCancelsTheClusterRuns) {
+  REQUIRE_CLUSTER();
+  test::TempDir shared;
+  test::LiveServer server(slurmConfig(shared.path()));
+  auto client = server.client();
+  Json inputs = test::smallInputs();
+  const auto knob = test::runLengthKnob();
+  const auto id = test::submit(*client, Json{{"inputs", inputs}, {"sweep", {{knob.path, {knob.slow}}}}});
+  ASSERT_TRUE(test::waitFor([&] { return test::getJson(*client, "/jobs/" + std::to_string(id))["status"] == "running"; }, 60));
+  const std::string array = arrayOf(shared.path(), id, 0);
+  ASSERT_FALSE(array.empty());
+  auto res = client->Delete(("/jobs/" + std::to_string(id)).c_str());
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200) << res->body;
+  EXPECT_EQ(test::getJson(*client, "/jobs/" + std::to_string(id))["status"], "dismissed");
+  EXPECT_TRUE(test::waitFor([&] { return !inQueue(array); }, 30)) << "scancel took the runs off the cluster";
+}
+
+TEST(SlurmExecutor, ARunKilledFromOutsideFailsWithTheReasonAndCanBeRetried) {
+  REQUIRE_CLUSTER();
+  test::TempDir shared;
+  test::LiveServer server(slurmConfig(shared.path()));
+  auto client = server.client();
+  const auto knob = test::runLengthKnob();
+  // A run of a few seconds, cancelled by hand as soon as it runs.
+  const auto id = test::submit(*client, Json{{"inputs", test::smallInputs()}, {"sweep", {{knob.path, {knob.medium}}}}});
+  ASSERT_TRUE(test::waitFor([&] { return test::getJson(*client, "/jobs/" + std::to_string(id))["status"] == "running"; }, 60));
+  const std::string array = arrayOf(shared.path(), id, 0);
+  ASSERT_TRUE(runCommand({"scancel", array + "_0"}).ok());
+  const Json failed = test::waitForJob(*client, id, {"failed", "successful"}, 60);
+  ASSERT_EQ(failed["status"], "failed") << failed.dump();
+  const Json run = test::getJson(*client, "/jobs/" + std::to_string(id) + "/runs/0");
+  EXPECT_NE(run["error"].get<std::string>().find("CANCELLED"), std::string::npos) << run.dump();
+
+  // Retry: the failed run goes back to the cluster as a new submission and succeeds.
+  auto retried = client->Post(("/jobs/" + std::to_string(id) + "/retry").c_str(), "", "application/json");
+  ASSERT_TRUE(retried);
+  EXPECT_EQ(retried->status, 200) << retried->body;
+  EXPECT_EQ(test::parseJson(retried->body)["retried_runs"], Json::array({0}));
+  const Json again = test::waitForJob(*client, id, {"failed", "successful"}, 300);
+  EXPECT_EQ(again["status"], "successful") << again.dump();
+  EXPECT_NE(arrayOf(shared.path(), id, 0), array) << "a new submission";
+  // Nothing left to retry.
+  auto none = client->Post(("/jobs/" + std::to_string(id) + "/retry").c_str(), "", "application/json");
+  test::expectProblem(none, 409);
+}
+
+TEST(SlurmExecutor, ARestartedServerReattachesInsteadOfSubmittingAgain) {
+  REQUIRE_CLUSTER();
+  test::TempDir data, shared;
+  const auto knob = test::runLengthKnob();
+  std::int64_t id = -1;
+  std::string array;
+  {
+    test::LiveServer server(slurmConfig(shared.path()), data.path());
+    auto client = server.client();
+    id = test::submit(*client, Json{{"inputs", test::smallInputs()}, {"sweep", {{knob.path, {knob.medium, knob.quick}}}}});
+    ASSERT_TRUE(test::waitFor([&] { return !arrayOf(shared.path(), id, 1).empty(); }, 30));
+    array = arrayOf(shared.path(), id, 0);
+  }  // the server stops; the cluster's runs go on
+  test::LiveServer server(slurmConfig(shared.path()), data.path());
+  auto client = server.client();
+  const Json done = test::waitForJob(*client, id, {"successful", "failed"}, 300);
+  EXPECT_EQ(done["status"], "successful") << done.dump();
+  EXPECT_EQ(arrayOf(shared.path(), id, 0), array);
+  EXPECT_EQ(arrayOf(shared.path(), id, 1), array);
+  std::size_t submissions = 0;
+  for (const auto& e : fs::directory_iterator(shared.path() / "jobs" / std::to_string(id) / "slurm"))
+    submissions += e.path().extension() == ".sbatch";
+  EXPECT_EQ(submissions, 1u);
+}
+
+}  // namespace
+}  // namespace rupture::server
