@@ -47,6 +47,9 @@ public:
   std::optional<JobRecord> dismiss(std::int64_t jobId);
   /// Stops the workers: running runs are cancelled and re-queued for the next start. Idempotent.
   void shutdown();
+  /// The first half of shutdown(), without waiting: no run starts from now on and running runs are
+  /// told to stop (they are re-queued as they end). shutdown() then waits for them.
+  void requestStop();
 
   int workers() const { return m_workerCount; }
   int threadsPerRun() const { return m_threadsPerRun; }
