@@ -116,6 +116,11 @@ int RuptureServer::startInBackground() {
   return port;
 }
 
+void RuptureServer::stopAcceptingWork() {
+  m_context.stopping = true;
+  m_scheduler->requestStop();
+}
+
 void RuptureServer::stop() {
   if (m_stopped.exchange(true)) {
     if (m_background.joinable() && m_background.get_id() != std::this_thread::get_id()) m_background.join();
@@ -124,8 +129,7 @@ void RuptureServer::stop() {
   const auto t0 = std::chrono::steady_clock::now();
   m_stopRequested = true;
   // 1. The scheduler: no run starts from now on, running runs are told to stop; POSTs get 503.
-  m_context.stopping = true;
-  m_scheduler->requestStop();
+  stopAcceptingWork();
   // 2. The HTTP side. cpp-httplib's stop() is a no-op until listen() is running: keep asking while
   //    listen() is active. listen() returns once the connection hub has closed every connection.
   while (m_inListen) {

@@ -36,8 +36,13 @@ public:
   /// connections are closed at once, responses in flight get up to a second), then waits for the
   /// runs to end. Blocks until all of that is done.
   void stop();
+  /// The first step of stop(), on its own: from now on no run starts, running runs are cancelled
+  /// and re-queued, and submissions get 503, while the HTTP side keeps answering. Idempotent.
+  void stopAcceptingWork();
 
   int port() const { return m_port; }
+  /// HTTP connections open now (idle, being read or being answered).
+  int openConnections() const { return m_http->openConnections(); }
   const ServerConfig& config() const { return m_context.config; }
 
 private:
