@@ -7,6 +7,8 @@
 
 #include <netinet/in.h>
 
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "io/spec_reader.hpp"
@@ -363,6 +365,35 @@ TEST(HttpHardening, PublicMessagesNameNoServerPathsOrAddresses) {
   // Units, ratios and short hex stay as they are.
   EXPECT_EQ(publicMessage("strain rate 1e6 1/s, m/s, flags 0x1f"), "strain rate 1e6 1/s, m/s, flags 0x1f");
   EXPECT_TRUE(isValidUtf8(publicMessage("bad \xFF byte")));
+}
+
+TEST(HttpHardening, BoundaryOptionsAsFlagsAndVariables) {
+  const std::map<std::string, std::string> env = {{"RUPTURE_REQUEST_TIMEOUT", "2.5"},
+                                                  {"RUPTURE_ALLOW_ORIGIN", "https://a.example, https://b.example"},
+                                                  {"RUPTURE_READ_TOKEN", "r"},
+                                                  {"RUPTURE_MAX_CONNECTIONS_PER_CLIENT", "9"}};
+  const EnvLookup lookup = [&](const std::string& name) -> std::optional<std::string> {
+    auto it = env.find(name);
+    return it == env.end() ? std::nullopt : std::optional<std::string>(it->second);
+  };
+  ConfigResult r = parseConfig({"--public-host", "rupture.example.org", "--max-connections=100"}, lookup);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_DOUBLE_EQ(r.config.requestTimeout, 2.5);
+  EXPECT_EQ(r.config.allowOrigins, (std::vector<std::string>{"https://a.example", "https://b.example"}));
+  EXPECT_EQ(r.config.publicHosts, std::vector<std::string>{"rupture.example.org"});
+  EXPECT_EQ(r.config.readToken, "r");
+  EXPECT_EQ(r.config.maxConnections, 100);
+  EXPECT_EQ(r.config.maxConnectionsPerClient, 9);
+  for (const char* bad : {"0", "-1", "ten", "1e9"}) {
+    ConfigResult e = parseConfig({"--request-timeout", bad}, [](const std::string&) { return std::nullopt; });
+    EXPECT_NE(e.error.find("--request-timeout"), std::string::npos) << bad;
+  }
+  EXPECT_NE(parseConfig({"--max-connections", "5000"}, [](const std::string&) { return std::nullopt; }).error.find("900"),
+            std::string::npos);
+  for (const char* flag : {"--request-timeout", "--max-connections", "--max-connections-per-client",
+                           "--allow-origin", "--public-host", "--read-token"}) {
+    EXPECT_NE(helpText().find(flag), std::string::npos) << flag;
+  }
 }
 
 // -- item 9: a second server on a busy port or on the same data directory ---------------------
