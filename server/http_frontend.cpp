@@ -68,8 +68,6 @@ bool equalsNoCase(std::string_view a, std::string_view b) {
          });
 }
 
-}  // namespace
-
 /// One client connection. Owned by exactly one thread at a time: the poller while idle or
 /// reading, a handler thread while its request is answered.
 struct Connection {
@@ -95,8 +93,6 @@ struct Framing {
   int status = 0;              // Reject
   std::string detail;          // Reject
 };
-
-namespace {
 
 /// Frames the request at the front of `in` the way cpp-httplib reads it: a request line, header
 /// lines ending in CRLF (others are skipped), an empty CRLF line, then Content-Length bytes.
@@ -433,6 +429,16 @@ private:
           continue;
         }
         if (n > 0) {
+          // Requests still arriving share one memory budget, so that many slow bodies cannot
+          // exhaust memory (each may be up to maxBodyBytes).
+          std::size_t buffered = static_cast<std::size_t>(n);
+          for (const auto& other : open) buffered += other ? other->in.size() : 0;
+          if (buffered > m_limits.maxBufferedBytes) {
+            sendNow(c->fd, rawProblem(503, "the server is receiving too many request bodies at once; try again"));
+            closeConnection(*c);
+            c.reset();
+            continue;
+          }
           c->in.append(buffer, static_cast<std::size_t>(n));
           if (!advance(c)) c.reset();
         }

@@ -29,6 +29,7 @@ struct FrontendLimits {
   std::chrono::milliseconds stopGrace{1'000};         ///< how long stop() lets responses in flight finish
   std::size_t maxHeadBytes = 64 * 1024;               ///< request line + headers (431 above)
   std::size_t maxBodyBytes = 1 << 20;                 ///< larger bodies are answered 413 unread
+  std::size_t maxBufferedBytes = 256u << 20;          ///< requests being received, all together (503 above)
   int handlerThreads = 8;                             ///< threads running handlers
   int maxConnections = 512;                           ///< open connections in all (503 above)
   int maxConnectionsPerClient = 64;                   ///< open connections from one address (503 above)

@@ -68,6 +68,7 @@ RuptureServer::RuptureServer(ServerConfig config) {
   limits.requestTimeout = std::chrono::milliseconds(static_cast<long long>(c.requestTimeout * 1000));
   limits.keepAliveTimeout = std::min(limits.keepAliveTimeout, std::max(limits.requestTimeout, std::chrono::milliseconds(1000)));
   limits.maxBodyBytes = c.maxRequestBytes;
+  limits.maxBufferedBytes = std::max<std::size_t>(limits.maxBufferedBytes, 4 * (c.maxRequestBytes + limits.maxHeadBytes));
   limits.handlerThreads = c.httpThreads;
   limits.maxConnections = c.maxConnections;
   limits.maxConnectionsPerClient = c.maxConnectionsPerClient;
@@ -139,8 +140,10 @@ void RuptureServer::stop() {
   if (m_background.joinable()) m_background.join();
   // 3. Wait for the cancelled runs to record themselves as re-queued.
   m_scheduler->shutdown();
-  logLine("stopped after " +
-          std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+  if (m_port > 0) {
+    logLine("stopped after " +
+            std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+  }
 }
 
 }  // namespace rupture::server
