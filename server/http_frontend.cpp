@@ -422,25 +422,12 @@ private:
       for (std::size_t i = 1; i < fds.size(); ++i) {
         if (fds[i].revents == 0) continue;
         std::unique_ptr<Connection>& c = open[i - 1];
-        const ssize_t n = ::recv(c->fd, buffer, sizeof buffer, MSG_DONTWAIT);
-        if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
-          closeConnection(*c);
+        try {
+          receive(c, open, buffer, sizeof buffer);
+        } catch (const std::exception& e) {  // out of memory: this connection ends, the server goes on
+          logLine(std::string("http: dropping a connection: ") + e.what());
+          if (c) closeConnection(*c);
           c.reset();
-          continue;
-        }
-        if (n > 0) {
-          // Requests still arriving share one memory budget, so that many slow bodies cannot
-          // exhaust memory (each may be up to maxBodyBytes).
-          std::size_t buffered = static_cast<std::size_t>(n);
-          for (const auto& other : open) buffered += other ? other->in.size() : 0;
-          if (buffered > m_limits.maxBufferedBytes) {
-            sendNow(c->fd, rawProblem(503, "the server is receiving too many request bodies at once; try again"));
-            closeConnection(*c);
-            c.reset();
-            continue;
-          }
-          c->in.append(buffer, static_cast<std::size_t>(n));
-          if (!advance(c)) c.reset();
         }
       }
       std::erase_if(open, [](const std::unique_ptr<Connection>& c) { return !c || c->fd < 0; });
@@ -452,6 +439,30 @@ private:
     }
     for (auto& c : m_incomingConnections) closeConnectionLocked(*c);
     m_incomingConnections.clear();
+  }
+
+  /// Reads what `c` has sent and frames it; `c` is reset when the connection ended or moved on.
+  void receive(std::unique_ptr<Connection>& c, const std::vector<std::unique_ptr<Connection>>& open, char* buffer,
+               std::size_t capacity) {
+    const ssize_t n = ::recv(c->fd, buffer, capacity, MSG_DONTWAIT);
+    if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      closeConnection(*c);
+      c.reset();
+      return;
+    }
+    if (n < 0) return;
+    // Requests still arriving share one memory budget, so that many slow bodies cannot exhaust
+    // memory (each may be up to maxBodyBytes).
+    std::size_t buffered = static_cast<std::size_t>(n);
+    for (const auto& other : open) buffered += other ? other->in.size() : 0;
+    if (buffered > m_limits.maxBufferedBytes) {
+      sendNow(c->fd, rawProblem(503, "the server is receiving too many request bodies at once; try again"));
+      closeConnection(*c);
+      c.reset();
+      return;
+    }
+    c->in.append(buffer, static_cast<std::size_t>(n));
+    if (!advance(c)) c.reset();
   }
 
   void handlerLoop() {
@@ -565,7 +576,12 @@ HttpFrontend::~HttpFrontend() { m_hub->stop(); }
 int HttpFrontend::openConnections() const { return m_hub->openConnections(); }
 
 bool HttpFrontend::process_and_close_socket(socket_t sock) {
-  m_hub->adopt(sock);
+  try {
+    m_hub->adopt(sock);  // on the listening thread: nothing may escape into cpp-httplib's accept loop
+  } catch (const std::exception& e) {
+    ::close(sock);
+    logLine(std::string("http: cannot take a connection: ") + e.what());
+  }
   return true;
 }
 
