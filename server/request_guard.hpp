@@ -5,7 +5,7 @@
 //      so a DNS-rebinding page (evil.example resolving to 127.0.0.1) is refused;
 //   3. with --read-token, a bearer token on every route but /health (401);
 //   4. on mutating methods, Origin is this server's own or listed in --allow-origin (403), and a
-//      body is application/json (415): together they stop a web page from submitting jobs.
+//      POST body is application/json (415): together they stop a web page from submitting jobs.
 #include <optional>
 #include <string>
 
