@@ -909,18 +909,21 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
   }
 
   // Before the body is read: the request guard (UTF-8, Host, read token, Origin, Content-Type), then
-  // bodies cpp-httplib 0.11.4 would mishandle: chunked uploads escape its body-size limit (411), and a
-  // POST without Content-Length would be read until the client closes (411).
+  // bodies without a length: chunked uploads escape cpp-httplib 0.11.4's body-size limit, and a POST
+  // without Content-Length has no body by HTTP's framing rules (both 411).
   http.set_pre_routing_handler([&context](const Request& req, Response& res) {
     try {
       if (auto error = checkRequest(req, context.config)) {
         sendProblem(req, res, *error);
         return httplib::Server::HandlerResponse::Handled;
       }
-      if (req.has_header("Transfer-Encoding") ||
-          (req.method == "POST" && !req.has_header("Content-Length"))) {
+      if (req.has_header("Transfer-Encoding")) {
         res.set_header("Connection", "close");
         sendProblem(req, res, problemForStatus(411));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      if (req.method == "POST" && !req.has_header("Content-Length")) {
+        sendProblem(req, res, problemForStatus(411, "a POST needs a Content-Length header (the body's size in bytes)"));
         return httplib::Server::HandlerResponse::Handled;
       }
     } catch (const std::exception& e) {

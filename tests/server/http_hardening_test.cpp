@@ -429,6 +429,41 @@ TEST(HttpHardening, BodiesWithNulBytesOrEmptyKeysAreRejected) {
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 0);
 }
 
+TEST(HttpHardening, RequestFramingEdgeCases) {
+  LiveServer live;
+  // A POST without Content-Length has no body: 411, not a wait for the client to close.
+  const std::string noLength = test::rawExchange(
+      live.port(), "POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n\r\n");
+  EXPECT_EQ(test::rawStatus(noLength), 411) << noLength;
+  // Expect: 100-continue is answered before the body is sent.
+  RawConnection expect(live.port());
+  ASSERT_TRUE(expect.send("POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+                          "Content-Length: 2\r\nExpect: 100-continue\r\nConnection: close\r\n\r\n"));
+  std::string interim;
+  ASSERT_TRUE(test::waitFor([&] {
+    interim += expect.readUntilClosed(0.05);
+    return interim.find("100 Continue") != std::string::npos;
+  }, 5)) << interim;
+  ASSERT_TRUE(expect.send("{}"));
+  const std::string final = expect.readUntilClosed(5);
+  EXPECT_NE(final.find("HTTP/1.1 400"), std::string::npos) << final;  // {} lacks "inputs"
+  // Pipelined requests on one connection are answered in order.
+  RawConnection pipelined(live.port());
+  ASSERT_TRUE(pipelined.send("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"
+                             "GET /jobs/7 HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n"));
+  const std::string both = pipelined.readUntilClosed(5);
+  const std::size_t first = both.find("HTTP/1.1 200"), second = both.find("HTTP/1.1 404");
+  EXPECT_NE(first, std::string::npos) << both;
+  EXPECT_NE(second, std::string::npos) << both;
+  EXPECT_LT(first, second);
+  // A head larger than 64 KiB: 431.
+  const std::string huge = test::rawExchange(
+      live.port(), "GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n" + std::string(70 * 1024, 'X'));
+  EXPECT_EQ(test::rawStatus(huge), 431) << huge.substr(0, 200);
+  auto client = live.client();
+  expectStillServing(*client);
+}
+
 TEST(HttpHardening, CsvTextCellsCannotBeFormulas) {
   EXPECT_EQ(csvTextCell("=HYPERLINK(\"http://x\")"), "\"'=HYPERLINK(\"\"http://x\"\")\"");
   EXPECT_EQ(csvTextCell("+cmd"), "'+cmd");
