@@ -3,7 +3,7 @@
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-PACKAGES=(build-essential cmake pkg-config curl
+PACKAGES=(build-essential cmake pkg-config curl python3 python3-yaml
           libeigen3-dev libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev
           libhdf5-dev hdf5-tools libgtest-dev libgmock-dev)
 missing=()

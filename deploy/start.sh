@@ -10,13 +10,16 @@ bash deploy/setup.sh
 bash deploy/build.sh
 PORT="${RUPTURE_PORT:-8080}"
 DATA="${RUPTURE_DATA_DIR:-data}"
-./build/server/rupture-server --data-dir "$DATA" --port "$PORT" &
-server=$!
+# Its first stdout line says it listens; a busy port or a data directory another server holds
+# ends it at once with the reason on stderr (and then nothing is submitted to that other server).
+coproc SERVER { exec ./build/server/rupture-server --data-dir "$DATA" --port "$PORT"; }
+server=$SERVER_PID
 trap 'kill -TERM "$server" 2>/dev/null; wait "$server"' INT TERM
-for _ in $(seq 1 100); do
-  curl -sf "http://127.0.0.1:$PORT/health" >/dev/null && break
-  sleep 0.1
-done
+if ! read -r listening <&"${SERVER[0]}"; then
+  echo "== rupture-server did not start (the reason is above)" >&2
+  exit 1
+fi
+echo "== $listening"
 echo "== submitting the example sweep (examples/sweep-small.json)"
 response=$(curl -sS -D - --json @examples/sweep-small.json "http://127.0.0.1:$PORT/processes/dynamic-tension/execution")
 echo "$response"

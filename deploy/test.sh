@@ -1,8 +1,17 @@
 #!/usr/bin/env bash
-# The README's test command: install dependencies, build, run every test with ctest.
+# The README's test command: install dependencies, build, start a one-node Slurm cluster for the
+# Slurm executor's tests (deploy/slurm/test-cluster.sh; its tests skip if it cannot start), run
+# every test with ctest, stop the cluster.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/setup.sh
 bash deploy/build.sh
+slurm_dir="$PWD/build/slurm-test-cluster"
+if bash deploy/slurm/test-cluster.sh start "$slurm_dir"; then
+  export SLURM_CONF="$slurm_dir/slurm.conf"
+  trap 'bash deploy/slurm/test-cluster.sh stop "$slurm_dir"' EXIT
+else
+  echo "no Slurm test cluster: the tests labelled slurm will be skipped" >&2
+fi
 cd build
 ctest --output-on-failure --timeout 900 -j"$(nproc)"

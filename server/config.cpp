@@ -19,6 +19,12 @@ struct Option {
   std::function<std::string(ServerConfig&, const std::string&)> set;  // returns an error or ""
 };
 
+std::string formatSeconds(double s) {
+  std::ostringstream out;
+  out << s;
+  return out.str();
+}
+
 std::string parseInt(const std::string& text, long long lo, long long hi, long long& out) {
   long long value = 0;
   const char* first = text.data();
@@ -41,6 +47,29 @@ std::function<std::string(ServerConfig&, const std::string&)> intSetter(T Server
     if (err.empty()) c.*member = static_cast<T>(parsed);
     return err;
   };
+}
+
+std::string parseSeconds(const std::string& text, double lo, double hi, double& out) {
+  double value = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !(value >= lo && value <= hi)) {
+    return "'" + text + "' is not a number of seconds in [" + formatSeconds(lo) + ", " + formatSeconds(hi) + "]";
+  }
+  out = value;
+  return "";
+}
+
+/// A comma-separated list without empty items ("a, b" -> {"a", "b"}).
+std::string parseList(const std::string& text, std::vector<std::string>& out) {
+  out.clear();
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    while (!item.empty() && item.front() == ' ') item.erase(0, 1);
+    while (!item.empty() && item.back() == ' ') item.pop_back();
+    if (!item.empty()) out.push_back(item);
+  }
+  return "";
 }
 
 std::string parseBool(const std::string& v, bool& out) {
@@ -136,6 +165,31 @@ const std::vector<Option>& options() {
        [](ServerConfig& c, const std::string& v) -> std::string {
          if (v.empty()) return "a path is required";
          c.ruptureCli = v;
+         return "";
+       }},
+      {"request-timeout", "RUPTURE_REQUEST_TIMEOUT", "SECONDS",
+       "deadline for receiving a whole request (line, headers and body), however slowly it trickles; "
+       "408 after",
+       "10", [](ServerConfig& c, const std::string& v) { return parseSeconds(v, 0.05, 3600, c.requestTimeout); }},
+      {"max-connections", "RUPTURE_MAX_CONNECTIONS", "N", "open HTTP connections in all; more get 503", "512",
+       intSetter(&ServerConfig::maxConnections, 1, 900)},
+      {"max-connections-per-client", "RUPTURE_MAX_CONNECTIONS_PER_CLIENT", "N",
+       "open HTTP connections from one client address; more get 503", "64",
+       intSetter(&ServerConfig::maxConnectionsPerClient, 1, 900)},
+      {"allow-origin", "RUPTURE_ALLOW_ORIGIN", "ORIGINS",
+       "comma-separated Origins (e.g. https://app.example.org) whose pages may POST and DELETE; "
+       "other cross-origin requests get 403",
+       "(none)", [](ServerConfig& c, const std::string& v) { return parseList(v, c.allowOrigins); }},
+      {"public-host", "RUPTURE_PUBLIC_HOST", "HOSTS",
+       "comma-separated host names clients use to reach the server (a proxy's name); requests naming "
+       "another host in Host get 421 (DNS-rebinding protection)",
+       "(none)", [](ServerConfig& c, const std::string& v) { return parseList(v, c.publicHosts); }},
+      {"read-token", "RUPTURE_READ_TOKEN", "SECRET",
+       "when set, every route but /health needs 'Authorization: Bearer SECRET' (or the --token); "
+       "set it to the --token value for one token everywhere",
+       "(none)",
+       [](ServerConfig& c, const std::string& v) -> std::string {
+         c.readToken = v;
          return "";
        }},
   };

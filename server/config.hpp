@@ -30,6 +30,13 @@ struct ServerConfig {
   int slurmCpusPerRun = 1;                ///< sbatch --cpus-per-task, and rupture run --threads
   std::vector<std::string> slurmOptions;  ///< extra "#SBATCH" lines, e.g. "--qos=short"
   std::string ruptureCli;                 ///< the `rupture` binary the batch script runs (default: beside the server)
+  // HTTP boundary (docs/server.md, "Security and limits")
+  double requestTimeout = 10;             ///< s from a request's first byte to its last (408 after)
+  int maxConnections = 512;               ///< open connections in all (503 above)
+  int maxConnectionsPerClient = 64;       ///< open connections from one address (503 above)
+  std::vector<std::string> allowOrigins;  ///< Origins (scheme://host[:port]) allowed to POST and DELETE
+  std::vector<std::string> publicHosts;   ///< host names clients may use besides the bound address
+  std::string readToken;                  ///< when set, every route but /health needs a bearer token
 };
 
 /// Worker threads actually started: `workers` when set, otherwise max(1, cores / threadsPerRun).

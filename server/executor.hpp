@@ -25,7 +25,10 @@ public:
   virtual void resubmit(std::int64_t jobId, const std::vector<int>& indices) = 0;
   /// Cancels a job: queued runs never start, running ones are stopped. The job after the change.
   virtual std::optional<JobRecord> dismiss(std::int64_t jobId) = 0;
-  /// Stops this server's part (threads, trackers). Idempotent.
+  /// No run starts from now on; runs this process executes are told to stop (re-queued as they
+  /// end). Returns at once; shutdown() waits. Runs on a cluster are left running.
+  virtual void requestStop() = 0;
+  /// Stops this server's part (threads, trackers) and waits for it. Idempotent.
   virtual void shutdown() = 0;
 
   virtual const char* name() const = 0;  ///< "local" or "slurm"

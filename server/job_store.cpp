@@ -118,6 +118,12 @@ CREATE TABLE IF NOT EXISTS runs(
   PRIMARY KEY(job_id, idx)
 ) WITHOUT ROWID;
 CREATE INDEX IF NOT EXISTS runs_by_status ON runs(status, job_id, idx);
+CREATE TABLE IF NOT EXISTS idempotency_keys(  -- POST Idempotency-Key -> the job it created
+  key          TEXT PRIMARY KEY,
+  request_hash TEXT NOT NULL,
+  job_id       INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
+  created      TEXT NOT NULL
+);
 )sql";
 
 constexpr const char* kJobColumns =
@@ -247,10 +253,25 @@ void JobStore::exec(const std::string& sql) {
   }
 }
 
-std::int64_t JobStore::createJob(const NewJob& job) {
+std::int64_t JobStore::createJob(const NewJob& job) { return createJobOnce(job).id; }
+
+std::optional<IdempotentJob> JobStore::jobForIdempotencyKey(const std::string& key) {
+  std::lock_guard lock(m_mutex);
+  Stmt q(m_db, "SELECT job_id, request_hash FROM idempotency_keys WHERE key = ?");
+  q.bind(1, key);
+  if (!q.step()) return std::nullopt;
+  return IdempotentJob{q.i64(0), q.text(1)};
+}
+
+CreatedJob JobStore::createJobOnce(const NewJob& job) {
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);
+  if (!job.idempotencyKey.empty()) {
+    Stmt q(m_db, "SELECT job_id, request_hash FROM idempotency_keys WHERE key = ?");
+    q.bind(1, job.idempotencyKey);
+    if (q.step()) return CreatedJob{q.i64(0), false, q.text(1)};
+  }
   Stmt insertJob(m_db,
                  "INSERT INTO jobs(process_id, name, status, sweep_mode, swept_paths, inputs, sweep, "
                  "message, created, updated) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?)");
@@ -268,8 +289,13 @@ std::int64_t JobStore::createJob(const NewJob& job) {
         .bind(4, job.runs[k].second.dump()).bind(5, now);
     insertRun.run();
   }
+  if (!job.idempotencyKey.empty()) {
+    Stmt insertKey(m_db, "INSERT INTO idempotency_keys(key, request_hash, job_id, created) VALUES(?, ?, ?, ?)");
+    insertKey.bind(1, job.idempotencyKey).bind(2, job.requestHash).bind(3, id).bind(4, now);
+    insertKey.run();
+  }
   tx.commit();
-  return id;
+  return CreatedJob{id, true, job.requestHash};
 }
 
 std::optional<JobRecord> JobStore::jobLocked(std::int64_t id) {

@@ -67,6 +67,21 @@ struct NewJob {
   Json inputs;
   Json sweep;
   std::vector<std::pair<Json, Json>> runs;  ///< (swept values, full spec) per run, in run order
+  std::string idempotencyKey;  ///< the POST's Idempotency-Key header, "" when none
+  std::string requestHash;     ///< identifies the request body sent with that key
+};
+
+/// What createJobOnce() did: created `id`, or found the job an earlier request with the same
+/// Idempotency-Key created (with that request's hash).
+struct CreatedJob {
+  std::int64_t id = 0;
+  bool created = false;
+  std::string requestHash;
+};
+
+struct IdempotentJob {
+  std::int64_t id = 0;
+  std::string requestHash;
 };
 
 struct JobFilter {
@@ -86,6 +101,11 @@ public:
 
   /// Inserts a job and all its runs (status accepted) in one transaction; returns the job id.
   std::int64_t createJob(const NewJob& job);
+  /// createJob, unless a job was already created under job.idempotencyKey (then nothing is
+  /// inserted and that job is returned). The key and the job are committed together.
+  CreatedJob createJobOnce(const NewJob& job);
+  /// The job created under an Idempotency-Key, if any.
+  std::optional<IdempotentJob> jobForIdempotencyKey(const std::string& key);
 
   std::optional<JobRecord> job(std::int64_t id);
   /// Newest first. `total` receives the number of jobs matching the filter, before paging.

@@ -17,12 +17,18 @@ const char* statusTitle(int status) {
     case 414: return "URI Too Long";
     case 415: return "Unsupported Media Type";
     case 416: return "Range Not Satisfiable";
+    case 421: return "Misdirected Request";
+    case 422: return "Unprocessable Content";
     case 431: return "Request Header Fields Too Large";
     case 500: return "Internal Server Error";
     case 501: return "Not Implemented";
     case 503: return "Service Unavailable";
     default: return status >= 500 ? "Server Error" : "Client Error";
   }
+}
+
+std::string dumpJson(const Json& doc) {
+  return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 Json problemDocument(const ApiError& error, const std::string& instance) {
@@ -55,6 +61,9 @@ ApiError problemForStatus(int status, const std::string& detail) {
       if (text.empty()) text = "the request body is larger than the server accepts (--max-request-bytes)";
       break;
     case 416: type = problem::kRangeNotSatisfiable; break;
+    case 408: type = problem::kRequestTimeout; break;
+    case 431: type = problem::kHeadersTooLarge; break;
+    case 503: type = problem::kUnavailable; break;
     default:
       if (status >= 500) type = problem::kInternal;
       break;

@@ -34,6 +34,13 @@ inline constexpr const char* kPayloadTooLarge = "urn:rupture:problem:payload-too
 inline constexpr const char* kLengthRequired = "urn:rupture:problem:length-required";
 inline constexpr const char* kRangeNotSatisfiable = "urn:rupture:problem:range-not-satisfiable";
 inline constexpr const char* kShuttingDown = "urn:rupture:problem:shutting-down";
+inline constexpr const char* kRequestTimeout = "urn:rupture:problem:request-timeout";
+inline constexpr const char* kHeadersTooLarge = "urn:rupture:problem:headers-too-large";
+inline constexpr const char* kMisdirected = "urn:rupture:problem:misdirected-request";
+inline constexpr const char* kForbiddenOrigin = "urn:rupture:problem:forbidden-origin";
+inline constexpr const char* kUnsupportedMediaType = "urn:rupture:problem:unsupported-media-type";
+inline constexpr const char* kIdempotencyKeyReused = "urn:rupture:problem:idempotency-key-reused";
+inline constexpr const char* kUnavailable = "urn:rupture:problem:unavailable";
 inline constexpr const char* kInternal = "urn:rupture:problem:internal-error";
 }  // namespace problem
 
@@ -56,6 +63,10 @@ private:
   std::string m_type, m_title, m_field;
   Json m_extra;
 };
+
+/// A response body: indented JSON and a newline. Never throws on bytes that are not UTF-8 (a path
+/// or query value echoed into a message): they become U+FFFD, so every body is valid UTF-8.
+std::string dumpJson(const Json& doc);
 
 /// The problem document of an error (`instance` is the request path when given).
 Json problemDocument(const ApiError& error, const std::string& instance = {});

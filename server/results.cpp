@@ -93,7 +93,7 @@ std::string seriesCsv(const SeriesTable& table) {
   std::ostringstream out;
   std::size_t rows = 0;
   for (std::size_t i = 0; i < table.names.size(); ++i) {
-    out << (i ? "," : "") << table.names[i];
+    out << (i ? "," : "") << csvTextCell(table.names[i]);
     rows = std::max(rows, table.columns[i].size());
   }
   out << "\r\n";

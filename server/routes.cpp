@@ -9,14 +9,19 @@
 
 #include <httplib.h>
 
+#include "byte_range.hpp"
 #include "files.hpp"
+#include "json_body.hpp"
 #include "log.hpp"
 #include "problem.hpp"
+#include "public_message.hpp"
+#include "request_guard.hpp"
 #include "results.hpp"
 #include "rupture/run.hpp"
 #include "summary.hpp"
 #include "svg_plot.hpp"
 #include "sweep.hpp"
+#include "utf8.hpp"
 
 #ifndef RUPTURE_VERSION
 #define RUPTURE_VERSION "0.0.0"
@@ -46,13 +51,29 @@ constexpr const char* kOgcRel = "http://www.opengis.net/def/rel/ogc/1.0/";
 
 void sendJson(Response& res, const Json& doc, int status = 200) {
   res.status = status;
-  res.set_content(doc.dump(2) + "\n", kJsonType);
+  res.set_content(dumpJson(doc), kJsonType);
 }
 
 void sendProblem(const Request& req, Response& res, const ApiError& error) {
   res.status = error.status();
   if (error.status() == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"rupture\"");
-  res.set_content(problemDocument(error, req.path).dump(2) + "\n", kProblemContentType);
+  if (error.status() == 416 && error.extra().contains("size")) {
+    res.set_header("Content-Range", "bytes */" + error.extra()["size"].dump());
+  }
+  res.set_content(dumpJson(problemDocument(error, req.path)), kProblemContentType);
+}
+
+/// The last resort for an exception at the HTTP boundary: a 500 problem that names no server
+/// detail, and nothing thrown from here (a second failure leaves a bare 500).
+void sendInternalError(const Request& req, Response& res, const std::string& what) noexcept {
+  try {
+    logLine("internal error on " + req.method + " " + toValidUtf8(req.path) + ": " + toValidUtf8(what));
+    sendProblem(req, res, ApiError(500, problem::kInternal, "Internal Server Error",
+                                   "internal error: " + publicMessage(what)));
+  } catch (...) {
+    res.status = 500;
+    res.body.clear();
+  }
 }
 
 Json link(const std::string& href, const std::string& rel, const std::string& type = kJsonType,
@@ -134,48 +155,38 @@ std::vector<std::string> paramList(const Request& req, const std::string& name) 
   return out;
 }
 
-/// Streams a file through a content provider (never the whole file in memory).
-void sendFile(Response& res, const fs::path& path, const std::string& downloadName) {
+/// Streams a file through a content provider (never the whole file in memory), or the one byte
+/// range the request asks for (206; 416 past the end).
+void sendFile(const Request& req, Response& res, const fs::path& path, const std::string& downloadName) {
   auto size = regularFileSize(path);
   auto stream = std::make_shared<std::ifstream>(path, std::ios::binary);
   if (!size || !*stream) {
     throw ApiError(404, problem::kNoResults, "No results", "the result file is missing on the server");
   }
+  const std::uint64_t total = *size;
+  const std::optional<ByteRange> range = parseByteRange(req.get_header_value("Range"), total);
+  const std::uint64_t first = range ? range->offset : 0;
+  const std::uint64_t length = range ? range->length : total;
   res.set_header("Content-Disposition", "attachment; filename=\"" + downloadName + "\"");
+  res.set_header("Accept-Ranges", "bytes");
+  if (range) {
+    res.status = 206;
+    res.set_header("Content-Range", "bytes " + std::to_string(first) + "-" + std::to_string(first + length - 1) +
+                                        "/" + std::to_string(total));
+  }
   res.set_content_provider(
-      static_cast<std::size_t>(*size), kHdf5Type,
-      [stream](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-        std::vector<char> buffer(std::min<std::size_t>(length, 64 * 1024));
+      static_cast<std::size_t>(length), kHdf5Type,
+      [stream, first, length](std::size_t offset, std::size_t want, httplib::DataSink& sink) {
+        if (offset >= length) return false;
+        std::vector<char> buffer(std::min<std::size_t>({want, length - offset, 64 * 1024}));
         stream->clear();
-        stream->seekg(static_cast<std::streamoff>(offset));
+        stream->seekg(static_cast<std::streamoff>(first + offset));
         stream->read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
         const std::streamsize n = stream->gcount();
         if (n <= 0) return false;
         return sink.write(buffer.data(), static_cast<std::size_t>(n));
       });
 }
-
-/// Deepest nesting of arrays and objects in a JSON text (strings skipped). Checked before parsing:
-/// nlohmann::json parses, copies and frees nested values recursively, so a body of half a million
-/// '[' would overflow the stack.
-int jsonNestingDepth(const std::string& text) {
-  int depth = 0, deepest = 0;
-  bool inString = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
-      continue;
-    }
-    if (c == '"') inString = true;
-    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
-    else if (c == ']' || c == '}') --depth;
-  }
-  return deepest;
-}
-
-constexpr int kMaxJsonDepth = 64;
 
 bool knownScenario(const std::string& name) {
   for (const auto& s : rupture::listScenarios()) {
@@ -255,7 +266,7 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (!run.finished.empty()) doc["finished"] = run.finished;
   if (run.attempts > 1) doc["attempts"] = run.attempts;
   if (run.summary.is_object()) doc["summary"] = run.summary;
-  if (!run.error.empty()) doc["error"] = run.error;
+  if (!run.error.empty()) doc["error"] = publicMessage(run.error);
   const std::string base = "/jobs/" + std::to_string(job.id) + "/runs/" + std::to_string(run.key.index);
   Json links = Json::array({link(base, "self")});
   if (run.status == Status::Successful) {
@@ -274,7 +285,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   doc["processID"] = job.processId;
   if (!job.name.empty()) doc["name"] = job.name;
   doc["status"] = toString(job.status);
-  doc["message"] = job.message;
+  doc["message"] = publicMessage(job.message);
   doc["progress"] = percent(job.progress);
   doc["created"] = job.created;
   if (!job.started.empty()) doc["started"] = job.started;
@@ -425,25 +436,7 @@ public:
     const std::string scenario = req.matches[1];
     if (!knownScenario(scenario)) throw noSuchProcess(scenario);
 
-    if (req.body.empty()) {
-      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
-                     "the request body is empty; send {\"inputs\": {...}} with Content-Type: application/json",
-                     "", Json{{"in", "body"}});
-    }
-    if (jsonNestingDepth(req.body) > kMaxJsonDepth) {
-      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
-                     "the request body nests arrays or objects deeper than " + std::to_string(kMaxJsonDepth) +
-                         " levels",
-                     "", Json{{"in", "body"}});
-    }
-    Json body;
-    try {
-      body = Json::parse(req.body);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
-                     std::string("the request body is not valid JSON: ") + e.what(), "",
-                     Json{{"in", "body"}, {"byte", e.byte}});
-    }
+    const Json body = parseJsonBody(req.body);
     if (!body.is_object()) {
       throw ApiError(400, problem::kInvalidRequest, "Invalid request",
                      "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
@@ -464,6 +457,12 @@ public:
                      Json{{"in", "body"}});
     }
     const Json& inputs = *inputsIt;
+    if (const std::string empty = findEmptyKey(inputs, ""); !empty.empty()) {
+      throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                     "inputs has a member whose name is the empty string (at " + empty +
+                         "); every field needs a name",
+                     empty, Json{{"in", "inputs"}});
+    }
     if (auto sc = inputs.find("scenario"); sc != inputs.end() && *sc != scenario) {
       throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
                      "inputs.scenario is " + sc->dump() + " but the URL names '" + scenario +
@@ -482,6 +481,15 @@ public:
       auto it = body.find(key);
       return it == body.end() ? nullptr : &*it;
     };
+    // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.
+    const std::string idempotencyKey = idempotencyKeyOf(req);
+    const std::string requestHash = idempotencyKey.empty() ? std::string() : requestFingerprint(scenario, body);
+    if (!idempotencyKey.empty()) {
+      if (auto earlier = m_ctx.store->jobForIdempotencyKey(idempotencyKey)) {
+        replayJob(req, res, *earlier, requestHash);
+        return;
+      }
+    }
     const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
     const std::vector<SweepPoint> points =
         expandSweep(scenario, inputs, plan, static_cast<std::size_t>(m_ctx.config.maxRuns));
@@ -496,7 +504,14 @@ public:
     job.inputs = inputs;
     job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
     for (const SweepPoint& p : points) job.runs.emplace_back(p.swept, p.spec);
-    const std::int64_t id = m_ctx.store->createJob(job);
+    job.idempotencyKey = idempotencyKey;
+    job.requestHash = requestHash;
+    const CreatedJob created = m_ctx.store->createJobOnce(job);
+    if (!created.created) {  // a concurrent request with the same key won the race
+      replayJob(req, res, IdempotentJob{created.id, created.requestHash}, requestHash);
+      return;
+    }
+    const std::int64_t id = created.id;
     m_ctx.scheduler->enqueue(id, static_cast<int>(points.size()));
     logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(points.size()) +
             " run(s)" + (name.empty() ? "" : ", \"" + name + "\""));
@@ -539,7 +554,10 @@ public:
     std::string query;
     if (!filter.statuses.empty()) {
       query += "&status=";
-      for (std::size_t i = 0; i < filter.statuses.size(); ++i) query += (i ? "," : "") + std::string(toString(filter.statuses[i]));
+      for (std::size_t i = 0; i < filter.statuses.size(); ++i) {
+        if (i > 0) query += ',';
+        query += toString(filter.statuses[i]);
+      }
     }
     if (!filter.processId.empty()) query += "&processID=" + httplib::detail::encode_query_param(filter.processId);
     auto page = [&](std::int64_t offset) {
@@ -579,7 +597,7 @@ public:
       const JobRecord job = *m_ctx.store->job(id);
       throw ApiError(409, problem::kNothingToRetry, "Nothing to retry",
                      "job " + std::to_string(id) + " has no failed run to retry (" + toString(job.status) + ": " +
-                         job.message + ")",
+                         publicMessage(job.message) + ")",
                      "", Json{{"jobStatus", toString(job.status)}});
     }
     m_ctx.scheduler->resubmit(id, indices);
@@ -603,10 +621,10 @@ public:
     }
     if (job.runsSuccessful == 0) {
       throw ApiError(404, problem::kNoResults, "No results",
-                     "job " + std::to_string(job.id) + " has no successful run (" + job.message + ")");
+                     "job " + std::to_string(job.id) + " has no successful run (" + publicMessage(job.message) + ")");
     }
     const fs::path path = mergedResults(job, m_ctx.store->runs(job.id), m_ctx.resultsDir);
-    sendFile(res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
+    sendFile(req, res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
   }
 
   void runsList(const Request& req, Response& res) {
@@ -627,7 +645,7 @@ public:
   void runResults(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     const RunRecord run = finishedRun(req, job);
-    sendFile(res, m_ctx.resultsDir / run.resultPath,
+    sendFile(req, res, m_ctx.resultsDir / run.resultPath,
              "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index) + ".h5");
   }
 
@@ -695,13 +713,7 @@ public:
     const std::string& token = m_ctx.config.token;
     if (token.empty()) return;
     const std::string header = req.get_header_value("Authorization");
-    const std::string expected = "Bearer " + token;
-    // Constant-time comparison over the expected length.
-    unsigned diff = header.size() != expected.size();
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      diff |= static_cast<unsigned char>(i < header.size() ? header[i] : 0) ^ static_cast<unsigned char>(expected[i]);
-    }
-    if (diff) {
+    if (!bearerMatches(header, token)) {
       throw ApiError(401, problem::kUnauthorized, "Unauthorized",
                      header.empty() ? "this server needs 'Authorization: Bearer <token>' for POST and DELETE"
                                     : "the bearer token is wrong");
@@ -709,6 +721,52 @@ public:
   }
 
 private:
+  /// The Idempotency-Key header: 1 to 200 visible ASCII characters, or "" when absent.
+  static std::string idempotencyKeyOf(const Request& req) {
+    if (!req.has_header("Idempotency-Key")) return "";
+    const std::string key = req.get_header_value("Idempotency-Key");
+    const bool visible = std::all_of(key.begin(), key.end(), [](char c) { return c > 0x20 && c < 0x7F; });
+    if (key.empty() || key.size() > 200 || !visible) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "Idempotency-Key must be 1 to 200 visible ASCII characters (a UUID is a good choice)",
+                     "Idempotency-Key", Json{{"in", "header"}});
+    }
+    return key;
+  }
+
+  /// Identifies a submission: the scenario and the body with keys sorted (FNV-1a, 64 bits, hex).
+  static std::string requestFingerprint(const std::string& scenario, const Json& body) {
+    const std::string text = scenario + "\n" + nlohmann::json(body).dump(-1, ' ', false, Json::error_handler_t::replace);
+    std::uint64_t hash = 1469598103934665603ull;
+    for (unsigned char c : text) {
+      hash ^= c;
+      hash *= 1099511628211ull;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+    return hex;
+  }
+
+  /// Answers a repeated Idempotency-Key: the earlier job (201, as the first answer was), or 422
+  /// when the key came with a different request.
+  void replayJob(const Request& req, Response& res, const IdempotentJob& earlier, const std::string& requestHash) {
+    if (earlier.requestHash != requestHash) {
+      throw ApiError(422, problem::kIdempotencyKeyReused, "Idempotency key reused",
+                     "this Idempotency-Key was first used for a different request (job " +
+                         std::to_string(earlier.id) + "); use a new key for a new submission",
+                     "Idempotency-Key", Json{{"in", "header"}, {"jobID", std::to_string(earlier.id)}});
+    }
+    auto record = m_ctx.store->job(earlier.id);
+    if (!record) throw noSuchJob(std::to_string(earlier.id));
+    auto runs = m_ctx.store->runs(earlier.id);
+    res.set_header("Location", "/jobs/" + std::to_string(earlier.id));
+    res.set_header("Idempotent-Replayed", "true");
+    if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
+      res.set_header("Preference-Applied", "respond-async");
+    }
+    sendJson(res, statusInfo(*record, &runs), 201);
+  }
+
   static ApiError noSuchProcess(const std::string& name) {
     Json allowed = Json::array();
     for (const auto& s : rupture::listScenarios()) allowed.push_back(s.name);
@@ -767,7 +825,7 @@ private:
     if (run.status != Status::Successful || run.resultPath.empty()) {
       throw ApiError(404, problem::kNoResults, "No results",
                      what + " is " + toString(run.status) + " and has no results" +
-                         (run.error.empty() ? std::string() : ": " + run.error),
+                         (run.error.empty() ? std::string() : ": " + publicMessage(run.error)),
                      "", Json{{"runStatus", toString(run.status)}});
     }
     return run;
@@ -783,8 +841,11 @@ struct Route {
 
 }  // namespace
 
-void registerRoutes(httplib::Server& http, ServerContext& context) {
+void registerRoutes(HttpFrontend& http, ServerContext& context) {
   auto api = std::make_shared<Api>(context);
+  // cpp-httplib would apply Range headers to every response, error documents included, and gets
+  // ranges past the end wrong: downloads serve them (sendFile), everything else ignores them.
+  http.setRequestSetup([](Request& req) { req.ranges.clear(); });
   auto wrap = [api](void (Api::*method)(const Request&, Response&)) {
     return [api, method](const Request& req, Response& res) {
       try {
@@ -795,10 +856,16 @@ void registerRoutes(httplib::Server& http, ServerContext& context) {
         sendProblem(req, res,
                     ApiError(400, problem::kInvalidSpec, "Invalid spec", e.what(), e.field(),
                              Json{{"value", e.value()}, {"allowed", e.allowed()}}));
+      } catch (const nlohmann::json::exception& e) {
+        // JSON type and range errors come from what the client sent (the server's own documents
+        // are built from checked values).
+        sendProblem(req, res, ApiError(400, problem::kInvalidRequest, "Invalid request",
+                                       "the request holds a value the server cannot use: " +
+                                           truncateUtf8(e.what(), 300)));
       } catch (const std::exception& e) {
-        logLine("internal error on " + req.method + " " + req.path + ": " + e.what());
-        sendProblem(req, res, ApiError(500, problem::kInternal, "Internal Server Error",
-                                       std::string("internal error: ") + e.what()));
+        sendInternalError(req, res, e.what());
+      } catch (...) {
+        sendInternalError(req, res, "non-standard exception");
       }
     };
   };
@@ -870,26 +937,41 @@ void registerRoutes(httplib::Server& http, ServerContext& context) {
     });
   }
 
-  // Before the body is read: chunked uploads escape the body-size limit in cpp-httplib 0.11.4, so
-  // they are refused outright; multi-range requests are refused too (each range would be copied).
-  http.set_pre_routing_handler([](const Request& req, Response& res) {
-    if (req.has_header("Transfer-Encoding")) {
-      res.set_header("Connection", "close");
-      sendProblem(req, res, problemForStatus(411));
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    if (req.get_header_value("Range").find(',') != std::string::npos) {
-      sendProblem(req, res, problemForStatus(416, "multi-range requests are not supported; ask for one range"));
+  // Before the body is read: the request guard (UTF-8, Host, read token, Origin, Content-Type), then
+  // bodies without a length: chunked uploads escape cpp-httplib 0.11.4's body-size limit, and a POST
+  // without Content-Length has no body by HTTP's framing rules (both 411).
+  http.set_pre_routing_handler([&context](const Request& req, Response& res) {
+    try {
+      if (auto error = checkRequest(req, context.config)) {
+        sendProblem(req, res, *error);
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      if (req.has_header("Transfer-Encoding")) {
+        res.set_header("Connection", "close");
+        sendProblem(req, res, problemForStatus(411));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      if (req.method == "POST" && !req.has_header("Content-Length")) {
+        sendProblem(req, res, problemForStatus(411, "a POST needs a Content-Length header (the body's size in bytes)"));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    } catch (const std::exception& e) {
+      sendInternalError(req, res, e.what());
       return httplib::Server::HandlerResponse::Handled;
     }
     return httplib::Server::HandlerResponse::Unhandled;
   });
 
   // Statuses produced by the HTTP layer itself (404 without a route, 413, 400 bad request line, ...)
-  // get a problem document too.
+  // get a problem document too. Nothing may throw out of here: cpp-httplib calls it outside its
+  // try block, and an exception would end the process.
   http.set_error_handler(httplib::Server::HandlerWithResponse([](const Request& req, Response& res) {
     if (!res.body.empty() || res.content_length_ > 0) return httplib::Server::HandlerResponse::Unhandled;
-    sendProblem(req, res, problemForStatus(res.status));
+    try {
+      sendProblem(req, res, problemForStatus(res.status));
+    } catch (const std::exception& e) {
+      sendInternalError(req, res, e.what());
+    }
     return httplib::Server::HandlerResponse::Handled;
   }));
   http.set_exception_handler([](const Request& req, Response& res, std::exception_ptr ep) {
@@ -900,8 +982,7 @@ void registerRoutes(httplib::Server& http, ServerContext& context) {
       what = e.what();
     } catch (...) {
     }
-    logLine("internal error on " + req.method + " " + req.path + ": " + what);
-    sendProblem(req, res, ApiError(500, problem::kInternal, "Internal Server Error", "internal error: " + what));
+    sendInternalError(req, res, what);
   });
   http.set_post_routing_handler([](const Request&, Response& res) {
     res.set_header("X-Content-Type-Options", "nosniff");

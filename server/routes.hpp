@@ -7,12 +7,9 @@
 #include <string>
 
 #include "config.hpp"
+#include "http_frontend.hpp"
 #include "job_store.hpp"
 #include "executor.hpp"
-
-namespace httplib {
-class Server;
-}
 
 namespace rupture::server {
 
@@ -28,7 +25,7 @@ struct ServerContext {
 };
 
 /// Registers every route, the 405 answers, and the pre-routing / error / exception handlers.
-void registerRoutes(httplib::Server& http, ServerContext& context);
+void registerRoutes(HttpFrontend& http, ServerContext& context);
 
 /// The OpenAPI document served at /openapi.yaml (api/openapi.yaml, compiled in).
 const std::string& openApiYaml();

@@ -137,15 +137,18 @@ std::optional<JobRecord> Scheduler::dismiss(std::int64_t jobId) {
   return job;
 }
 
-void Scheduler::shutdown() {
+void Scheduler::requestStop() {
   {
     std::lock_guard lock(m_mutex);
-    if (m_stopping) return;
     m_stopping = true;
     for (auto& [key, control] : m_active) control->cancel = true;
   }
   m_wake.notify_all();
   m_monitorWake.notify_all();
+}
+
+void Scheduler::shutdown() {
+  requestStop();
   for (std::thread& t : m_threads) {
     if (t.joinable()) t.join();
   }

@@ -64,6 +64,9 @@ public:
   bool waitingForDisk() const override { return m_waitingForDisk.load(); }
   /// Outcomes finished on disk that the store has not taken yet (retried every second).
   int unrecordedOutcomes() const override;
+  /// The first half of shutdown(), without waiting: no run starts from now on and running runs are
+  /// told to stop (they are re-queued as they end). shutdown() then waits for them.
+  void requestStop() override;
 
   const char* name() const override { return "local"; }
   int workers() const override { return m_workerCount; }

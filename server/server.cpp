@@ -1,7 +1,15 @@
 #include "server.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
+
+#include <netdb.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <httplib.h>
 
@@ -24,12 +32,45 @@ std::string defaultRuptureCli() {
   return "rupture";
 }
 
+/// Why host:port cannot be bound, asked of the kernel directly (cpp-httplib only says "no").
+std::string bindFailureReason(const std::string& host, int port) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
+  addrinfo* found = nullptr;
+  if (int rc = ::getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found); rc != 0) {
+    return std::string("cannot resolve the address: ") + ::gai_strerror(rc);
+  }
+  std::string reason = "no usable address";
+  for (addrinfo* a = found; a != nullptr; a = a->ai_next) {
+    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0) continue;
+    int yes = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    const bool bound = ::bind(fd, a->ai_addr, a->ai_addrlen) == 0;
+    const int err = errno;
+    ::close(fd);
+    if (bound) {
+      reason = "the port became free meanwhile; try again";
+      break;
+    }
+    reason = err == EADDRINUSE ? "the port is in use by another process (another rupture-server?); stop it or "
+                                 "choose another --port"
+                               : std::string(std::strerror(err)) + " (is it an address of this machine?)";
+    if (err == EADDRINUSE) break;
+  }
+  ::freeaddrinfo(found);
+  return reason;
+}
+
 }  // namespace
 
 RuptureServer::RuptureServer(ServerConfig config) {
   m_context.config = std::move(config);
   m_context.dataDir = std::filesystem::absolute(m_context.config.dataDir);
   std::filesystem::create_directories(m_context.dataDir / "jobs");
+  m_lock = std::make_unique<DataDirLock>(m_context.dataDir);  // before anything in it is opened
   m_store = std::make_unique<JobStore>((m_context.dataDir / "rupture.sqlite").string());
   if (m_context.config.executor == "slurm") {
     SlurmSettings slurm;
@@ -52,13 +93,16 @@ RuptureServer::RuptureServer(ServerConfig config) {
   m_context.store = m_store.get();
   m_context.scheduler = m_scheduler.get();
 
-  m_http = std::make_unique<httplib::Server>();
-  const int httpThreads = m_context.config.httpThreads;
-  m_http->new_task_queue = [httpThreads] { return new httplib::ThreadPool(static_cast<std::size_t>(httpThreads)); };
-  m_http->set_payload_max_length(m_context.config.maxRequestBytes);
-  m_http->set_read_timeout(10, 0);
-  m_http->set_write_timeout(30, 0);
-  m_http->set_keep_alive_max_count(100);
+  const ServerConfig& c = m_context.config;
+  FrontendLimits limits;
+  limits.requestTimeout = std::chrono::milliseconds(static_cast<long long>(c.requestTimeout * 1000));
+  limits.keepAliveTimeout = std::min(limits.keepAliveTimeout, std::max(limits.requestTimeout, std::chrono::milliseconds(1000)));
+  limits.maxBodyBytes = c.maxRequestBytes;
+  limits.maxBufferedBytes = std::max<std::size_t>(limits.maxBufferedBytes, 4 * (c.maxRequestBytes + limits.maxHeadBytes));
+  limits.handlerThreads = c.httpThreads;
+  limits.maxConnections = c.maxConnections;
+  limits.maxConnectionsPerClient = c.maxConnectionsPerClient;
+  m_http = std::make_unique<HttpFrontend>(limits);
   // Headers and body go out in separate writes: without TCP_NODELAY, Nagle's algorithm and the
   // client's delayed ACK add ~40 ms to every small response.
   m_http->set_tcp_nodelay(true);
@@ -78,8 +122,8 @@ int RuptureServer::bind() {
     m_port = m_http->bind_to_port(c.bind, c.port) ? c.port : -1;
   }
   if (m_port <= 0) {
-    throw std::runtime_error("cannot listen on " + c.bind + ":" + std::to_string(c.port) +
-                             " (address in use, or not an address of this machine?)");
+    throw std::runtime_error("cannot listen on " + c.bind + ":" + std::to_string(c.port) + ": " +
+                             bindFailureReason(c.bind, c.port));
   }
   m_scheduler->start();
   logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " with " +
@@ -103,21 +147,33 @@ int RuptureServer::startInBackground() {
   return port;
 }
 
+void RuptureServer::stopAcceptingWork() {
+  m_context.stopping = true;
+  m_scheduler->requestStop();
+}
+
 void RuptureServer::stop() {
   if (m_stopped.exchange(true)) {
     if (m_background.joinable() && m_background.get_id() != std::this_thread::get_id()) m_background.join();
     return;
   }
+  const auto t0 = std::chrono::steady_clock::now();
   m_stopRequested = true;
-  m_context.stopping = true;
-  // cpp-httplib's stop() is a no-op until listen() is running: keep asking while listen() is active.
+  // 1. The scheduler: no run starts from now on, running runs are told to stop; POSTs get 503.
+  stopAcceptingWork();
+  // 2. The HTTP side. cpp-httplib's stop() is a no-op until listen() is running: keep asking while
+  //    listen() is active. listen() returns once the connection hub has closed every connection.
   while (m_inListen) {
     if (m_http->is_running()) m_http->stop();
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   if (m_background.joinable()) m_background.join();
+  // 3. Wait for the cancelled runs to record themselves as re-queued.
   m_scheduler->shutdown();
-  logLine("stopped");
+  if (m_port > 0) {
+    logLine("stopped after " +
+            std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+  }
 }
 
 }  // namespace rupture::server

@@ -4,16 +4,15 @@
 //   int port = server.bind();   // opens the data directory, starts the workers, binds the port
 //   server.listen();            // serves until stop() (from another thread, e.g. a sigwait thread)
 // stop() is safe before, during and after listen(), from any thread, and more than once.
+// Only one server may use a data directory at a time (an flock on <data-dir>/rupture.lock).
 #include <atomic>
 #include <memory>
 #include <thread>
 
 #include "config.hpp"
+#include "data_dir_lock.hpp"
+#include "http_frontend.hpp"
 #include "routes.hpp"
-
-namespace httplib {
-class Server;
-}
 
 namespace rupture::server {
 
@@ -32,18 +31,26 @@ public:
   bool listen();
   /// bind() + listen() on a background thread; returns once requests are being answered.
   int startInBackground();
-  /// Stops accepting requests, lets requests in flight finish, then stops the workers: running
-  /// runs are cancelled and re-queued for the next start. Blocks until all of that is done.
+  /// Stops the scheduler first (no run starts from now on, running runs are cancelled and re-queued
+  /// for the next start, new submissions get 503), then the HTTP side (idle and half-sent
+  /// connections are closed at once, responses in flight get up to a second), then waits for the
+  /// runs to end. Blocks until all of that is done.
   void stop();
+  /// The first step of stop(), on its own: from now on no run starts, running runs are cancelled
+  /// and re-queued, and submissions get 503, while the HTTP side keeps answering. Idempotent.
+  void stopAcceptingWork();
 
   int port() const { return m_port; }
+  /// HTTP connections open now (idle, being read or being answered).
+  int openConnections() const { return m_http->openConnections(); }
   const ServerConfig& config() const { return m_context.config; }
 
 private:
   ServerContext m_context;
+  std::unique_ptr<DataDirLock> m_lock;
   std::unique_ptr<JobStore> m_store;
   std::unique_ptr<Executor> m_scheduler;
-  std::unique_ptr<httplib::Server> m_http;
+  std::unique_ptr<HttpFrontend> m_http;
   std::thread m_background;
   std::atomic<bool> m_stopRequested{false};
   std::atomic<bool> m_inListen{false};

@@ -53,6 +53,8 @@ public:
   void enqueue(std::int64_t jobId, int runs) override;
   void resubmit(std::int64_t jobId, const std::vector<int>& indices) override;
   std::optional<JobRecord> dismiss(std::int64_t jobId) override;
+  /// The cluster's runs go on; only the tracker stops (the next start re-attaches).
+  void requestStop() override {}
   void shutdown() override;
 
   const char* name() const override { return "slurm"; }

@@ -1,6 +1,8 @@
 #include "summary.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <string_view>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -26,24 +28,38 @@ void flatten(const Json& value, const std::string& prefix, Json& out) {
   }
 }
 
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+std::string csvValue(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return csvTextCell(v.get<std::string>());
+  if (v.is_number_float()) return formatNumber(v.get<double>());
+  if (v.is_number()) return v.dump();
+  return csvTextCell(v.dump(-1, ' ', false, Json::error_handler_t::replace));
+}
+
+}  // namespace
+
+std::string csvTextCell(const std::string& text) {
+  std::string cell = text;
+  // Spreadsheets evaluate a cell starting with = + - @ (or a tab or CR before one) as a formula;
+  // a leading apostrophe makes it text. A cell that is a plain number ("-1.5") stays a number.
+  if (!cell.empty() && std::string_view("=+-@\t\r").find(cell.front()) != std::string_view::npos) {
+    double number = 0;
+    const bool plus = cell.front() == '+';  // from_chars takes '-' but not '+'
+    const char* first = cell.data() + (plus ? 1 : 0);
+    const char* last = cell.data() + cell.size();
+    auto [ptr, ec] = std::from_chars(first, last, number);
+    const bool plainNumber =
+        first != last && !(plus && (*first == '-' || *first == '+')) && ec == std::errc() && ptr == last;
+    if (!plainNumber) cell.insert(0, 1, '\'');
+  }
+  if (cell.find_first_of(",\"\r\n") == std::string::npos) return cell;
   std::string out = "\"";
-  for (char c : text) {
+  for (char c : cell) {
     if (c == '"') out += '"';
     out += c;
   }
   return out + "\"";
 }
-
-std::string csvValue(const Json& v) {
-  if (v.is_null()) return "";
-  if (v.is_string()) return csvField(v.get<std::string>());
-  if (v.is_number_float()) return formatNumber(v.get<double>());
-  return csvField(v.dump());
-}
-
-}  // namespace
 
 std::string formatNumber(double value) {
   if (!std::isfinite(value)) return "";  // NaN/inf: an empty CSV cell
@@ -137,14 +153,14 @@ Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
 std::string summaryCsv(const SummaryTable& table) {
   std::ostringstream out;
   out << "run,status";
-  for (const auto& p : table.sweptPaths) out << ',' << csvField(p);
-  for (const auto& s : table.scalarNames) out << ',' << csvField(s);
+  for (const auto& p : table.sweptPaths) out << ',' << csvTextCell(p);
+  for (const auto& s : table.scalarNames) out << ',' << csvTextCell(s);
   out << ",error\r\n";
   for (const SummaryRow& row : table.rows) {
     out << row.run << ',' << toString(row.status);
     for (const auto& p : table.sweptPaths) out << ',' << csvValue(table.value(row, p));
     for (const auto& s : table.scalarNames) out << ',' << csvValue(table.value(row, s));
-    out << ',' << csvField(row.error) << "\r\n";
+    out << ',' << csvTextCell(row.error) << "\r\n";
   }
   return out.str();
 }

@@ -48,4 +48,8 @@ std::string knownScalarUnit(const std::string& name);
 /// Formats a number the way JSON would (shortest round-trip form); "" for NaN and infinities.
 std::string formatNumber(double value);
 
+/// A CSV (RFC 4180) cell holding text: quoted when needed, and neutralised against formula
+/// injection (a leading = + - @ gets an apostrophe) unless it is a plain number.
+std::string csvTextCell(const std::string& text);
+
 }  // namespace rupture::server

@@ -8,26 +8,31 @@
 namespace rupture::io {
 namespace {
 
-using Json = nlohmann::json;
-
 /// nlohmann's DOM builder plus a stack of where we are, so errors can name the field.
+template <class Json>
 class PathTrackingSax {
 public:
+  using number_integer_t = typename Json::number_integer_t;
+  using number_unsigned_t = typename Json::number_unsigned_t;
+  using number_float_t = typename Json::number_float_t;
+  using string_t = typename Json::string_t;
+  using binary_t = typename Json::binary_t;
+
   explicit PathTrackingSax(Json& result) : m_dom(result, true) {}
 
   bool null() { return value(m_dom.null()); }
   bool boolean(bool v) { return value(m_dom.boolean(v)); }
-  bool number_integer(Json::number_integer_t v) { return value(m_dom.number_integer(v)); }
-  bool number_unsigned(Json::number_unsigned_t v) { return value(m_dom.number_unsigned(v)); }
-  bool number_float(Json::number_float_t v, const Json::string_t& s) { return value(m_dom.number_float(v, s)); }
-  bool string(Json::string_t& v) { return value(m_dom.string(v)); }
-  bool binary(Json::binary_t& v) { return value(m_dom.binary(v)); }
+  bool number_integer(number_integer_t v) { return value(m_dom.number_integer(v)); }
+  bool number_unsigned(number_unsigned_t v) { return value(m_dom.number_unsigned(v)); }
+  bool number_float(number_float_t v, const string_t& s) { return value(m_dom.number_float(v, s)); }
+  bool string(string_t& v) { return value(m_dom.string(v)); }
+  bool binary(binary_t& v) { return value(m_dom.binary(v)); }
 
   bool start_object(std::size_t n) {
-    enter(false);
+    enter(false, n);
     return m_dom.start_object(n);
   }
-  bool key(Json::string_t& k) {
+  bool key(string_t& k) {
     m_stack.back().key = k;
     return m_dom.key(k);
   }
@@ -36,7 +41,7 @@ public:
     return value(m_dom.end_object());
   }
   bool start_array(std::size_t n) {
-    enter(true);
+    enter(true, n);
     return m_dom.start_array(n);
   }
   bool end_array() {
@@ -46,12 +51,12 @@ public:
 
   bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) {
     if (e.id == 406)  // number overflow: say which field, not just which bytes
-      throw SpecError(path(), token.substr(0, 40), "a number within the range of a double (magnitude below 1.8e308)");
+      throw JsonLimitError(JsonLimitError::Kind::NumberOutOfRange, position, path(), token.substr(0, 40),
+                           "a number within the range of a double (magnitude below 1.8e308)");
     // nlohmann's own DOM parser rethrows `e` by its static type (the base class); keep the real one
     // so callers can catch json::parse_error.
-    (void)position;
-    if (const auto* parse = dynamic_cast<const Json::parse_error*>(&e)) throw *parse;
-    if (const auto* range = dynamic_cast<const Json::out_of_range*>(&e)) throw *range;
+    if (const auto* parse = dynamic_cast<const nlohmann::json::parse_error*>(&e)) throw *parse;
+    if (const auto* range = dynamic_cast<const nlohmann::json::out_of_range*>(&e)) throw *range;
     return m_dom.parse_error(position, token, e);
   }
 
@@ -62,10 +67,11 @@ private:
     std::string key;
   };
 
-  void enter(bool array) {
+  void enter(bool array, std::size_t) {
     if (m_stack.size() >= static_cast<std::size_t>(kMaxJsonNesting))
-      throw SpecError(path(), "a value nested more than " + std::to_string(kMaxJsonNesting) + " levels deep",
-                      "at most " + std::to_string(kMaxJsonNesting) + " levels of nested arrays and objects");
+      throw JsonLimitError(JsonLimitError::Kind::TooDeep, 0, path(),
+                           "a value nested more than " + std::to_string(kMaxJsonNesting) + " levels deep",
+                           "at most " + std::to_string(kMaxJsonNesting) + " levels of nested arrays and objects");
     m_stack.push_back({array, 0, {}});
   }
   /// A complete value was read: the next one in an array has the next index.
@@ -86,13 +92,20 @@ private:
   std::vector<Frame> m_stack;
 };
 
-}  // namespace
-
-Json parseJsonText(std::string_view text) {
+template <class Json>
+Json parseWithPaths(std::string_view text) {
   Json result;
-  PathTrackingSax sax(result);
+  PathTrackingSax<Json> sax(result);
   Json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, true, false);
   return result;
+}
+
+}  // namespace
+
+nlohmann::json parseJsonText(std::string_view text) { return parseWithPaths<nlohmann::json>(text); }
+
+nlohmann::ordered_json parseOrderedJsonText(std::string_view text) {
+  return parseWithPaths<nlohmann::ordered_json>(text);
 }
 
 }  // namespace rupture::io

@@ -34,8 +34,12 @@ bool Range::contains(double v) const {
 }
 
 std::string describeValue(const nlohmann::json& value) {
-  std::string text = value.dump();
-  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > 80) {
+    std::size_t cut = 77;  // back to the first byte of a UTF-8 character: never cut one in half
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+    text = text.substr(0, cut) + "...";
+  }
   return text;
 }
 

@@ -87,8 +87,8 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
 
   // Cross-field checks.
   if (s.loading.vhCaptureStrain && *s.loading.vhCaptureStrain >= s.run.maxStrain)
-    throw SpecError("loading.vh_capture_strain", std::to_string(*s.loading.vhCaptureStrain),
-                    "a strain below run.max_strain (" + std::to_string(s.run.maxStrain) + ")");
+    throw SpecError("loading.vh_capture_strain", io::describeValue(*s.loading.vhCaptureStrain),
+                    "a strain below run.max_strain (" + io::describeValue(s.run.maxStrain) + ")");
   return s;
 }
 

@@ -17,69 +17,7 @@ namespace {
 
 using test::getJson;
 
-/// rupture-server as a child process on a free loopback port.
-class ChildServer {
-public:
-  ChildServer(const std::filesystem::path& dataDir, const std::vector<std::string>& extra = {}) {
-    int out[2];
-    if (pipe(out) != 0) throw std::runtime_error("pipe failed");
-    std::vector<std::string> args = {RUPTURE_SERVER, "--port", "0", "--bind", "127.0.0.1",
-                                     "--data-dir", dataDir.string(), "--workers", "1", "--threads-per-run", "1"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    m_pid = fork();
-    if (m_pid == 0) {
-      dup2(out[1], STDOUT_FILENO);
-      close(out[0]);
-      close(out[1]);
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
-    close(out[1]);
-    m_stdout = out[0];
-    // First stdout line: "rupture-server listening on http://127.0.0.1:<port>".
-    std::string line;
-    char c;
-    while (read(m_stdout, &c, 1) == 1 && c != '\n') line += c;
-    const auto colon = line.rfind(':');
-    if (line.find("listening on") == std::string::npos || colon == std::string::npos) {
-      throw std::runtime_error("rupture-server did not start: '" + line + "'");
-    }
-    m_port = std::stoi(line.substr(colon + 1));
-  }
-  ~ChildServer() {
-    if (m_pid > 0) {
-      kill(m_pid, SIGKILL);
-      waitpid(m_pid, nullptr, 0);
-    }
-    if (m_stdout >= 0) close(m_stdout);
-  }
-
-  int port() const { return m_port; }
-  std::unique_ptr<httplib::Client> client() const {
-    auto c = std::make_unique<httplib::Client>("127.0.0.1", m_port);
-    c->set_read_timeout(30, 0);
-    return c;
-  }
-  /// Sends `signal` and waits up to `seconds` for the exit; returns the exit status or -1.
-  int stop(int signal, double seconds) {
-    kill(m_pid, signal);
-    int status = 0;
-    const bool exited = test::waitFor([&] { return waitpid(m_pid, &status, WNOHANG) == m_pid; }, seconds);
-    if (!exited) return -1;
-    m_pid = -1;
-    if (WIFEXITED(status)) return WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-    return -1;
-  }
-
-private:
-  pid_t m_pid = -1;
-  int m_stdout = -1;
-  int m_port = 0;
-};
+using test::ChildServer;
 
 std::map<int, std::string> downloadFinishedRuns(httplib::Client& client, const std::string& job, const Json& doc) {
   std::map<int, std::string> out;

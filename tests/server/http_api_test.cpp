@@ -127,9 +127,9 @@ TEST(HttpApi, BadSubmissionsGetProblemDocumentsAndNoJob) {
   expectProblem(post(deep), 400);
   expectStillServing(*client);
 
-  // Form-encoded bodies (curl -d without --json) are parsed as JSON all the same.
+  // Form-encoded bodies (curl -d without --json) are refused: a web page can send those cross-site.
   auto form = client->Post(kExecute.c_str(), "{\"inputs\": {", "application/x-www-form-urlencoded");
-  expectProblem(form, 400);
+  expectProblem(form, 415, "Content-Type");
 
   // Nothing above created a job.
   Json jobs = getJson(*client, "/jobs");

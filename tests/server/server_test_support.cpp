@@ -2,9 +2,12 @@
 #include "server_test_support.hpp"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <signal.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace rupture::server::test {
@@ -17,6 +20,96 @@ Json smallInputs() {
   spec["loading"]["initial_velocity"] = "VL";
   spec["loading"]["strain_rate"] = 1e6;
   return spec;
+}
+
+ChildServer::ChildServer(const std::filesystem::path& dataDir, const std::vector<std::string>& extra) {
+  int out[2];
+  if (pipe(out) != 0) throw std::runtime_error("pipe failed");
+  std::vector<std::string> args = {RUPTURE_SERVER, "--port", "0", "--bind", "127.0.0.1",
+                                   "--data-dir", dataDir.string(), "--workers", "1", "--threads-per-run", "1"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  m_pid = fork();
+  if (m_pid == 0) {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    close(out[1]);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(out[1]);
+  m_stdout = out[0];
+  // First stdout line: "rupture-server listening on http://127.0.0.1:<port>".
+  std::string line;
+  char c;
+  while (read(m_stdout, &c, 1) == 1 && c != '\n') line += c;
+  const auto colon = line.rfind(':');
+  if (line.find("listening on") == std::string::npos || colon == std::string::npos) {
+    throw std::runtime_error("rupture-server did not start: '" + line + "'");
+  }
+  m_port = std::stoi(line.substr(colon + 1));
+}
+
+ChildServer::~ChildServer() {
+  if (m_pid > 0) {
+    kill(m_pid, SIGKILL);
+    waitpid(m_pid, nullptr, 0);
+  }
+  if (m_stdout >= 0) close(m_stdout);
+}
+
+int ChildServer::stop(int signal, double seconds) {
+  kill(m_pid, signal);
+  int status = 0;
+  const bool exited = waitFor([&] { return waitpid(m_pid, &status, WNOHANG) == m_pid; }, seconds);
+  if (!exited) return -1;
+  m_pid = -1;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return -1;
+}
+
+int runServerToExit(const std::vector<std::string>& args, std::string& err, double seconds) {
+  int pipeErr[2];
+  if (pipe(pipeErr) != 0) throw std::runtime_error("pipe failed");
+  std::vector<std::string> argvText = {RUPTURE_SERVER};
+  argvText.insert(argvText.end(), args.begin(), args.end());
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(pipeErr[1], STDERR_FILENO);
+    const int devNull = open("/dev/null", O_WRONLY);
+    if (devNull >= 0) dup2(devNull, STDOUT_FILENO);
+    close(pipeErr[0]);
+    close(pipeErr[1]);
+    std::vector<char*> argv;
+    for (auto& a : argvText) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(pipeErr[1]);
+  fcntl(pipeErr[0], F_SETFL, O_NONBLOCK);
+  int status = 0;
+  bool exited = false;
+  char buf[4096];
+  const auto readAvailable = [&] {
+    ssize_t n;
+    while ((n = read(pipeErr[0], buf, sizeof buf)) > 0) err.append(buf, static_cast<std::size_t>(n));
+  };
+  exited = waitFor([&] {
+    readAvailable();
+    return waitpid(pid, &status, WNOHANG) == pid;
+  }, seconds);
+  if (!exited) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  readAvailable();
+  close(pipeErr[0]);
+  if (!exited) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 std::string rawExchange(int port, const std::string& request, double seconds) {

@@ -12,6 +12,8 @@
 #include <string>
 #include <thread>
 
+#include <sys/types.h>
+
 #include <gtest/gtest.h>
 #include <httplib.h>
 
@@ -195,6 +197,35 @@ inline Json expectProblem(const httplib::Result& res, int status, const std::str
   }
   return doc;
 }
+
+/// rupture-server as a child process on a free loopback port (the first stdout line names it).
+class ChildServer {
+public:
+  ChildServer(const std::filesystem::path& dataDir, const std::vector<std::string>& extra = {});
+  ~ChildServer();
+  ChildServer(const ChildServer&) = delete;
+  ChildServer& operator=(const ChildServer&) = delete;
+
+  int port() const { return m_port; }
+  pid_t pid() const { return m_pid; }
+  std::unique_ptr<httplib::Client> client() const {
+    auto c = std::make_unique<httplib::Client>("127.0.0.1", m_port);
+    c->set_read_timeout(30, 0);
+    return c;
+  }
+  /// Sends `signal` and waits up to `seconds` for the exit; returns the exit status
+  /// (128 + signal when killed by one) or -1.
+  int stop(int signal, double seconds);
+
+private:
+  pid_t m_pid = -1;
+  int m_stdout = -1;
+  int m_port = 0;
+};
+
+/// Runs rupture-server with `args` to its end (up to `seconds`, then SIGKILL); returns the exit
+/// status and its stderr in `err`.
+int runServerToExit(const std::vector<std::string>& args, std::string& err, double seconds = 10);
 
 /// Sends raw bytes to 127.0.0.1:port and returns the server's answer: up to the end of the first
 /// response, the connection's close, or `seconds`. For requests a client library would normalise.
