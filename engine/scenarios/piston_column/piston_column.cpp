@@ -1,0 +1,238 @@
+// The piston-column scenario (seed 002 §2 and §4): a water column in a rigid tube, closed by a rigid
+// bottom, hit by a piston. The pressure wave it carries (ρ0 c0 V for a heavy piston, doubled on
+// reflection at a rigid bottom) is what loads the bottom plate. Weakly compressible SPH with
+// dynamic boundary particles (engine/sph/README.md); contract and file layout in docs/sph.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "io/fluid_recorder.hpp"
+#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/piston_column/piston_column_spec.hpp"
+#include "scenarios/run_support.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace rupture {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+enum Body : std::int32_t { kTube = 0, kBottom = 1, kPiston = 2 };
+
+struct ColumnLattice {
+  double dx;
+  int nR, nH;              ///< tube radius and column height (cells)
+  double area = 0;         ///< piston face and bottom area: m² (3D), m per metre of depth (2D)
+  double R() const { return nR * dx; }
+  double H() const { return nH * dx; }
+};
+
+/// Sites on a lattice of spacing dx centred on the tube axis (x = 0, and y = 0 in 3D), the bottom
+/// face at vertical 0. Tube and bottom: `layers` layers; piston: `layers` layers above the column.
+ColumnLattice buildColumn(sph::SphSystem& s, const PistonColumnSpec& spec) {
+  const sph::EquationOfState& eos = s.model.eos;
+  const int dim = spec.dimension, layers = spec.resolution.wallLayers;
+  ColumnLattice g{spec.resolution.spacing, std::max(2, static_cast<int>(std::lround(0.5 * spec.diameter / spec.resolution.spacing))),
+                  std::max(4, static_cast<int>(std::lround(spec.columnHeight / spec.resolution.spacing)))};
+  const double dx = g.dx, rho0 = eos.referenceDensity, R = g.R(), Rw = R + layers * dx;
+  const double mass = rho0 * std::pow(dx, dim);
+  s.bodies.assign(3, {});
+  s.bodies[kTube].name = "tube";
+  s.bodies[kBottom].name = "bottom";
+  s.bodies[kPiston].name = "piston";
+  auto hydrostatic = [&](double v) { return v < g.H() ? eos.density(rho0 * spec.gravity * (g.H() - v)) : rho0; };
+  const int top = g.nH + 3 * layers;  // the tube goes on above the piston
+  const int n = g.nR + layers;
+  const int j0 = dim == 3 ? -n : 0, j1 = dim == 3 ? n : 1;
+  std::size_t crossSection = 0;
+  for (int k = -layers; k < top; ++k)
+    for (int j = j0; j < j1; ++j)
+      for (int i = -n; i < n; ++i) {
+        const double x = (i + 0.5) * dx, y = dim == 3 ? (j + 0.5) * dx : 0.0, v = (k + 0.5) * dx;
+        const double r2 = x * x + y * y;
+        const bool inTube = r2 < R * R, inWall = r2 < Rw * Rw;
+        const double px = x, py = dim == 3 ? y : v, pz = dim == 3 ? v : 0.0;
+        if (!inWall) continue;
+        if (k < 0) s.particles.add(px, py, pz, mass, hydrostatic(v), kBottom);
+        else if (!inTube) s.particles.add(px, py, pz, mass, hydrostatic(v), kTube);
+        else if (k < g.nH) {
+          s.particles.add(px, py, pz, mass, hydrostatic(v), sph::kFluid);
+          if (k == 0) ++crossSection;
+        } else if (k < g.nH + layers) {
+          s.particles.add(px, py, pz, mass, rho0, kPiston);
+        }
+      }
+  g.area = static_cast<double>(crossSection) * std::pow(dx, dim - 1);
+  sph::RigidBody& piston = s.bodies[kPiston];
+  piston.axis = {0, 0, 0};
+  piston.axis[dim - 1] = -1.0;  // into the column
+  piston.motion = spec.piston.motion;
+  piston.history = spec.piston.history;
+  piston.speed = spec.piston.motion == sph::BodyMotion::Free ? spec.piston.speed : spec.piston.history.at(0.0);
+  // The piston's mass per unit face area M/(π D²/4) is what sets its deceleration; a 2D slice
+  // (per metre of depth) and the lattice's cross-section keep it.
+  piston.mass = spec.piston.mass / (0.25 * std::numbers::pi * spec.diameter * spec.diameter) * g.area;
+  return g;
+}
+
+const std::vector<std::pair<std::string, std::string>>& seriesColumns() {
+  static const std::vector<std::pair<std::string, std::string>> columns = {
+      {"time", "s"},           {"bottom_pressure", "Pa"}, {"piston_position", "m"}, {"piston_velocity", "m/s"},
+      {"piston_force", "N"},   {"fluid_mass", "kg"},      {"kinetic_energy", "J"},  {"max_density_error", "1"},
+      {"particles_outside", "1"}, {"time_step", "s"}};
+  return columns;
+}
+
+const std::map<std::string, std::string>& summaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"peak_pressure", "Pa"},          {"peak_bottom_pressure", "Pa"},  {"first_peak_bottom_pressure", "Pa"},
+      {"time_of_first_peak", "s"},      {"acoustic_pressure", "Pa"},     {"shock_pressure", "Pa"},
+      {"piston_initial_speed", "m/s"},  {"piston_final_speed", "m/s"},   {"piston_final_position", "m"},
+      {"piston_impulse", "N s"},        {"piston_mass", "kg"},           {"section_area", "m^2"},
+      {"mass_error", "1"},              {"max_density_error", "1"},      {"particles_outside_max", "1"},
+      {"final_time", "s"},              {"steps", "1"},                  {"time_step_min", "s"},
+      {"time_step_max", "s"},           {"wall_time_s", "s"},            {"completed", "1"},
+      {"particles", "1"},               {"fluid_particles", "1"},        {"sound_speed", "m/s"},
+      {"smoothing_length", "m"},        {"neighbour_list_builds", "1"}};
+  return units;
+}
+
+RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const PistonColumnSpec spec = parsePistonColumnSpec(json);
+  control.progress.store(0.0);
+  const int dim = spec.dimension;
+
+  sph::SphSystem s;
+  s.model = io::fluidModel(spec.fluid, spec.resolution, dim, spec.soundSpeed, spec.gravity);
+  const ColumnLattice g = buildColumn(s, spec);
+  s.initialise();
+  const std::size_t fluidCount = static_cast<std::size_t>(
+      std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+  const sph::RigidBody& piston = s.bodies[kPiston];
+  const double v0 = piston.speed, rho0 = s.model.eos.referenceDensity;
+  logStage(control, "piston column: " + std::to_string(fluidCount) + " fluid and " +
+                        std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
+                        sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
+
+  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(), spec.probes.size());
+  recorder.writeSpec(toJson(spec), json);
+  recorder.writeAttributes("/geometry",
+                           {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
+                            {"spacing", g.dx}, {"smoothing_length", s.model.h()},
+                            {"wall_layers", spec.resolution.wallLayers}, {"piston_mass", piston.mass},
+                            {"vertical_axis", dim == 3 ? "z" : "y"}},
+                           {{"diameter", "m"}, {"column_height", "m"}, {"section_area", dim == 3 ? "m^2" : "m"},
+                            {"spacing", "m"}, {"smoothing_length", "m"}, {"piston_mass", dim == 3 ? "kg" : "kg/m"}});
+
+  // The fluid's push on the bottom, over its area: the mean bottom pressure.
+  auto bottomPressure = [&] { return -s.bodies[kBottom].force[dim - 1] / g.area; };
+  // The first peak: the bottom holds the doubled pressure from H/c0 until the wave reflected there
+  // comes back from the piston at 3H/c0 (a little earlier: the compressed column is faster); the
+  // window stops halfway, at 2.5 H/c0.
+  const double firstWindow = 2.5 * g.H() / spec.soundSpeed;
+  const double mass0 = s.fluidMass();
+  double peakProbe = 0, peakBottom = bottomPressure(), firstPeak = peakBottom, firstPeakTime = 0, maxDensityError = 0;
+  std::int64_t outsideMax = 0;
+  std::vector<double> probes(spec.probes.size());
+  double lastStep = 0;
+  auto row = [&] {
+    const sph::FluidParticles& p = s.particles;
+    double densityError = 0;
+    std::int64_t outside = 0;
+    const double face = g.H() - piston.displacement, R = g.R();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!p.isFluid(k)) continue;
+      densityError = std::max(densityError, std::fabs(p.rho[k] / rho0 - 1.0));
+      const double radial = dim == 3 ? std::hypot(p.x[k], p.y[k]) : std::fabs(p.x[k]);
+      const double v = dim == 3 ? p.z[k] : p.y[k];
+      outside += (radial > R || v < 0 || v > face) ? 1 : 0;
+    }
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
+      peakProbe = std::max(peakProbe, probes[k]);
+    }
+    maxDensityError = std::max(maxDensityError, densityError);
+    outsideMax = std::max(outsideMax, outside);
+    // piston_force: the fluid's force on the piston, positive when it pushes the piston back out.
+    recorder.appendRow({s.time, bottomPressure(), piston.displacement, piston.speed, -piston.axialForce(),
+                        s.fluidMass(), s.kineticEnergy(), densityError, static_cast<double>(outside), lastStep},
+                       probes);
+  };
+  auto afterStep = [&](double dt) {
+    lastStep = dt;
+    const double pb = bottomPressure();
+    peakBottom = std::max(peakBottom, pb);
+    if (s.time <= firstWindow && pb > firstPeak) {
+      firstPeak = pb;
+      firstPeakTime = s.time;
+    }
+  };
+  auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
+  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
+  const bool completed = loop.stopReason != "cancelled";
+  recorder.writeSnapshot(s, "final");
+
+  const sph::PistonShock shock = sph::pistonShock(s.model.eos, std::max(v0, 1e-12));
+  nlohmann::json summary = {
+      {"completed", completed ? 1 : 0},
+      {"stop_reason", loop.stopReason},
+      {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakProbe)},
+      {"peak_bottom_pressure", peakBottom},
+      {"first_peak_bottom_pressure", firstPeak},
+      {"time_of_first_peak", firstPeakTime},
+      {"acoustic_pressure", rho0 * spec.soundSpeed * v0},
+      {"shock_pressure", v0 > 0 ? nlohmann::json(shock.pressure) : nlohmann::json(0.0)},
+      {"piston_initial_speed", v0},
+      {"piston_final_speed", piston.speed},
+      {"piston_final_position", piston.displacement},
+      {"piston_impulse", -(piston.impulse[0] * piston.axis[0] + piston.impulse[1] * piston.axis[1] +
+                           piston.impulse[2] * piston.axis[2])},
+      {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
+      {"section_area", g.area},
+      {"mass_error", (s.fluidMass() - mass0) / mass0},
+      {"max_density_error", maxDensityError},
+      {"particles_outside_max", outsideMax},
+      {"final_time", s.time},
+      {"steps", static_cast<std::int64_t>(s.steps)},
+      {"time_step_min", std::isfinite(loop.minTimeStep) ? nlohmann::json(loop.minTimeStep) : nlohmann::json(nullptr)},
+      {"time_step_max", loop.maxTimeStep > 0 ? nlohmann::json(loop.maxTimeStep) : nlohmann::json(nullptr)},
+      {"particles", static_cast<std::int64_t>(s.particles.size())},
+      {"fluid_particles", static_cast<std::int64_t>(fluidCount)},
+      {"sound_speed", spec.soundSpeed},
+      {"smoothing_length", s.model.h()},
+      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
+  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  std::map<std::string, std::string> units = summaryUnits();
+  if (dim == 2) {  // a 2D slice carries mass, force and impulse per metre of depth
+    units["piston_mass"] = "kg/m";
+    units["piston_impulse"] = "N s/m";
+    units["section_area"] = "m";
+  }
+  recorder.writeAttributes("/summary", summary, units);
+  recorder.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
+  return {summary, completed};
+}
+
+}  // namespace
+
+Scenario pistonColumnScenario() {
+  Scenario s;
+  s.info.name = "piston-column";
+  s.info.title = "Pressure wave in a water column hit by a piston (weakly compressible SPH)";
+  s.info.description =
+      "A water column in a rigid tube of diameter D and height H, closed by a rigid bottom, is hit by a piston: a "
+      "free rigid body of mass M and initial speed V decelerated by the fluid (the drop test of seed 002), or a "
+      "prescribed speed history. Weakly compressible SPH with dynamic boundary particles, 2D slice or 3D. Outputs "
+      "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
+      "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
+  s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
+  s.run = runPistonColumn;
+  return s;
+}
+
+}  // namespace rupture
