@@ -6,8 +6,9 @@
 
 namespace rupture::io {
 
-FluidSpec parseFluid(const SpecReader& root) {
+FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
   FluidSpec f;
+  f.alpha = defaultAlpha;
   const auto fluid = root.optionalObject("fluid");
   if (!fluid) return f;
   f.density = fluid->number("density", {1.0, 1e5, false, false}, "kg/m^3", f.density);

@@ -43,7 +43,8 @@ struct FluidRunSpec {
   double outputIntervalOrDefault() const { return outputInterval ? *outputInterval : endTime / 500.0; }
 };
 
-FluidSpec parseFluid(const SpecReader& root);
+/// defaultAlpha: the scenario's default Monaghan α (free-surface flows 0.1, pressure waves 0.3).
+FluidSpec parseFluid(const SpecReader& root, double defaultAlpha);
 ResolutionSpec parseResolution(const SpecReader& root);
 FluidRunSpec parseFluidRun(const SpecReader& root, double defaultEndTime);
 /// "probes": an optional array of points, each `dimension` numbers (m); read from the raw spec

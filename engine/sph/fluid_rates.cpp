@@ -77,11 +77,33 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   const double alphaC0 = model.alpha * eos.soundSpeed;
   const double diffusionScale = 2.0 * model.delta * kernel.h() * eos.soundSpeed;
 
+  // Fluid pressures from the equation of state; then the boundary particles' pressures extrapolated
+  // from the fluid around them (Adami et al. 2012, eq. 27), their density its EOS inverse.
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k)
+    if (p.body[k] == kFluid) p.pressure[k] = eos.pressure(p.rhoEst[k]);
+  const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
+#pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
+  for (std::size_t w = 0; w < n; ++w) {
+    if (p.body[w] == kFluid) continue;
+    const std::int32_t* nb = list.neighbours(w);
+    double sumW = 0, sumPW = 0, sumRhoRW = 0;
+    for (int k = 0; k < list.count(w); ++k) {
+      const std::int32_t f = nb[k];
+      const double dx = p.x[w] - p.x[f], dy = p.y[w] - p.y[f], dz = is3d ? p.z[w] - p.z[f] : 0.0;
+      const double W = kernel.value(std::sqrt(dx * dx + dy * dy + dz * dz));
+      sumW += W;
+      sumPW += p.pressure[f] * W;
+      sumRhoRW += p.rhoEst[f] * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f r_wf W, a_w neglected
+    }
+    // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
+    const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
+    p.pressure[w] = pw;
+    p.rhoEst[w] = eos.density(pw);
+  }
 #pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t k = 0; k < n; ++k) {
-    const double rho = p.rhoEst[k];
-    p.pressure[k] = eos.pressure(rho);
-    p.inverseRho[k] = 1.0 / rho;
+    p.inverseRho[k] = 1.0 / p.rhoEst[k];
     p.pressureOverRho2[k] = p.pressure[k] * p.inverseRho[k] * p.inverseRho[k];
   }
 

@@ -90,7 +90,6 @@ void SphSystem::step(double dt) {
   FluidParticles& p = particles;
   const std::size_t n = p.size();
   const double half = 0.5 * dt;
-  const double rho0 = model.eos.referenceDensity;
   const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
 
   // 1. Half kick of v and ρ with the rates at t; drift of x with the half-step velocity; estimates
@@ -104,10 +103,7 @@ void SphSystem::step(double dt) {
       p.x[k] += dt * p.vx[k]; p.y[k] += dt * p.vy[k]; p.z[k] += dt * p.vz[k];
       p.vxEst[k] = p.vx[k] + half * ax; p.vyEst[k] = p.vy[k] + half * ay; p.vzEst[k] = p.vz[k] + half * az;
       p.rhoEst[k] = p.rho[k] + half * p.drho[k];
-    } else {
-      p.rho[k] = std::max(rho0, p.rho[k] + half * p.drho[k]);
-      p.rhoEst[k] = std::max(rho0, p.rho[k] + half * p.drho[k]);
-    }
+    }  // boundary densities are extrapolated from the fluid in computeRates
   }
   // 2. Bodies: the same kick–drift for their one degree of freedom.
   for (RigidBody& b : bodies) {
@@ -158,7 +154,7 @@ void SphSystem::step(double dt) {
       p.vx[k] += half * (p.ax[k] + gx); p.vy[k] += half * (p.ay[k] + gy); p.vz[k] += half * (p.az[k] + gz);
       p.rho[k] += half * p.drho[k];
     } else {
-      p.rho[k] = std::max(rho0, p.rho[k] + half * p.drho[k]);
+      p.rho[k] = p.rhoEst[k];  // the extrapolated wall density, for output
     }
   }
   for (RigidBody& b : bodies) {

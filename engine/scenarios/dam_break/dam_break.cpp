@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "io/fluid_recorder.hpp"
-#include "scenarios/dam_break/dam_break_spec.hpp"
+#include "scenarios/dam_break/dam_break_lattice.hpp"
 #include "scenarios/fluid_run_loop.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
@@ -16,52 +16,6 @@ namespace rupture {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// The tank and column on the lattice of spacing dx, sizes rounded to whole spacings.
-struct DamBreakLattice {
-  double dx;
-  int nA, nH, nL, nT, nW;  ///< column width, column height, tank length, tank height, width (cells)
-  double a() const { return nA * dx; }
-  double H() const { return nH * dx; }
-  double L() const { return nL * dx; }
-  double T() const { return nT * dx; }
-  double W() const { return nW * dx; }
-};
-
-DamBreakLattice lattice(const DamBreakSpec& s) {
-  const double dx = s.resolution.spacing;
-  auto cells = [dx](double length) { return std::max(1, static_cast<int>(std::lround(length / dx))); };
-  const DamBreakGeometry& g = s.geometry;
-  return {dx, cells(g.columnWidth), cells(g.columnHeight), cells(g.tankLength), cells(g.tankHeight),
-          g.width ? cells(*g.width) : 1};
-}
-
-/// Fluid sites at ((i + ½) dx, ...) inside the column; wall sites in `layers` layers around the
-/// floor, the back and front walls (and the side walls in 3D). Densities start hydrostatic.
-void buildDamBreak(sph::SphSystem& s, const DamBreakSpec& spec, const DamBreakLattice& g) {
-  const sph::EquationOfState& eos = s.model.eos;
-  const double dx = g.dx, rho0 = eos.referenceDensity;
-  const int dim = spec.dimension, layers = spec.resolution.wallLayers;
-  const double mass = rho0 * std::pow(dx, dim);
-  s.bodies.assign(1, {});
-  s.bodies[0].name = "tank";
-  auto hydrostatic = [&](double vertical) { return eos.density(rho0 * spec.gravity * (g.H() - vertical)); };
-  const int j0 = dim == 3 ? -layers : 0, j1 = dim == 3 ? g.nW + layers : 1;
-  for (int k = -layers; k < g.nT; ++k)
-    for (int j = j0; j < j1; ++j)
-      for (int i = -layers; i < g.nL + layers; ++i) {
-        const double x = (i + 0.5) * dx, across = (j + 0.5) * dx, v = (k + 0.5) * dx;
-        const bool inside = i >= 0 && i < g.nL && k >= 0 && (dim == 2 || (j >= 0 && j < g.nW));
-        const double px = x, py = dim == 3 ? across : v, pz = dim == 3 ? v : 0.0;
-        if (!inside) {
-          // Walls beside and under the column start at the column's hydrostatic density.
-          const bool loaded = i < g.nA && k < g.nH;
-          s.particles.add(px, py, pz, mass, loaded ? hydrostatic(v) : rho0, 0);
-        } else if (i < g.nA && k < g.nH) {
-          s.particles.add(px, py, pz, mass, hydrostatic(v), sph::kFluid);
-        }
-      }
-}
 
 const std::vector<std::pair<std::string, std::string>>& seriesColumns() {
   static const std::vector<std::pair<std::string, std::string>> columns = {
@@ -86,12 +40,9 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
   const auto wallStart = Clock::now();
   const DamBreakSpec spec = parseDamBreakSpec(json);
   control.progress.store(0.0);
-  const DamBreakLattice g = lattice(spec);
   const int dim = spec.dimension;
-
   sph::SphSystem s;
-  s.model = io::fluidModel(spec.fluid, spec.resolution, dim, spec.soundSpeed, spec.gravity);
-  buildDamBreak(s, spec, g);
+  const DamBreakLattice g = buildDamBreak(s, spec);
   s.initialise();
   const std::size_t fluidCount = static_cast<std::size_t>(
       std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));

@@ -41,7 +41,7 @@ DamBreakSpec parseDamBreakSpec(const nlohmann::json& json) {
   s.dimension = static_cast<int>(root.integer("dimension", 2, 3, 2));
   s.geometry = parseGeometry(root, s.dimension);
   s.resolution = io::parseResolution(root);
-  s.fluid = io::parseFluid(root);
+  s.fluid = io::parseFluid(root, 0.1);
   s.gravity = root.number("gravity", Range::positive(), "m/s^2", 9.81);
   s.run = io::parseFluidRun(root, 0.3);
   root.finish();

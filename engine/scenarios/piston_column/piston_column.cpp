@@ -9,7 +9,7 @@
 
 #include "io/fluid_recorder.hpp"
 #include "scenarios/fluid_run_loop.hpp"
-#include "scenarios/piston_column/piston_column_spec.hpp"
+#include "scenarios/piston_column/piston_column_lattice.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -18,64 +18,6 @@ namespace rupture {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-enum Body : std::int32_t { kTube = 0, kBottom = 1, kPiston = 2 };
-
-struct ColumnLattice {
-  double dx;
-  int nR, nH;              ///< tube radius and column height (cells)
-  double area = 0;         ///< piston face and bottom area: m² (3D), m per metre of depth (2D)
-  double R() const { return nR * dx; }
-  double H() const { return nH * dx; }
-};
-
-/// Sites on a lattice of spacing dx centred on the tube axis (x = 0, and y = 0 in 3D), the bottom
-/// face at vertical 0. Tube and bottom: `layers` layers; piston: `layers` layers above the column.
-ColumnLattice buildColumn(sph::SphSystem& s, const PistonColumnSpec& spec) {
-  const sph::EquationOfState& eos = s.model.eos;
-  const int dim = spec.dimension, layers = spec.resolution.wallLayers;
-  ColumnLattice g{spec.resolution.spacing, std::max(2, static_cast<int>(std::lround(0.5 * spec.diameter / spec.resolution.spacing))),
-                  std::max(4, static_cast<int>(std::lround(spec.columnHeight / spec.resolution.spacing)))};
-  const double dx = g.dx, rho0 = eos.referenceDensity, R = g.R(), Rw = R + layers * dx;
-  const double mass = rho0 * std::pow(dx, dim);
-  s.bodies.assign(3, {});
-  s.bodies[kTube].name = "tube";
-  s.bodies[kBottom].name = "bottom";
-  s.bodies[kPiston].name = "piston";
-  auto hydrostatic = [&](double v) { return v < g.H() ? eos.density(rho0 * spec.gravity * (g.H() - v)) : rho0; };
-  const int top = g.nH + 3 * layers;  // the tube goes on above the piston
-  const int n = g.nR + layers;
-  const int j0 = dim == 3 ? -n : 0, j1 = dim == 3 ? n : 1;
-  std::size_t crossSection = 0;
-  for (int k = -layers; k < top; ++k)
-    for (int j = j0; j < j1; ++j)
-      for (int i = -n; i < n; ++i) {
-        const double x = (i + 0.5) * dx, y = dim == 3 ? (j + 0.5) * dx : 0.0, v = (k + 0.5) * dx;
-        const double r2 = x * x + y * y;
-        const bool inTube = r2 < R * R, inWall = r2 < Rw * Rw;
-        const double px = x, py = dim == 3 ? y : v, pz = dim == 3 ? v : 0.0;
-        if (!inWall) continue;
-        if (k < 0) s.particles.add(px, py, pz, mass, hydrostatic(v), kBottom);
-        else if (!inTube) s.particles.add(px, py, pz, mass, hydrostatic(v), kTube);
-        else if (k < g.nH) {
-          s.particles.add(px, py, pz, mass, hydrostatic(v), sph::kFluid);
-          if (k == 0) ++crossSection;
-        } else if (k < g.nH + layers) {
-          s.particles.add(px, py, pz, mass, rho0, kPiston);
-        }
-      }
-  g.area = static_cast<double>(crossSection) * std::pow(dx, dim - 1);
-  sph::RigidBody& piston = s.bodies[kPiston];
-  piston.axis = {0, 0, 0};
-  piston.axis[dim - 1] = -1.0;  // into the column
-  piston.motion = spec.piston.motion;
-  piston.history = spec.piston.history;
-  piston.speed = spec.piston.motion == sph::BodyMotion::Free ? spec.piston.speed : spec.piston.history.at(0.0);
-  // The piston's mass per unit face area M/(π D²/4) is what sets its deceleration; a 2D slice
-  // (per metre of depth) and the lattice's cross-section keep it.
-  piston.mass = spec.piston.mass / (0.25 * std::numbers::pi * spec.diameter * spec.diameter) * g.area;
-  return g;
-}
 
 const std::vector<std::pair<std::string, std::string>>& seriesColumns() {
   static const std::vector<std::pair<std::string, std::string>> columns = {
@@ -106,12 +48,11 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
   const int dim = spec.dimension;
 
   sph::SphSystem s;
-  s.model = io::fluidModel(spec.fluid, spec.resolution, dim, spec.soundSpeed, spec.gravity);
-  const ColumnLattice g = buildColumn(s, spec);
+  const ColumnLattice g = buildPistonColumn(s, spec);
   s.initialise();
   const std::size_t fluidCount = static_cast<std::size_t>(
       std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
-  const sph::RigidBody& piston = s.bodies[kPiston];
+  const sph::RigidBody& piston = s.bodies[kColumnPiston];
   const double v0 = piston.speed, rho0 = s.model.eos.referenceDensity;
   logStage(control, "piston column: " + std::to_string(fluidCount) + " fluid and " +
                         std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
@@ -128,7 +69,7 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
                             {"spacing", "m"}, {"smoothing_length", "m"}, {"piston_mass", dim == 3 ? "kg" : "kg/m"}});
 
   // The fluid's push on the bottom, over its area: the mean bottom pressure.
-  auto bottomPressure = [&] { return -s.bodies[kBottom].force[dim - 1] / g.area; };
+  auto bottomPressure = [&] { return -s.bodies[kColumnBottom].force[dim - 1] / g.area; };
   // The first peak: the bottom holds the doubled pressure from H/c0 until the wave reflected there
   // comes back from the piston at 3H/c0 (a little earlier: the compressed column is faster); the
   // window stops halfway, at 2.5 H/c0.
