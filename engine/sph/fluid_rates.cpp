@@ -16,10 +16,10 @@ struct Sums {
 
 /// The pair loop of particle i over neighbours list[begin, end). Diffuse: add the δ-SPH sum.
 /// Plain arrays and selects only, so GCC vectorises it (gathers of the neighbours' fields).
-template <bool Diffuse>
+template <bool Diffuse, bool UniformMass>
 [[gnu::always_inline]] inline void gather(const FluidParticles& p, std::size_t i, const std::int32_t* list, int begin,
                                           int end, const CubicSplineKernel& kernel, double alphaC0, double beta,
-                                          const double* hydrostatic, bool is3d, Sums& s) {
+                                          const double* hydrostatic, bool is3d, double uniformMass, Sums& s) {
   const double* __restrict x = p.x.data();
   const double* __restrict y = p.y.data();
   const double* __restrict z = p.z.data();
@@ -48,7 +48,7 @@ template <bool Diffuse>
     const double rhoj = rho[j];
     // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
     const double viscous = vr < 0.0 ? (-alphaC0 * mu + beta * mu * mu) * 0.5 * (invRhoI + invRho[j]) : 0.0;
-    const double mj = m[j];
+    const double mj = UniformMass ? uniformMass : m[j];
     const double c = mj * (Pi + P[j] + viscous) * F;
     sax -= c * dx;
     say -= c * dy;
@@ -99,7 +99,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
     const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
     p.pressure[w] = pw;
-    p.rhoEst[w] = eos.density(pw);
+    p.rhoEst[w] = pw > 0 ? eos.density(pw) : eos.referenceDensity;
   }
 #pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t k = 0; k < n; ++k) {
@@ -107,21 +107,25 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     p.pressureOverRho2[k] = p.pressure[k] * p.inverseRho[k] * p.inverseRho[k];
   }
 
+  // Equal masses (every lattice-built set): one gather fewer per pair.
+  const double uniformMass = n > 0 ? p.mass[0] : 0.0;
+  const bool uniform = std::all_of(p.mass.begin(), p.mass.end(), [&](double m) { return m == uniformMass; });
   double maxMu = 0, maxAcc2 = 0, maxRho = 0;
+  auto pairLoop = [&]<bool Uniform>() {
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : maxMu, maxAcc2, maxRho) if (worthParallel(n))
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t* nb = list.neighbours(i);
     const int nf = list.fluidCount(i), total = list.count(i);
     Sums s;
     if (p.body[i] == kFluid) {
-      if (diffuse) gather<true>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, s);
-      else gather<false>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, s);
-      gather<false>(p, i, nb, nf, total, kernel, alphaC0, model.beta, hydrostatic, is3d, s);
+      if (diffuse) gather<true, Uniform>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
+      else gather<false, Uniform>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
+      gather<false, Uniform>(p, i, nb, nf, total, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
       const double gx = s.ax + model.gravity[0], gy = s.ay + model.gravity[1], gz = s.az + model.gravity[2];
       maxAcc2 = std::max(maxAcc2, gx * gx + gy * gy + gz * gz);
       maxRho = std::max(maxRho, p.rhoEst[i]);
     } else {
-      gather<false>(p, i, nb, 0, total, kernel, alphaC0, model.beta, hydrostatic, is3d, s);
+      gather<false, Uniform>(p, i, nb, 0, total, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
     }
     maxMu = std::max(maxMu, s.maxMu);
     p.ax[i] = s.ax;
@@ -129,6 +133,9 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     p.az[i] = s.az;
     p.drho[i] = s.drho + diffusionScale * s.diffusion;
   }
+  };
+  if (uniform) pairLoop.template operator()<true>();
+  else pairLoop.template operator()<false>();
   return {maxMu, std::sqrt(maxAcc2), maxRho};
 }
 
