@@ -8,8 +8,10 @@
 namespace rupture::io {
 
 FluidRecorder::FluidRecorder(std::string resultPath, const std::string& scenario,
-                             std::vector<std::pair<std::string, std::string>> columns, std::size_t probes)
-    : m_result(std::move(resultPath), scenario), m_columns(std::move(columns)), m_probes(probes) {
+                             std::vector<std::pair<std::string, std::string>> columns,
+                             std::vector<std::string> probePositions)
+    : m_result(std::move(resultPath), scenario), m_columns(std::move(columns)), m_probes(probePositions.size()),
+      m_probePositions(std::move(probePositions)) {
   m_result.file().createGroup("/snapshots");
 }
 
@@ -55,7 +57,14 @@ void FluidRecorder::finish(bool completed) {
     for (std::size_t r = 0; r < rows; ++r) column[r] = m_rows[r][c];
     f.writeDataset("/series/" + m_columns[c].first, column, {rows}, m_columns[c].second);
   }
-  f.writeDataset("/series/probe_pressure", m_probeRows, {rows, m_probes}, "Pa");
+  // One dataset per probe, so every series is a plain column (the server's series API, CSV).
+  for (std::size_t k = 0; k < m_probes; ++k) {
+    std::vector<double> column(rows);
+    for (std::size_t r = 0; r < rows; ++r) column[r] = m_probeRows[r * m_probes + k];
+    const std::string path = "/series/probe_pressure_" + std::to_string(k);
+    f.writeDataset(path, column, {rows}, "Pa");
+    f.setAttribute(path, "position", m_probePositions[k]);
+  }
   m_result.finish(completed);
 }
 

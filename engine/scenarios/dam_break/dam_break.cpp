@@ -50,7 +50,9 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
                         std::to_string(s.particles.size() - fluidCount) + " wall particles, c0 " +
                         formatNumber(spec.soundSpeed) + " m/s");
 
-  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(), spec.probes.size());
+  std::vector<std::string> probePositions;
+  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
+  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},

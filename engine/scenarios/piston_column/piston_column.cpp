@@ -58,7 +58,9 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
                         std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
                         sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
 
-  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(), spec.probes.size());
+  std::vector<std::string> probePositions;
+  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
+  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
