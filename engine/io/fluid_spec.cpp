@@ -21,7 +21,7 @@ FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
     visc->finish();
   }
   if (const auto diff = fluid->optionalObject("density_diffusion")) {
-    const std::string model = diff->choice("model", {"molteni_colagrossi", "fourtakas", "off"}, "molteni_colagrossi");
+    const std::string model = diff->choice("model", {"fourtakas", "molteni_colagrossi", "off"}, "fourtakas");
     f.diffusion = model == "off"         ? sph::DiffusionModel::Off
                   : model == "fourtakas" ? sph::DiffusionModel::Fourtakas
                                          : sph::DiffusionModel::MolteniColagrossi;

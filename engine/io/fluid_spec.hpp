@@ -20,7 +20,7 @@ struct FluidSpec {
   std::optional<double> soundSpeed;       ///< c0 (m/s); absent: the scenario's default
   sph::EosKind equationOfState = sph::EosKind::Tait;
   double alpha = 0.1, beta = 0.0;         ///< artificial_viscosity.{alpha, beta} (1)
-  sph::DiffusionModel diffusion = sph::DiffusionModel::MolteniColagrossi;
+  sph::DiffusionModel diffusion = sph::DiffusionModel::Fourtakas;
   double delta = 0.1;                     ///< density_diffusion.delta (1)
 };
 

@@ -34,7 +34,7 @@ struct FluidModel {
   EquationOfState eos;
   double alpha = 0.1;               ///< Monaghan viscosity, linear term (1)
   double beta = 0.0;                ///< Monaghan viscosity, quadratic term (1)
-  DiffusionModel diffusion = DiffusionModel::MolteniColagrossi;
+  DiffusionModel diffusion = DiffusionModel::Fourtakas;
   double delta = 0.1;               ///< δ (1)
   std::array<double, 3> gravity{0, 0, 0};  ///< m/s²
 
