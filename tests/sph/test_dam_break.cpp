@@ -7,6 +7,8 @@
 
 #include "cli/cli_runner.hpp"
 #include "io/hdf5_file.hpp"
+#include "scenarios/dam_break/dam_break_spec.hpp"
+#include "scenarios/piston_column/piston_column_spec.hpp"
 #include "support/test_support.hpp"
 
 namespace rupture::testing {
@@ -48,6 +50,7 @@ TEST(DamBreak, FrontAdvancesMonotonicallyInsideTheTankWithExactMass) {
   // The contract: units, probes, snapshots of every particle.
   EXPECT_EQ(f.readAttributeString("/summary", "front_position_final_unit"), "m");
   EXPECT_EQ(f.readAttributeString("/summary", "peak_pressure_unit"), "Pa");
+  EXPECT_EQ(f.readAttributeString("/series/fluid_mass", "unit"), "kg/m");  // a 2D slice, per metre of depth
   for (const char* probe : {"/series/probe_pressure_0", "/series/probe_pressure_1"})
     EXPECT_EQ(f.datasetDims(probe), (std::vector<std::size_t>{t.size()}));
   EXPECT_EQ(f.readAttributeString("/series/probe_pressure_1", "position"), "[0.2,0.005]");
@@ -69,6 +72,23 @@ std::string rejected(nlohmann::json spec, const std::string& pointer, const nloh
     return e.field();
   }
   return "";
+}
+
+TEST(DamBreak, ResolvedSpecsParseBackToThemselves) {
+  const nlohmann::json piston = {{"scenario", "piston-column"},
+                                 {"dimension", 3},
+                                 {"geometry", {{"diameter", 0.08}, {"column_height", 0.203}}},
+                                 {"resolution", {{"spacing", 0.004}}},
+                                 {"piston", {{"motion", "prescribed"}, {"speed_history", {{"time", {0.0, 1e-4}}, {"speed", {0.0, 3.0}}}}}},
+                                 {"probes", {{0.0, 0.0, 0.1}}}};
+  const nlohmann::json dam = toJson(parseDamBreakSpec(damBreakSpec()));
+  EXPECT_EQ(toJson(parseDamBreakSpec(dam)), dam);
+  EXPECT_EQ(dam["fluid"]["sound_speed"].get<double>(), 10.0 * std::sqrt(2.0 * 9.81 * 0.114));  // documented default
+  EXPECT_EQ(dam["fluid"]["density_diffusion"]["model"], "fourtakas");
+  const nlohmann::json column = toJson(parsePistonColumnSpec(piston));
+  EXPECT_EQ(toJson(parsePistonColumnSpec(column)), column);
+  EXPECT_EQ(column["fluid"]["sound_speed"].get<double>(), 1450.0);
+  EXPECT_EQ(column["fluid"]["artificial_viscosity"]["alpha"].get<double>(), 0.3);
 }
 
 TEST(DamBreak, BadInputsAreRejectedNamingFieldValueAndRange) {

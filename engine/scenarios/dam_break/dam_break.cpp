@@ -17,11 +17,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::vector<std::pair<std::string, std::string>>& seriesColumns() {
-  static const std::vector<std::pair<std::string, std::string>> columns = {
-      {"time", "s"},           {"front_position", "m"}, {"fluid_mass", "kg"},      {"kinetic_energy", "J"},
-      {"potential_energy", "J"}, {"max_density_error", "1"}, {"particles_outside", "1"}, {"time_step", "s"}};
-  return columns;
+/// A 2D slice carries mass and energy per metre of depth.
+std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
+  const std::string perDepth = dimension == 2 ? "/m" : "";
+  return {{"time", "s"},
+          {"front_position", "m"},
+          {"fluid_mass", "kg" + perDepth},
+          {"kinetic_energy", "J" + perDepth},
+          {"potential_energy", "J" + perDepth},
+          {"max_density_error", "1"},
+          {"particles_outside", "1"},
+          {"time_step", "s"}};
 }
 
 const std::map<std::string, std::string>& summaryUnits() {
@@ -52,7 +58,7 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
 
   std::vector<std::string> probePositions;
   for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(), probePositions);
+  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(dim), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},
@@ -121,7 +127,11 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
       {"potential_energy_final", s.potentialEnergy()},
       {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
-  recorder.writeAttributes("/summary", summary, summaryUnits());
+  std::map<std::string, std::string> units = summaryUnits();
+  if (dim == 2)
+    for (const char* energy : {"kinetic_energy_final", "potential_energy_initial", "potential_energy_final"})
+      units[energy] = "J/m";
+  recorder.writeAttributes("/summary", summary, units);
   recorder.finish(completed);
   if (completed) reportProgress(control, 1.0);
   logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");

@@ -19,12 +19,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::vector<std::pair<std::string, std::string>>& seriesColumns() {
-  static const std::vector<std::pair<std::string, std::string>> columns = {
-      {"time", "s"},           {"bottom_pressure", "Pa"}, {"piston_position", "m"}, {"piston_velocity", "m/s"},
-      {"piston_force", "N"},   {"fluid_mass", "kg"},      {"kinetic_energy", "J"},  {"max_density_error", "1"},
-      {"particles_outside", "1"}, {"time_step", "s"}};
-  return columns;
+/// A 2D slice carries force, mass and energy per metre of depth.
+std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
+  const std::string perDepth = dimension == 2 ? "/m" : "";
+  return {{"time", "s"},
+          {"bottom_pressure", "Pa"},
+          {"piston_position", "m"},
+          {"piston_velocity", "m/s"},
+          {"piston_force", "N" + perDepth},
+          {"fluid_mass", "kg" + perDepth},
+          {"kinetic_energy", "J" + perDepth},
+          {"max_density_error", "1"},
+          {"particles_outside", "1"},
+          {"time_step", "s"}};
 }
 
 const std::map<std::string, std::string>& summaryUnits() {
@@ -60,7 +67,7 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
 
   std::vector<std::string> probePositions;
   for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(), probePositions);
+  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(dim), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
