@@ -1,7 +1,7 @@
 #pragma once
 // Structure-of-arrays store of one SPH particle set: fluid particles and the boundary particles of
-// rigid bodies (walls, pistons) side by side, as dynamic boundary particles need (they enter the
-// same pair loop). Unlike the bonded store, SPH particles are reordered: sortByCell keeps
+// rigid bodies (walls, pistons) side by side: walls enter the same pair loop as the fluid.
+// Unlike the bonded store, SPH particles are reordered: sorting them in cell order keeps
 // neighbours near in memory, and `id` remembers each particle's creation index so that output is
 // always written in the same order.
 #include <cstddef>

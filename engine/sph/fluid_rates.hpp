@@ -7,8 +7,9 @@
 // with x_ab = x_a − x_b, ∇_a W_ab = F(r) x_ab (cubic spline), velocities and densities taken from
 // the step's estimates (vxEst…, rhoEst). c̄_ab is taken as c0 (weakly compressible: |ρ/ρ0 − 1|
 // stays near 1 %, so the local sound speeds differ from c0 by about 3 %).
-// Boundary particles get the same two sums from their fluid neighbours: dρ/dt (dynamic boundary
-// particles, Crespo et al. 2007) and the acceleration whose m·a is the fluid's force on them.
+// Boundary particles first take the pressure extrapolated from the fluid around them (Adami, Hu &
+// Adams 2012, eq. 27; ρ_w from the EOS inverse), then get the momentum sum from their fluid
+// neighbours: m_w·a_w is the fluid's force on them, exactly the opposite of theirs on the fluid.
 // Each particle gathers its own sums: no atomics, any thread count, the same result.
 #include "sph/fluid_model.hpp"
 #include "sph/fluid_particles.hpp"
@@ -23,7 +24,8 @@ struct RateExtremes {
   double maxDensity = 0;     ///< max over fluid particles of ρ_est (kg/m³)
 };
 
-/// Sets pressure and pressureOverRho2 from rhoEst, then ax/ay/az (without gravity) and drho.
+/// Sets the boundary particles' pressure and rhoEst (extrapolated), every particle's pressure,
+/// pressureOverRho2 and inverseRho, then ax/ay/az (without gravity) and drho (fluid particles).
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model);
 
 }  // namespace rupture::sph

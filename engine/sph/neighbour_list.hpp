@@ -3,7 +3,7 @@
 // Full lists (each pair appears in both particles' lists) so the pair loop gathers into one
 // particle at a time: no atomics, any thread count, the same sums in the same order. Each list
 // holds the fluid neighbours first, then the boundary ones (a fluid particle only); boundary
-// particles list only fluid neighbours, as dynamic boundary particles interact with fluid only.
+// particles list only fluid neighbours, as boundary particles interact with fluid only.
 // The cutoff is the kernel support plus a skin; SphSystem rebuilds when a particle has moved more
 // than half the skin since the last build.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// A rigid body made of dynamic boundary particles (walls, bottoms, pistons), guided along one axis.
+// A rigid body made of boundary particles (walls, bottoms, pistons), guided along one axis.
 // Its particles take part in the pair loop like fluid particles, but move with the body; the force
 // the fluid exerts on it is the sum of m·a over its particles, which by the symmetric momentum
 // equation is exactly the opposite of the force it exerts on the fluid. Motions:

@@ -1,6 +1,6 @@
 // The dam-break scenario (Martin & Moyce 1952; Koshizuka & Oka 1996): a water column of width a
 // and height H at the back of a tank is released under gravity. Weakly compressible SPH with
-// dynamic boundary particles (engine/sph/README.md); contract and file layout in docs/sph.md.
+// Adami dummy-particle walls (engine/sph/README.md); contract and file layout in docs/sph.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -147,7 +147,7 @@ Scenario damBreakScenario() {
   s.info.description =
       "A water column of width a and height H at the back of a tank is released under gravity and surges along the "
       "floor (Martin & Moyce 1952). Weakly compressible SPH: cubic spline kernel, Tait or acoustic equation of state, "
-      "Monaghan artificial viscosity, delta-SPH density diffusion, dynamic boundary particles for the walls, 2D or 3D. "
+      "Monaghan artificial viscosity, delta-SPH density diffusion, walls of dummy particles with pressure extrapolated from the fluid (Adami 2012), 2D or 3D. "
       "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
       "and snapshots of position, velocity, density and pressure.";
   s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };

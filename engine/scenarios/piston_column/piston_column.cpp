@@ -1,7 +1,7 @@
 // The piston-column scenario (seed 002 §2 and §4): a water column in a rigid tube, closed by a rigid
 // bottom, hit by a piston. The pressure wave it carries (ρ0 c0 V for a heavy piston, doubled on
 // reflection at a rigid bottom) is what loads the bottom plate. Weakly compressible SPH with
-// dynamic boundary particles (engine/sph/README.md); contract and file layout in docs/sph.md.
+// Adami dummy-particle walls and piston (engine/sph/README.md); contract and file layout in docs/sph.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -177,7 +177,7 @@ Scenario pistonColumnScenario() {
   s.info.description =
       "A water column in a rigid tube of diameter D and height H, closed by a rigid bottom, is hit by a piston: a "
       "free rigid body of mass M and initial speed V decelerated by the fluid (the drop test of seed 002), or a "
-      "prescribed speed history. Weakly compressible SPH with dynamic boundary particles, 2D slice or 3D. Outputs "
+      "prescribed speed history. Weakly compressible SPH with dummy-particle walls (Adami 2012), 2D slice or 3D. Outputs "
       "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
       "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
   s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
