@@ -2,8 +2,8 @@
 // One weakly compressible SPH fluid with its rigid boundary bodies, and the time integrator.
 // The step is a kick–drift–kick leapfrog with one pair-loop evaluation per step (the scheme of
 // LAMMPS' fix sph): half kick of v and ρ, drift of x, estimates of v and ρ at the end of the step
-// for the pair loop, then the second half kick with the new rates. Boundary particles keep ρ ≥ ρ0
-// (DualSPHysics does the same: a wall must not pull fluid in).
+// for the pair loop, then the second half kick with the new rates. Boundary particles move with
+// their body; their density is not integrated but extrapolated from the fluid (fluid_rates.hpp).
 #include <cstddef>
 #include <vector>
 
