@@ -86,8 +86,11 @@ TEST(DamBreak, TrajectoriesAreBitwiseIdenticalOnOneAndTwoThreads) {
     sph::SphSystem s;
     buildDamBreak(s, parsed);
     ASSERT_GE(s.particles.size(), 8192u);
+    s.skinFraction = 0.02;  // rebuild and re-sort within these few steps
+    s.sortEvery = 1;
     s.initialise();
-    for (int k = 0; k < 60; ++k) s.step(s.stableTimeStep(0.2));  // a list rebuild and re-sort included
+    for (int k = 0; k < 60; ++k) s.step(s.stableTimeStep(0.2));
+    EXPECT_GE(s.listBuilds(), 3u);
     s.particles.inCreationOrder(s.particles.x, x[threads - 1]);
     s.particles.inCreationOrder(s.particles.rho, rho[threads - 1]);
   }
