@@ -13,7 +13,8 @@ using io::Range;
 using io::SpecReader;
 
 constexpr const char* kScenarioName = "dam-break";
-constexpr double kMaxParticles = 2e7;
+// About 0.6 kB per particle (neighbour lists of ~100 entries and 25 fields): 5e6 is 3 GB.
+constexpr double kMaxParticles = 5e6;
 
 DamBreakGeometry parseGeometry(const SpecReader& root, int dimension) {
   DamBreakGeometry g;
@@ -61,7 +62,7 @@ DamBreakSpec parseDamBreakSpec(const nlohmann::json& json) {
   const double particles = (g.tankLength + 2 * layers * dx) * (g.tankHeight + layers * dx) / (dx * dx) * across;
   if (particles > kMaxParticles)
     throw SpecError("resolution.spacing", formatNumber(dx),
-                    "a spacing giving at most 2e7 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
+                    "a spacing giving at most 5e6 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 10.0 * std::sqrt(2.0 * s.gravity * g.columnHeight);
   for (std::size_t k = 0; k < s.probes.size(); ++k) {
     const auto& p = s.probes[k];

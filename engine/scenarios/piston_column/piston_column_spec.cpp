@@ -82,9 +82,9 @@ PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
   const double layers = s.resolution.wallLayers;
   const double across = (s.diameter + 2 * layers * dx) / dx;
   const double particles = across * (s.dimension == 3 ? across : 1.0) * (s.columnHeight / dx + 4 * layers);
-  if (particles > 2e7)
+  if (particles > 5e6)  // about 0.6 kB per particle: 3 GB
     throw SpecError("resolution.spacing", formatNumber(dx),
-                    "a spacing giving at most 2e7 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
+                    "a spacing giving at most 5e6 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 1450.0;
   const double R = 0.5 * s.diameter;
   for (std::size_t k = 0; k < s.probes.size(); ++k) {
