@@ -92,10 +92,19 @@ std::string snapshotGrid(const Hdf5File& file, const std::string& name,
   }
   const std::size_t n = posDims[0];
   const auto velDims = requireDims(file, base + "/velocity", {n, 3});
-  const auto stressDims = requireDims(file, base + "/stress", {n, 3, 3});
-  const auto damageDims = requireDims(file, base + "/damage", {n});
-  std::optional<std::vector<std::size_t>> radiusDims;
-  if (file.exists(base + "/radius")) radiusDims = requireDims(file, base + "/radius", {n});
+  // Optional per-particle fields: bonded runs write stress, damage and radius; SPH runs density,
+  // pressure and body.
+  auto optionalDims = [&](const std::string& field, const std::vector<std::size_t>& expected) {
+    std::optional<std::vector<std::size_t>> dims;
+    if (file.exists(base + "/" + field)) dims = requireDims(file, base + "/" + field, expected);
+    return dims;
+  };
+  const auto stressDims = optionalDims("stress", {n, 3, 3});
+  const auto damageDims = optionalDims("damage", {n});
+  const auto radiusDims = optionalDims("radius", {n});
+  const auto densityDims = optionalDims("density", {n});
+  const auto pressureDims = optionalDims("pressure", {n});
+  const auto bodyDims = optionalDims("body", {n});
 
   const double time = file.readAttributeDouble(base, "time");
   if (!std::isfinite(time)) {
@@ -114,9 +123,12 @@ std::string snapshotGrid(const Hdf5File& file, const std::string& name,
   xml += "    </Geometry>\n";
   xml += attribute("velocity", "Vector", velDims, fileRef, base + "/velocity");
   // Full 3x3 tensor: the Xdmf2 reader takes 9 components per point from the {n,3,3} array.
-  xml += attribute("stress", "Tensor", stressDims, fileRef, base + "/stress");
-  xml += attribute("damage", "Scalar", damageDims, fileRef, base + "/damage");
+  if (stressDims) xml += attribute("stress", "Tensor", *stressDims, fileRef, base + "/stress");
+  if (damageDims) xml += attribute("damage", "Scalar", *damageDims, fileRef, base + "/damage");
   if (radiusDims) xml += attribute("radius", "Scalar", *radiusDims, fileRef, base + "/radius");
+  if (densityDims) xml += attribute("density", "Scalar", *densityDims, fileRef, base + "/density");
+  if (pressureDims) xml += attribute("pressure", "Scalar", *pressureDims, fileRef, base + "/pressure");
+  if (bodyDims) xml += attribute("body", "Scalar", *bodyDims, fileRef, base + "/body");
   xml += "   </Grid>\n";
   return xml;
 }

@@ -9,8 +9,9 @@ namespace rupture::io {
 /// temporal collection of point clouds (Polyvertex topology).
 ///
 /// Snapshots are the groups /snapshots/<k>, taken in sorted name order (zero-padded, "000000"),
-/// each holding position {n,3} (m), velocity {n,3} (m/s), stress {n,3,3} (Pa), damage {n} (1) and
-/// optionally radius {n} (m), with attributes time (s) and strain (1); n may differ per snapshot.
+/// each holding position {n,3} (m) and velocity {n,3} (m/s), and any of stress {n,3,3} (Pa),
+/// damage {n} (1), radius {n} (m) (bonded runs), density {n} (kg/m³), pressure {n} (Pa) and body {n}
+/// (SPH runs), with attribute time (s); n may differ per snapshot.
 /// Snapshots with n = 0 are left out (a grid without points is not useful to the reader).
 /// The HDF5 file is referenced by its path relative to the sidecar's directory, so the two can be
 /// moved together. Name the sidecar `*.xdmf2`: ParaView 5.11 opens `.xmf`/`.xdmf` with its broken

@@ -10,9 +10,12 @@ namespace rupture {
 // One factory per scenario file.
 Scenario dynamicTensionScenario();
 Scenario elasticPropertiesScenario();
+Scenario damBreakScenario();
+Scenario pistonColumnScenario();
 
 const std::vector<Scenario>& scenarioRegistry() {
-  static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario()};
+  static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario(),
+                                                 damBreakScenario(), pistonColumnScenario()};
   return registry;
 }
 

@@ -1,0 +1,71 @@
+#include "io/fluid_recorder.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "io/interleave.hpp"
+
+namespace rupture::io {
+
+FluidRecorder::FluidRecorder(std::string resultPath, const std::string& scenario,
+                             std::vector<std::pair<std::string, std::string>> columns,
+                             std::vector<std::string> probePositions)
+    : m_result(std::move(resultPath), scenario), m_columns(std::move(columns)), m_probes(probePositions.size()),
+      m_probePositions(std::move(probePositions)) {
+  m_result.file().createGroup("/snapshots");
+}
+
+void FluidRecorder::appendRow(const std::vector<double>& values, const std::vector<double>& probePressures) {
+  if (values.size() != m_columns.size() || probePressures.size() != m_probes)
+    throw std::logic_error("FluidRecorder: row does not match the series columns");
+  m_rows.push_back(values);
+  m_probeRows.insert(m_probeRows.end(), probePressures.begin(), probePressures.end());
+}
+
+void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::string& trigger) {
+  const sph::FluidParticles& p = system.particles;
+  const std::size_t n = p.size();
+  char name[32];
+  std::snprintf(name, sizeof name, "/snapshots/%06zu", m_snapshots);
+  const std::string base = name;
+  Hdf5File& f = m_result.file();
+  f.createGroup(base);
+  f.setAttribute(base, "time", system.time);
+  f.setAttribute(base, "step", static_cast<std::int64_t>(system.steps));
+  f.setAttribute(base, "trigger", trigger);
+  std::vector<double> x, y, z, vx, vy, vz, rho, pressure(n);
+  p.inCreationOrder(p.x, x); p.inCreationOrder(p.y, y); p.inCreationOrder(p.z, z);
+  p.inCreationOrder(p.vx, vx); p.inCreationOrder(p.vy, vy); p.inCreationOrder(p.vz, vz);
+  p.inCreationOrder(p.rho, rho);
+  for (std::size_t k = 0; k < n; ++k) pressure[k] = system.model.eos.pressure(rho[k]);
+  std::vector<std::int32_t> body(n);
+  for (std::size_t k = 0; k < n; ++k) body[p.id[k]] = p.body[k];
+  f.writeDataset(base + "/position", interleave(x, y, z), {n, 3}, "m");
+  f.writeDataset(base + "/velocity", interleave(vx, vy, vz), {n, 3}, "m/s");
+  f.writeDataset(base + "/density", rho, {n}, "kg/m^3");
+  f.writeDataset(base + "/pressure", pressure, {n}, "Pa");
+  f.writeDataset(base + "/body", body, {n}, "1");
+  ++m_snapshots;
+}
+
+void FluidRecorder::finish(bool completed) {
+  Hdf5File& f = m_result.file();
+  const std::size_t rows = m_rows.size();
+  f.createGroup("/series");
+  for (std::size_t c = 0; c < m_columns.size(); ++c) {
+    std::vector<double> column(rows);
+    for (std::size_t r = 0; r < rows; ++r) column[r] = m_rows[r][c];
+    f.writeDataset("/series/" + m_columns[c].first, column, {rows}, m_columns[c].second);
+  }
+  // One dataset per probe, so every series is a plain column (the server's series API, CSV).
+  for (std::size_t k = 0; k < m_probes; ++k) {
+    std::vector<double> column(rows);
+    for (std::size_t r = 0; r < rows; ++r) column[r] = m_probeRows[r * m_probes + k];
+    const std::string path = "/series/probe_pressure_" + std::to_string(k);
+    f.writeDataset(path, column, {rows}, "Pa");
+    f.setAttribute(path, "position", m_probePositions[k]);
+  }
+  m_result.finish(completed);
+}
+
+}  // namespace rupture::io

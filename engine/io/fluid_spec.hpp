@@ -1,0 +1,64 @@
+#pragma once
+// Parsing and validation of the parts every SPH scenario's spec shares (fluid, resolution, run,
+// probes), and their resolved JSON (defaults filled in) for the result file. Units: SI, stated in
+// api/schemas/{dam-break,piston-column}.schema.json.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/spec_reader.hpp"
+#include "sph/fluid_model.hpp"
+
+namespace rupture::io {
+
+/// The "fluid" block.
+struct FluidSpec {
+  double density = 1000.0;                ///< ρ0 (kg/m³)
+  std::optional<double> soundSpeed;       ///< c0 (m/s); absent: the scenario's default
+  sph::EosKind equationOfState = sph::EosKind::Tait;
+  double alpha = 0.1, beta = 0.0;         ///< artificial_viscosity.{alpha, beta} (1)
+  sph::DiffusionModel diffusion = sph::DiffusionModel::Fourtakas;
+  double delta = 0.1;                     ///< density_diffusion.delta (1)
+};
+
+/// The "resolution" block.
+struct ResolutionSpec {
+  double spacing = 0;           ///< initial particle spacing dx (m), required
+  double smoothingRatio = 1.3;  ///< h/dx (1)
+  int wallLayers = 3;           ///< layers of boundary particles, must cover the support 2h
+};
+
+/// The "run" block.
+struct FluidRunSpec {
+  double endTime = 0;                   ///< s
+  std::optional<double> timeStep;       ///< fixed dt (s); absent: Monaghan & Kos with `cfl`
+  double cfl = 0.2;                     ///< Courant number of the variable step (1)
+  std::optional<double> outputInterval; ///< s between series rows; absent: end_time/500
+  std::vector<double> snapshotTimes;    ///< s; absent: {0, end_time}
+  std::int64_t maxSteps = 50'000'000;
+
+  double outputIntervalOrDefault() const { return outputInterval ? *outputInterval : endTime / 500.0; }
+};
+
+/// defaultAlpha: the scenario's default Monaghan α (free-surface flows 0.1, pressure waves 0.3).
+FluidSpec parseFluid(const SpecReader& root, double defaultAlpha);
+ResolutionSpec parseResolution(const SpecReader& root);
+FluidRunSpec parseFluidRun(const SpecReader& root, double defaultEndTime);
+/// "probes": an optional array of points, each `dimension` numbers (m); read from the raw spec
+/// (the root reader is given a copy without the key). Bounds are checked by the scenario.
+std::vector<std::array<double, 3>> parseProbes(const nlohmann::json& spec, int dimension);
+
+nlohmann::json toJson(const FluidSpec& f, double soundSpeed);
+nlohmann::json toJson(const ResolutionSpec& r);
+nlohmann::json toJson(const FluidRunSpec& r);
+nlohmann::json probesJson(const std::vector<std::array<double, 3>>& probes, int dimension);
+
+/// The model a scenario runs: fluid + resolution, its sound speed, gravity magnitude g (m/s²)
+/// acting along −y (2D) or −z (3D).
+sph::FluidModel fluidModel(const FluidSpec& f, const ResolutionSpec& r, int dimension, double soundSpeed,
+                           double gravity);
+
+}  // namespace rupture::io

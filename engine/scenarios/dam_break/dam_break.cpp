@@ -1,0 +1,158 @@
+// The dam-break scenario (Martin & Moyce 1952; Koshizuka & Oka 1996): a water column of width a
+// and height H at the back of a tank is released under gravity. Weakly compressible SPH with
+// Adami dummy-particle walls (engine/sph/README.md); contract and file layout in docs/sph.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "io/fluid_recorder.hpp"
+#include "scenarios/dam_break/dam_break_lattice.hpp"
+#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/run_support.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace rupture {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A 2D slice carries mass and energy per metre of depth.
+std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
+  const std::string perDepth = dimension == 2 ? "/m" : "";
+  return {{"time", "s"},
+          {"front_position", "m"},
+          {"fluid_mass", "kg" + perDepth},
+          {"kinetic_energy", "J" + perDepth},
+          {"potential_energy", "J" + perDepth},
+          {"max_density_error", "1"},
+          {"particles_outside", "1"},
+          {"time_step", "s"}};
+}
+
+const std::map<std::string, std::string>& summaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"front_position_final", "m"}, {"peak_pressure", "Pa"},   {"mass_error", "1"},
+      {"max_density_error", "1"},    {"particles_outside_max", "1"}, {"final_time", "s"},
+      {"steps", "1"},                {"time_step_min", "s"},    {"time_step_max", "s"},
+      {"wall_time_s", "s"},          {"completed", "1"},        {"particles", "1"},
+      {"fluid_particles", "1"},      {"sound_speed", "m/s"},    {"smoothing_length", "m"},
+      {"kinetic_energy_final", "J"}, {"potential_energy_initial", "J"}, {"potential_energy_final", "J"},
+      {"neighbour_list_builds", "1"}};
+  return units;
+}
+
+RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const DamBreakSpec spec = parseDamBreakSpec(json);
+  control.progress.store(0.0);
+  const int dim = spec.dimension;
+  sph::SphSystem s;
+  const DamBreakLattice g = buildDamBreak(s, spec);
+  s.initialise();
+  const std::size_t fluidCount = static_cast<std::size_t>(
+      std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+  logStage(control, "dam break: " + std::to_string(fluidCount) + " fluid and " +
+                        std::to_string(s.particles.size() - fluidCount) + " wall particles, c0 " +
+                        formatNumber(spec.soundSpeed) + " m/s");
+
+  std::vector<std::string> probePositions;
+  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
+  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(dim), probePositions);
+  recorder.writeSpec(toJson(spec), json);
+  recorder.writeAttributes("/geometry",
+                           {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},
+                            {"tank_height", g.T()}, {"width", dim == 3 ? nlohmann::json(g.W()) : nlohmann::json(nullptr)},
+                            {"spacing", g.dx}, {"smoothing_length", s.model.h()}, {"wall_layers", spec.resolution.wallLayers},
+                            {"vertical_axis", dim == 3 ? "z" : "y"}},
+                           {{"column_width", "m"}, {"column_height", "m"}, {"tank_length", "m"}, {"tank_height", "m"},
+                            {"width", "m"}, {"spacing", "m"}, {"smoothing_length", "m"}});
+
+  const double mass0 = s.fluidMass(), rho0 = s.model.eos.referenceDensity;
+  const double potential0 = s.potentialEnergy();
+  double peakPressure = 0, maxDensityError = 0;
+  std::int64_t outsideMax = 0;
+  std::vector<double> probes(spec.probes.size());
+  double lastStep = 0;
+  auto row = [&] {
+    const sph::FluidParticles& p = s.particles;
+    double front = -1e300, densityError = 0;
+    std::int64_t outside = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!p.isFluid(k)) continue;
+      front = std::max(front, p.x[k]);
+      densityError = std::max(densityError, std::fabs(p.rho[k] / rho0 - 1.0));
+      const double v = dim == 3 ? p.z[k] : p.y[k];
+      const bool in = p.x[k] >= 0 && p.x[k] <= g.L() && v >= 0 && v <= g.T() && (dim == 2 || (p.y[k] >= 0 && p.y[k] <= g.W()));
+      outside += in ? 0 : 1;
+    }
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
+      peakPressure = std::max(peakPressure, probes[k]);
+    }
+    maxDensityError = std::max(maxDensityError, densityError);
+    outsideMax = std::max(outsideMax, outside);
+    // The front: the foremost particle centre plus half a spacing (the particle's extent), so it
+    // starts at exactly a.
+    recorder.appendRow({s.time, front + 0.5 * g.dx, s.fluidMass(), s.kineticEnergy(), s.potentialEnergy(),
+                        densityError, static_cast<double>(outside), lastStep},
+                       probes);
+  };
+  auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
+  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, [&](double dt) { lastStep = dt; });
+  const bool completed = loop.stopReason != "cancelled";
+  recorder.writeSnapshot(s, "final");
+
+  double front = -1e300;
+  for (std::size_t k = 0; k < s.particles.size(); ++k)
+    if (s.particles.isFluid(k)) front = std::max(front, s.particles.x[k]);
+  nlohmann::json summary = {
+      {"completed", completed ? 1 : 0},
+      {"stop_reason", loop.stopReason},
+      {"front_position_final", front + 0.5 * g.dx},
+      {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakPressure)},
+      {"mass_error", (s.fluidMass() - mass0) / mass0},
+      {"max_density_error", maxDensityError},
+      {"particles_outside_max", outsideMax},
+      {"final_time", s.time},
+      {"steps", static_cast<std::int64_t>(s.steps)},
+      {"time_step_min", std::isfinite(loop.minTimeStep) ? nlohmann::json(loop.minTimeStep) : nlohmann::json(nullptr)},
+      {"time_step_max", loop.maxTimeStep > 0 ? nlohmann::json(loop.maxTimeStep) : nlohmann::json(nullptr)},
+      {"particles", static_cast<std::int64_t>(s.particles.size())},
+      {"fluid_particles", static_cast<std::int64_t>(fluidCount)},
+      {"sound_speed", spec.soundSpeed},
+      {"smoothing_length", s.model.h()},
+      {"kinetic_energy_final", s.kineticEnergy()},
+      {"potential_energy_initial", potential0},
+      {"potential_energy_final", s.potentialEnergy()},
+      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
+  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  std::map<std::string, std::string> units = summaryUnits();
+  if (dim == 2)
+    for (const char* energy : {"kinetic_energy_final", "potential_energy_initial", "potential_energy_final"})
+      units[energy] = "J/m";
+  recorder.writeAttributes("/summary", summary, units);
+  recorder.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
+  return {summary, completed};
+}
+
+}  // namespace
+
+Scenario damBreakScenario() {
+  Scenario s;
+  s.info.name = "dam-break";
+  s.info.title = "Collapse of a water column in a tank (weakly compressible SPH)";
+  s.info.description =
+      "A water column of width a and height H at the back of a tank is released under gravity and surges along the "
+      "floor (Martin & Moyce 1952). Weakly compressible SPH: cubic spline kernel, Tait or acoustic equation of state, "
+      "Monaghan artificial viscosity, delta-SPH density diffusion, walls of dummy particles with pressure extrapolated from the fluid (Adami 2012), 2D or 3D. "
+      "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
+      "and snapshots of position, velocity, density and pressure.";
+  s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };
+  s.run = runDamBreak;
+  return s;
+}
+
+}  // namespace rupture

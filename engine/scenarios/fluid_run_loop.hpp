@@ -1,0 +1,69 @@
+#pragma once
+// The time loop both SPH scenarios share: steps an SphSystem to run.end_time with the fixed or
+// the Monaghan–Kos time step, records a series row every output interval (and the last state),
+// snapshots at the requested times, checks cancel every step and reports progress.
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <string>
+
+#include "io/fluid_spec.hpp"
+#include "rupture/run.hpp"
+#include "scenarios/run_support.hpp"
+#include "sph/sph_system.hpp"
+
+namespace rupture {
+
+struct FluidLoopOutcome {
+  std::string stopReason;  ///< end_time, max_steps or cancelled
+  double minTimeStep = std::numeric_limits<double>::infinity(), maxTimeStep = 0;  ///< s
+};
+
+/// row(): append one series row from the current state; snapshot(trigger): write a snapshot;
+/// afterStep(dt): observe every step (peaks between rows).
+template <class Row, class Snapshot, class AfterStep>
+FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
+                              Snapshot&& snapshot, AfterStep&& afterStep) {
+  using Clock = std::chrono::steady_clock;
+  FluidLoopOutcome out;
+  const double interval = run.outputIntervalOrDefault();
+  std::size_t nextSnapshot = 0;
+  auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested times
+    if (nextSnapshot >= run.snapshotTimes.size() || s.time < run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) return;
+    snapshot("time " + formatNumber(run.snapshotTimes[nextSnapshot]));
+    while (nextSnapshot < run.snapshotTimes.size() && s.time >= run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) ++nextSnapshot;
+  };
+  row();
+  std::size_t lastRowStep = s.steps;
+  snapshotsDue();
+  double nextOutput = interval;
+  auto lastReport = Clock::now();
+  while (true) {
+    if (control.cancel.load(std::memory_order_relaxed)) { out.stopReason = "cancelled"; break; }
+    if (s.time >= run.endTime * (1 - 1e-12)) { out.stopReason = "end_time"; break; }
+    if (static_cast<std::int64_t>(s.steps) >= run.maxSteps) { out.stopReason = "max_steps"; break; }
+    double dt = run.timeStep ? *run.timeStep : s.stableTimeStep(run.cfl);
+    // Land on end_time without a sliver of a last step.
+    const double left = run.endTime - s.time;
+    if (dt > left) dt = left;
+    else if (dt > 0.5 * left) dt = 0.5 * left;
+    s.step(dt);
+    out.minTimeStep = std::min(out.minTimeStep, dt);
+    out.maxTimeStep = std::max(out.maxTimeStep, dt);
+    afterStep(dt);
+    if (s.time >= nextOutput * (1 - 1e-12)) {
+      row();
+      lastRowStep = s.steps;
+      while (nextOutput <= s.time * (1 + 1e-12)) nextOutput += interval;
+    }
+    snapshotsDue();
+    if ((s.steps & 15) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
+      lastReport = Clock::now();
+      reportProgress(control, s.time / run.endTime);
+    }
+  }
+  if (lastRowStep != s.steps) row();  // the last state is always a row
+  return out;
+}
+
+}  // namespace rupture

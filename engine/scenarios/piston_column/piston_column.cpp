@@ -1,0 +1,188 @@
+// The piston-column scenario (seed 002 §2 and §4): a water column in a rigid tube, closed by a rigid
+// bottom, hit by a piston. The pressure wave it carries (ρ0 c0 V for a heavy piston, doubled on
+// reflection at a rigid bottom) is what loads the bottom plate. Weakly compressible SPH with
+// Adami dummy-particle walls and piston (engine/sph/README.md); contract and file layout in docs/sph.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "io/fluid_recorder.hpp"
+#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/piston_column/piston_column_lattice.hpp"
+#include "scenarios/run_support.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace rupture {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A 2D slice carries force, mass and energy per metre of depth.
+std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
+  const std::string perDepth = dimension == 2 ? "/m" : "";
+  return {{"time", "s"},
+          {"bottom_pressure", "Pa"},
+          {"piston_position", "m"},
+          {"piston_velocity", "m/s"},
+          {"piston_force", "N" + perDepth},
+          {"fluid_mass", "kg" + perDepth},
+          {"kinetic_energy", "J" + perDepth},
+          {"max_density_error", "1"},
+          {"particles_outside", "1"},
+          {"time_step", "s"}};
+}
+
+const std::map<std::string, std::string>& summaryUnits() {
+  static const std::map<std::string, std::string> units = {
+      {"peak_pressure", "Pa"},          {"peak_bottom_pressure", "Pa"},  {"first_peak_bottom_pressure", "Pa"},
+      {"time_of_first_peak", "s"},      {"acoustic_pressure", "Pa"},     {"shock_pressure", "Pa"},
+      {"piston_initial_speed", "m/s"},  {"piston_final_speed", "m/s"},   {"piston_final_position", "m"},
+      {"piston_impulse", "N s"},        {"piston_mass", "kg"},           {"section_area", "m^2"},
+      {"mass_error", "1"},              {"max_density_error", "1"},      {"particles_outside_max", "1"},
+      {"final_time", "s"},              {"steps", "1"},                  {"time_step_min", "s"},
+      {"time_step_max", "s"},           {"wall_time_s", "s"},            {"completed", "1"},
+      {"particles", "1"},               {"fluid_particles", "1"},        {"sound_speed", "m/s"},
+      {"smoothing_length", "m"},        {"neighbour_list_builds", "1"}};
+  return units;
+}
+
+RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const PistonColumnSpec spec = parsePistonColumnSpec(json);
+  control.progress.store(0.0);
+  const int dim = spec.dimension;
+
+  sph::SphSystem s;
+  const ColumnLattice g = buildPistonColumn(s, spec);
+  s.initialise();
+  const std::size_t fluidCount = static_cast<std::size_t>(
+      std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+  const sph::RigidBody& piston = s.bodies[kColumnPiston];
+  const double v0 = piston.speed, rho0 = s.model.eos.referenceDensity;
+  logStage(control, "piston column: " + std::to_string(fluidCount) + " fluid and " +
+                        std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
+                        sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
+
+  std::vector<std::string> probePositions;
+  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
+  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(dim), probePositions);
+  recorder.writeSpec(toJson(spec), json);
+  recorder.writeAttributes("/geometry",
+                           {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
+                            {"spacing", g.dx}, {"smoothing_length", s.model.h()},
+                            {"wall_layers", spec.resolution.wallLayers}, {"piston_mass", piston.mass},
+                            {"vertical_axis", dim == 3 ? "z" : "y"}},
+                           {{"diameter", "m"}, {"column_height", "m"}, {"section_area", dim == 3 ? "m^2" : "m"},
+                            {"spacing", "m"}, {"smoothing_length", "m"}, {"piston_mass", dim == 3 ? "kg" : "kg/m"}});
+
+  // The fluid's push on the bottom, over its area: the mean bottom pressure.
+  auto bottomPressure = [&] { return -s.bodies[kColumnBottom].force[dim - 1] / g.area; };
+  // The first peak: the bottom holds the doubled pressure from H/c0 until the wave reflected there
+  // comes back from the piston at 3H/c0 (a little earlier: the compressed column is faster); the
+  // window stops halfway, at 2.5 H/c0.
+  const double firstWindow = 2.5 * g.H() / spec.soundSpeed;
+  const double mass0 = s.fluidMass();
+  double peakProbe = 0, peakBottom = bottomPressure(), firstPeak = peakBottom, firstPeakTime = 0, maxDensityError = 0;
+  std::int64_t outsideMax = 0;
+  std::vector<double> probes(spec.probes.size());
+  double lastStep = 0;
+  auto row = [&] {
+    const sph::FluidParticles& p = s.particles;
+    double densityError = 0;
+    std::int64_t outside = 0;
+    const double face = g.H() - piston.displacement, R = g.R();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!p.isFluid(k)) continue;
+      densityError = std::max(densityError, std::fabs(p.rho[k] / rho0 - 1.0));
+      const double radial = dim == 3 ? std::hypot(p.x[k], p.y[k]) : std::fabs(p.x[k]);
+      const double v = dim == 3 ? p.z[k] : p.y[k];
+      outside += (radial > R || v < 0 || v > face) ? 1 : 0;
+    }
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
+      peakProbe = std::max(peakProbe, probes[k]);
+    }
+    maxDensityError = std::max(maxDensityError, densityError);
+    outsideMax = std::max(outsideMax, outside);
+    // piston_force: the fluid's force on the piston, positive when it pushes the piston back out.
+    recorder.appendRow({s.time, bottomPressure(), piston.displacement, piston.speed, -piston.axialForce(),
+                        s.fluidMass(), s.kineticEnergy(), densityError, static_cast<double>(outside), lastStep},
+                       probes);
+  };
+  auto afterStep = [&](double dt) {
+    lastStep = dt;
+    const double pb = bottomPressure();
+    peakBottom = std::max(peakBottom, pb);
+    if (s.time <= firstWindow && pb > firstPeak) {
+      firstPeak = pb;
+      firstPeakTime = s.time;
+    }
+  };
+  auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
+  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
+  const bool completed = loop.stopReason != "cancelled";
+  recorder.writeSnapshot(s, "final");
+
+  const sph::PistonShock shock = sph::pistonShock(s.model.eos, std::max(v0, 1e-12));
+  nlohmann::json summary = {
+      {"completed", completed ? 1 : 0},
+      {"stop_reason", loop.stopReason},
+      {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakProbe)},
+      {"peak_bottom_pressure", peakBottom},
+      {"first_peak_bottom_pressure", firstPeak},
+      {"time_of_first_peak", firstPeakTime},
+      {"acoustic_pressure", rho0 * spec.soundSpeed * v0},
+      {"shock_pressure", v0 > 0 ? nlohmann::json(shock.pressure) : nlohmann::json(0.0)},
+      {"piston_initial_speed", v0},
+      {"piston_final_speed", piston.speed},
+      {"piston_final_position", piston.displacement},
+      {"piston_impulse", -(piston.impulse[0] * piston.axis[0] + piston.impulse[1] * piston.axis[1] +
+                           piston.impulse[2] * piston.axis[2])},
+      {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
+      {"section_area", g.area},
+      {"mass_error", (s.fluidMass() - mass0) / mass0},
+      {"max_density_error", maxDensityError},
+      {"particles_outside_max", outsideMax},
+      {"final_time", s.time},
+      {"steps", static_cast<std::int64_t>(s.steps)},
+      {"time_step_min", std::isfinite(loop.minTimeStep) ? nlohmann::json(loop.minTimeStep) : nlohmann::json(nullptr)},
+      {"time_step_max", loop.maxTimeStep > 0 ? nlohmann::json(loop.maxTimeStep) : nlohmann::json(nullptr)},
+      {"particles", static_cast<std::int64_t>(s.particles.size())},
+      {"fluid_particles", static_cast<std::int64_t>(fluidCount)},
+      {"sound_speed", spec.soundSpeed},
+      {"smoothing_length", s.model.h()},
+      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
+  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  std::map<std::string, std::string> units = summaryUnits();
+  if (dim == 2) {  // a 2D slice carries mass, force and impulse per metre of depth
+    units["piston_mass"] = "kg/m";
+    units["piston_impulse"] = "N s/m";
+    units["section_area"] = "m";
+  }
+  recorder.writeAttributes("/summary", summary, units);
+  recorder.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
+  return {summary, completed};
+}
+
+}  // namespace
+
+Scenario pistonColumnScenario() {
+  Scenario s;
+  s.info.name = "piston-column";
+  s.info.title = "Pressure wave in a water column hit by a piston (weakly compressible SPH)";
+  s.info.description =
+      "A water column in a rigid tube of diameter D and height H, closed by a rigid bottom, is hit by a piston: a "
+      "free rigid body of mass M and initial speed V decelerated by the fluid (the drop test of seed 002), or a "
+      "prescribed speed history. Weakly compressible SPH with dummy-particle walls (Adami 2012), 2D slice or 3D. Outputs "
+      "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
+      "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
+  s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
+  s.run = runPistonColumn;
+  return s;
+}
+
+}  // namespace rupture

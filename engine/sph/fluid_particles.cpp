@@ -1,0 +1,44 @@
+#include "sph/fluid_particles.hpp"
+
+namespace rupture::sph {
+
+namespace {
+
+template <class T>
+void applyOrder(std::vector<T>& field, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
+  scratch.resize(field.size());
+  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = field[order[k]];
+  field.swap(scratch);
+}
+
+}  // namespace
+
+void FluidParticles::add(double px, double py, double pz, double m, double density, std::int32_t bodyIndex) {
+  x.push_back(px); y.push_back(py); z.push_back(pz);
+  vx.push_back(0); vy.push_back(0); vz.push_back(0);
+  rho.push_back(density);
+  vxEst.push_back(0); vyEst.push_back(0); vzEst.push_back(0);
+  rhoEst.push_back(density);
+  pressure.push_back(0); pressureOverRho2.push_back(0); inverseRho.push_back(1.0 / density);
+  ax.push_back(0); ay.push_back(0); az.push_back(0); drho.push_back(0);
+  mass.push_back(m);
+  body.push_back(bodyIndex);
+  id.push_back(static_cast<std::int32_t>(id.size()));
+}
+
+void FluidParticles::permute(const std::vector<std::int32_t>& order) {
+  std::vector<double> d;
+  for (std::vector<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure,
+                                 &pressureOverRho2, &inverseRho, &ax, &ay, &az, &drho, &mass})
+    applyOrder(*f, order, d);
+  std::vector<std::int32_t> i;
+  applyOrder(body, order, i);
+  applyOrder(id, order, i);
+}
+
+void FluidParticles::inCreationOrder(const std::vector<double>& field, std::vector<double>& out) const {
+  out.resize(field.size());
+  for (std::size_t k = 0; k < field.size(); ++k) out[id[k]] = field[k];
+}
+
+}  // namespace rupture::sph

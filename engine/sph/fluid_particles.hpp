@@ -1,0 +1,44 @@
+#pragma once
+// Structure-of-arrays store of one SPH particle set: fluid particles and the boundary particles of
+// rigid bodies (walls, pistons) side by side: walls enter the same pair loop as the fluid.
+// Unlike the bonded store, SPH particles are reordered: sorting them in cell order keeps
+// neighbours near in memory, and `id` remembers each particle's creation index so that output is
+// always written in the same order.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rupture::sph {
+
+/// body[k] of a fluid particle; boundary particles hold their body's index (>= 0).
+inline constexpr std::int32_t kFluid = -1;
+
+struct FluidParticles {
+  // State (m, m/s, kg/m³).
+  std::vector<double> x, y, z;
+  std::vector<double> vx, vy, vz;
+  std::vector<double> rho;
+  // Estimates at the end of the current step, read by the pair loop (see SphSystem::step).
+  std::vector<double> vxEst, vyEst, vzEst, rhoEst;
+  // Per particle from rhoEst before each pair loop: p (Pa), p/ρ² (Pa·m⁶/kg²), 1/ρ (m³/kg).
+  std::vector<double> pressure, pressureOverRho2, inverseRho;
+  // Rates from the pair loop: acceleration without gravity (m/s²) and dρ/dt (kg/m³/s).
+  std::vector<double> ax, ay, az, drho;
+  // Constant: mass (kg; kg/m in 2D), body (kFluid or a body index), creation index.
+  std::vector<double> mass;
+  std::vector<std::int32_t> body, id;
+
+  std::size_t size() const { return x.size(); }
+  bool isFluid(std::size_t k) const { return body[k] == kFluid; }
+
+  /// Appends a particle at rest.
+  void add(double px, double py, double pz, double m, double density, std::int32_t bodyIndex);
+
+  /// Reorders every array so that new position k holds old particle order[k].
+  void permute(const std::vector<std::int32_t>& order);
+
+  /// Fills `out` (size n) with field[k] placed at id[k]: the creation order used for output.
+  void inCreationOrder(const std::vector<double>& field, std::vector<double>& out) const;
+};
+
+}  // namespace rupture::sph

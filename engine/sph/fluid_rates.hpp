@@ -1,0 +1,31 @@
+#pragma once
+// The SPH pair loop: for every particle a, from its neighbour list (seed 002 eqs. 4–5;
+// physics-reference.md §4.2 and §4.4),
+//   dρ_a/dt = Σ_b m_b v_ab·∇_a W_ab  [+ δ-SPH diffusion, fluid–fluid pairs, see fluid_model.hpp]
+//   dv_a/dt = −Σ_b m_b (p_a/ρ_a² + p_b/ρ_b² + Π_ab) ∇_a W_ab          (gravity added by the integrator)
+//   Π_ab = (−α c0 μ_ab + β μ_ab²)/ρ̄_ab if v_ab·x_ab < 0, else 0;  μ_ab = h v_ab·x_ab/(r² + 0.01 h²)
+// with x_ab = x_a − x_b, ∇_a W_ab = F(r) x_ab (cubic spline), velocities and densities taken from
+// the step's estimates (vxEst…, rhoEst). c̄_ab is taken as c0 (weakly compressible: |ρ/ρ0 − 1|
+// stays near 1 %, so the local sound speeds differ from c0 by about 3 %).
+// Boundary particles first take the pressure extrapolated from the fluid around them (Adami, Hu &
+// Adams 2012, eq. 27; ρ_w from the EOS inverse), then get the momentum sum from their fluid
+// neighbours: m_w·a_w is the fluid's force on them, exactly the opposite of theirs on the fluid.
+// Each particle gathers its own sums: no atomics, any thread count, the same result.
+#include "sph/fluid_model.hpp"
+#include "sph/fluid_particles.hpp"
+#include "sph/neighbour_list.hpp"
+
+namespace rupture::sph {
+
+/// What the time-step rule needs from one evaluation (Monaghan & Kos 1999).
+struct RateExtremes {
+  double maxViscousMu = 0;   ///< max over pairs within the support of |μ_ab| (m/s)
+  double maxAcceleration = 0;///< max over fluid particles of |dv/dt + g| (m/s²)
+  double maxDensity = 0;     ///< max over fluid particles of ρ_est (kg/m³)
+};
+
+/// Sets the boundary particles' pressure and rhoEst (extrapolated), every particle's pressure,
+/// pressureOverRho2 and inverseRho, then ax/ay/az (without gravity) and drho (fluid particles).
+RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model);
+
+}  // namespace rupture::sph

@@ -1,0 +1,147 @@
+#include "sph/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/parallel.hpp"
+
+namespace rupture::sph {
+
+namespace {
+
+/// The cell grid over the particles' bounding box: edge >= cellSize, cells numbered x-fastest.
+struct Grid {
+  double origin[3] = {0, 0, 0};
+  double inverseSize = 1;
+  int dims[3] = {1, 1, 1};
+
+  Grid(const FluidParticles& p, int dimension, double cellSize) {
+    const std::size_t n = p.size();
+    const std::vector<double>* coord[3] = {&p.x, &p.y, &p.z};
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int a = 0; a < dimension; ++a) {
+      if (n == 0) break;
+      const auto [mn, mx] = std::minmax_element(coord[a]->begin(), coord[a]->end());
+      lo[a] = *mn;
+      hi[a] = *mx;
+    }
+    double size = cellSize;
+    // A scattered cloud (a splash) must not ask for an absurd number of cells.
+    auto cells = [&](double edge) {
+      double c = 1;
+      for (int a = 0; a < dimension; ++a) c *= std::floor((hi[a] - lo[a]) / edge) + 1;
+      return c;
+    };
+    while (cells(size) > 8.0 * static_cast<double>(n) + 64.0) size *= 1.25;
+    inverseSize = 1.0 / size;
+    for (int a = 0; a < dimension; ++a) {
+      origin[a] = lo[a];
+      dims[a] = static_cast<int>(std::floor((hi[a] - lo[a]) * inverseSize)) + 1;
+    }
+  }
+
+  int coord(double v, int a) const {
+    const int c = static_cast<int>((v - origin[a]) * inverseSize);
+    return c < 0 ? 0 : (c >= dims[a] ? dims[a] - 1 : c);
+  }
+  std::size_t cellOf(const FluidParticles& p, std::size_t k) const {
+    return (static_cast<std::size_t>(coord(p.z[k], 2)) * dims[1] + coord(p.y[k], 1)) * dims[0] + coord(p.x[k], 0);
+  }
+  std::size_t count() const { return static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]; }
+};
+
+/// Counting sort of particles by cell: start (cells + 1) and the particles in cell order.
+void binParticles(const FluidParticles& p, const Grid& g, std::vector<std::int32_t>& start,
+                  std::vector<std::int32_t>& sorted) {
+  const std::size_t n = p.size();
+  start.assign(g.count() + 1, 0);
+  std::vector<std::int32_t> cell(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    cell[k] = static_cast<std::int32_t>(g.cellOf(p, k));
+    ++start[cell[k] + 1];
+  }
+  for (std::size_t c = 0; c < g.count(); ++c) start[c + 1] += start[c];
+  sorted.assign(n, 0);
+  std::vector<std::int32_t> cursor(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < n; ++k) sorted[cursor[cell[k]]++] = static_cast<std::int32_t>(k);
+}
+
+}  // namespace
+
+std::vector<std::int32_t> NeighbourList::cellOrder(const FluidParticles& p, int dimension, double cellSize) {
+  const Grid g(p, dimension, cellSize);
+  std::vector<std::int32_t> start, sorted;
+  binParticles(p, g, start, sorted);
+  return sorted;
+}
+
+std::size_t NeighbourList::totalPairs() const {
+  std::size_t total = 0;
+  for (std::int32_t c : m_count) total += static_cast<std::size_t>(c);
+  return total;
+}
+
+void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff) {
+  const std::size_t n = p.size();
+  m_cutoff = cutoff;
+  // Cells of half the cutoff and a ±2 stencil: 125 (3D) half-size cells hold about half the
+  // candidates of 27 full-size ones.
+  const Grid g(p, dimension, 0.5 * cutoff);
+  binParticles(p, g, m_cellStart, m_sorted);
+  m_count.assign(n, 0);
+  m_fluidCount.assign(n, 0);
+  if (m_stride == 0) {
+    // Neighbours of a particle in the bulk of a lattice of spacing ~ cutoff/2.6, with room to spare.
+    const double ratio = 2.6 * 1.1;
+    m_stride = static_cast<std::size_t>(dimension == 3 ? 4.0 / 3.0 * std::numbers::pi * ratio * ratio * ratio
+                                                       : std::numbers::pi * ratio * ratio) + 24;
+  }
+  const double cut2 = cutoff * cutoff;
+  const bool is3d = dimension == 3;
+  while (true) {
+    m_index.resize(n * m_stride);
+    int overflow = 0;
+#pragma omp parallel for schedule(static) reduction(max : overflow) if (worthParallel(n))
+    for (std::size_t i = 0; i < n; ++i) {
+      const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
+      const bool fluidI = p.body[i] == kFluid;
+      const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(zi, 2);
+      std::int32_t* out = m_index.data() + i * m_stride;
+      // Boundary neighbours are parked at the end of the slot (backwards) and moved behind the fluid ones.
+      const int stride = static_cast<int>(m_stride);
+      int nf = 0, nb = 0;
+      const int x0 = std::max(cx - 2, 0), x1 = std::min(cx + 2, g.dims[0] - 1);
+      for (int a = std::max(cz - 2, 0); a <= std::min(cz + 2, g.dims[2] - 1); ++a)
+        for (int b = std::max(cy - 2, 0); b <= std::min(cy + 2, g.dims[1] - 1); ++b) {
+          const std::size_t row = (static_cast<std::size_t>(a) * g.dims[1] + b) * g.dims[0];
+          // Cells x0..x1 of one row are contiguous in the sorted order.
+          for (std::int32_t s = m_cellStart[row + x0]; s < m_cellStart[row + x1 + 1]; ++s) {
+            const std::int32_t j = m_sorted[s];
+            const double dx = xi - p.x[j], dy = yi - p.y[j], dz = is3d ? zi - p.z[j] : 0.0;
+            if (dx * dx + dy * dy + dz * dz >= cut2 || static_cast<std::size_t>(j) == i) continue;
+            if (p.body[j] == kFluid) {
+              if (nf + nb < stride) out[nf] = j;
+              ++nf;
+            } else if (fluidI) {
+              if (nf + nb < stride) out[stride - 1 - nb] = j;
+              ++nb;
+            }
+          }
+        }
+      const int total = nf + nb;
+      if (total > stride) {
+        overflow = std::max(overflow, total);
+        continue;
+      }
+      std::reverse(out + stride - nb, out + stride);
+      if (nf != stride - nb) std::copy(out + stride - nb, out + stride, out + nf);  // moves down: no overlap hazard
+      m_count[i] = total;
+      m_fluidCount[i] = nf;
+    }
+    if (overflow == 0) return;
+    m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
+  }
+}
+
+}  // namespace rupture::sph

@@ -1,0 +1,229 @@
+#include "sph/sph_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/parallel.hpp"
+
+namespace rupture::sph {
+
+namespace {
+
+double bodyAcceleration(const RigidBody& b, const FluidModel& m) {
+  if (b.motion != BodyMotion::Free) return 0.0;
+  const double g = m.gravity[0] * b.axis[0] + m.gravity[1] * b.axis[1] + m.gravity[2] * b.axis[2];
+  return b.axialForce() / b.mass + g;
+}
+
+}  // namespace
+
+void SphSystem::refreshMembers() {
+  for (RigidBody& b : bodies) b.members.clear();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const std::int32_t b = particles.body[k];
+    if (b == kFluid) continue;
+    if (b < 0 || static_cast<std::size_t>(b) >= bodies.size())
+      throw std::logic_error("SphSystem: particle of body " + std::to_string(b) + " but only " +
+                             std::to_string(bodies.size()) + " bodies");
+    bodies[b].members.push_back(static_cast<std::int32_t>(k));
+  }
+}
+
+void SphSystem::rebuildLists() {
+  const double cutoff = model.kernel().support() * (1.0 + skinFraction);
+  if (m_builds % static_cast<std::size_t>(std::max(1, sortEvery)) == 0) {
+    particles.permute(NeighbourList::cellOrder(particles, model.dimension, cutoff));
+    refreshMembers();
+  }
+  m_list.build(particles, model.dimension, cutoff);
+  m_x0 = particles.x;
+  m_y0 = particles.y;
+  m_z0 = particles.z;
+  ++m_builds;
+}
+
+void SphSystem::bodyForces() {
+  // Serial sums in member order: the same forces for any thread count.
+  for (RigidBody& b : bodies) {
+    double f[3] = {0, 0, 0};
+    for (std::int32_t k : b.members) {
+      const double m = particles.mass[k];
+      f[0] += m * particles.ax[k];
+      f[1] += m * particles.ay[k];
+      f[2] += m * particles.az[k];
+    }
+    b.force = {f[0], f[1], f[2]};
+  }
+}
+
+void SphSystem::setBodyVelocities() {
+  for (const RigidBody& b : bodies)
+    for (std::int32_t k : b.members) {
+      particles.vx[k] = b.speed * b.axis[0];
+      particles.vy[k] = b.speed * b.axis[1];
+      particles.vz[k] = b.speed * b.axis[2];
+    }
+}
+
+void SphSystem::initialise() {
+  for (RigidBody& b : bodies) {
+    if (b.motion == BodyMotion::Prescribed) b.speed = b.history.at(time);
+    if (b.motion == BodyMotion::Fixed) b.speed = 0;
+    if (b.motion == BodyMotion::Free && !(b.mass > 0))
+      throw std::invalid_argument("SphSystem: free body '" + b.name + "' needs a mass > 0");
+  }
+  refreshMembers();
+  setBodyVelocities();
+  particles.vxEst = particles.vx;
+  particles.vyEst = particles.vy;
+  particles.vzEst = particles.vz;
+  particles.rhoEst = particles.rho;
+  m_builds = 0;
+  rebuildLists();
+  m_extremes = computeRates(particles, m_list, model);
+  bodyForces();
+}
+
+void SphSystem::step(double dt) {
+  FluidParticles& p = particles;
+  const std::size_t n = p.size();
+  const double half = 0.5 * dt;
+  const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
+
+  // 1. Half kick of v and ρ with the rates at t; drift of x with the half-step velocity; estimates
+  //    of v and ρ at t + dt for the pair loop.
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    if (p.body[k] == kFluid) {
+      const double ax = p.ax[k] + gx, ay = p.ay[k] + gy, az = p.az[k] + gz;
+      p.vx[k] += half * ax; p.vy[k] += half * ay; p.vz[k] += half * az;
+      p.rho[k] += half * p.drho[k];
+      p.x[k] += dt * p.vx[k]; p.y[k] += dt * p.vy[k]; p.z[k] += dt * p.vz[k];
+      p.vxEst[k] = p.vx[k] + half * ax; p.vyEst[k] = p.vy[k] + half * ay; p.vzEst[k] = p.vz[k] + half * az;
+      p.rhoEst[k] = p.rho[k] + half * p.drho[k];
+    }  // boundary densities are extrapolated from the fluid in computeRates
+  }
+  // 2. Bodies: the same kick–drift for their one degree of freedom.
+  for (RigidBody& b : bodies) {
+    double estimate = 0;
+    if (b.motion == BodyMotion::Free) {
+      const double acc = bodyAcceleration(b, model);
+      b.speed += half * acc;
+      estimate = b.speed + half * acc;
+    } else if (b.motion == BodyMotion::Prescribed) {
+      b.speed = b.history.at(time + half);  // midpoint: exact displacement for linear histories
+      estimate = b.history.at(time + dt);
+    }
+    const double dx = dt * b.speed;
+    b.displacement += dx;
+    for (std::int32_t k : b.members) {
+      p.x[k] += dx * b.axis[0]; p.y[k] += dx * b.axis[1]; p.z[k] += dx * b.axis[2];
+      p.vxEst[k] = estimate * b.axis[0]; p.vyEst[k] = estimate * b.axis[1]; p.vzEst[k] = estimate * b.axis[2];
+    }
+  }
+  time += dt;
+  ++steps;
+
+  // 3. Neighbour lists, when some particle has moved more than half the skin since the last build.
+  const double skin = model.kernel().support() * skinFraction;
+  double maxMove2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : maxMove2) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
+    maxMove2 = std::max(maxMove2, dx * dx + dy * dy + dz * dz);
+  }
+  if (maxMove2 > 0.25 * skin * skin) rebuildLists();
+
+  // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
+  std::vector<std::array<double, 3>> oldForce;
+  for (const RigidBody& b : bodies) oldForce.push_back(b.force);
+  m_extremes = computeRates(p, m_list, model);
+  if (!std::isfinite(m_extremes.maxDensity) || !std::isfinite(m_extremes.maxAcceleration))
+    throw std::runtime_error("SPH: the solution became non-finite at t = " + std::to_string(time) +
+                             " s (time step too large for the sound speed?)");
+  bodyForces();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (oldForce[b][a] + bodies[b].force[a]);
+
+  // 5. Second half kick.
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    if (p.body[k] == kFluid) {
+      p.vx[k] += half * (p.ax[k] + gx); p.vy[k] += half * (p.ay[k] + gy); p.vz[k] += half * (p.az[k] + gz);
+      p.rho[k] += half * p.drho[k];
+    } else {
+      p.rho[k] = p.rhoEst[k];  // the extrapolated wall density, for output
+    }
+  }
+  for (RigidBody& b : bodies) {
+    if (b.motion == BodyMotion::Free) b.speed += half * bodyAcceleration(b, model);
+    else if (b.motion == BodyMotion::Prescribed) b.speed = b.history.at(time);
+  }
+  setBodyVelocities();
+}
+
+double SphSystem::stableTimeStep(double courant) const {
+  const double h = model.h();
+  const double force = m_extremes.maxAcceleration > 0 ? std::sqrt(h / m_extremes.maxAcceleration) : 1e300;
+  const double cMax = model.eos.localSoundSpeed(std::max(m_extremes.maxDensity, model.eos.referenceDensity));
+  const double acoustic = h / (cMax + m_extremes.maxViscousMu);
+  return courant * std::min(force, acoustic);
+}
+
+double SphSystem::fluidMass() const {
+  double m = 0;
+  for (std::size_t k = 0; k < particles.size(); ++k)
+    if (particles.isFluid(k)) m += particles.mass[k];
+  return m;
+}
+
+double SphSystem::kineticEnergy() const {
+  const FluidParticles& p = particles;
+  double e = 0;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.isFluid(k)) e += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k] + p.vz[k] * p.vz[k]);
+  return e;
+}
+
+double SphSystem::potentialEnergy() const {
+  const FluidParticles& p = particles;
+  const auto& g = model.gravity;
+  double e = 0;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.isFluid(k)) e -= p.mass[k] * (g[0] * p.x[k] + g[1] * p.y[k] + g[2] * p.z[k]);
+  return e;
+}
+
+std::array<double, 3> SphSystem::fluidMomentum() const {
+  const FluidParticles& p = particles;
+  std::array<double, 3> m{0, 0, 0};
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.isFluid(k)) {
+      m[0] += p.mass[k] * p.vx[k];
+      m[1] += p.mass[k] * p.vy[k];
+      m[2] += p.mass[k] * p.vz[k];
+    }
+  return m;
+}
+
+double SphSystem::probePressure(double px, double py, double pz) const {
+  const FluidParticles& p = particles;
+  const CubicSplineKernel kernel = model.kernel();
+  const double support2 = kernel.support() * kernel.support();
+  const bool is3d = model.dimension == 3;
+  double weighted = 0, weights = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (!p.isFluid(k)) continue;
+    const double dx = px - p.x[k], dy = py - p.y[k], dz = is3d ? pz - p.z[k] : 0.0;
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 >= support2) continue;
+    const double w = kernel.value(std::sqrt(r2)) * p.mass[k] / p.rho[k];
+    weighted += w * model.eos.pressure(p.rho[k]);
+    weights += w;
+  }
+  return weights > 0 ? weighted / weights : 0.0;
+}
+
+}  // namespace rupture::sph
