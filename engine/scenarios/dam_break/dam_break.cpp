@@ -151,6 +151,10 @@ Scenario damBreakScenario() {
       "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
       "and snapshots of position, velocity, density and pressure.";
   s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };
+  s.estimate = [](const nlohmann::json& spec) {
+    const double n = parseDamBreakSpec(spec).estimatedParticles;
+    return RunEstimate{n, n * 600.0, "resolution.spacing"};  // about 0.6 kB per particle
+  };
   s.run = runDamBreak;
   return s;
 }

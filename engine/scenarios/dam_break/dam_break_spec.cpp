@@ -63,6 +63,7 @@ DamBreakSpec parseDamBreakSpec(const nlohmann::json& json) {
   if (particles > kMaxParticles)
     throw SpecError("resolution.spacing", formatNumber(dx),
                     "a spacing giving at most 5e6 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
+  s.estimatedParticles = particles;
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 10.0 * std::sqrt(2.0 * s.gravity * g.columnHeight);
   for (std::size_t k = 0; k < s.probes.size(); ++k) {
     const auto& p = s.probes[k];

@@ -28,6 +28,7 @@ struct DamBreakSpec {
   io::FluidSpec fluid;
   double soundSpeed = 0;             ///< c0 resolved: fluid.sound_speed or 10 √(2 g H)
   double gravity = 9.81;             ///< m/s², along −y (2D) or −z (3D)
+  double estimatedParticles = 0;     ///< fluid and wall particles the run will hold
   std::vector<std::array<double, 3>> probes;
   io::FluidRunSpec run;
 };

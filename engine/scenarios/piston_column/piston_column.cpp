@@ -181,6 +181,10 @@ Scenario pistonColumnScenario() {
       "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
       "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
   s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
+  s.estimate = [](const nlohmann::json& spec) {
+    const double n = parsePistonColumnSpec(spec).estimatedParticles;
+    return RunEstimate{n, n * 600.0, "resolution.spacing"};  // about 0.6 kB per particle
+  };
   s.run = runPistonColumn;
   return s;
 }

@@ -85,6 +85,7 @@ PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
   if (particles > 5e6)  // about 0.6 kB per particle: 3 GB
     throw SpecError("resolution.spacing", formatNumber(dx),
                     "a spacing giving at most 5e6 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
+  s.estimatedParticles = particles;
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 1450.0;
   const double R = 0.5 * s.diameter;
   for (std::size_t k = 0; k < s.probes.size(); ++k) {

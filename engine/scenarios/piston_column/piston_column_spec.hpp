@@ -32,6 +32,7 @@ struct PistonColumnSpec {
   PistonSpec piston;
   std::vector<std::array<double, 3>> probes;
   io::FluidRunSpec run;
+  double estimatedParticles = 0;  ///< fluid and wall particles the run will hold
 };
 
 PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json);
