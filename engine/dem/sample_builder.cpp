@@ -7,6 +7,9 @@
 #include <stdexcept>
 
 #include "core/cell_list.hpp"
+#include "dem/bond_model.hpp"
+#include "dem/notches.hpp"
+#include "lattice/lattice_builder.hpp"
 
 namespace rupture {
 
@@ -123,6 +126,7 @@ std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::
 
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                          const std::atomic<bool>* cancel) {
+  if (s.lattice != "random") return buildLatticeSample(s, m, system, cancel);  // lattice/lattice_builder.hpp
   system = BondedSystem{};
   ParticleStore& p = system.particles;
   p.dimension = s.dimension;
@@ -211,6 +215,8 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   system.bonds.remap(p.compact(keep));
   dropUnbonded(system);
 
+  cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
+  assignMaterial(system, s, m);            // law, criterion, per-bond constants (dem/bond_model.hpp)
   system.beam = m.beam;
   system.contact.setParameters(m.contact);
   system.initialize();
