@@ -2,13 +2,39 @@
 
 #include "cli/cli.hpp"
 #include "w1_benchmark.hpp"
+#include "w2_benchmark.hpp"
 
 namespace rupture::cli {
 
+namespace {
+
+int benchW2(const Args& args) {
+  bench::W2Options options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
+    long long v = 0;
+    if (args[k] == "--threads") {
+      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
+      options.threads = static_cast<int>(v);
+    } else if (args[k] == "--steps") {
+      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
+      options.steps = static_cast<int>(v);
+    } else {
+      return usageError("bench W2: unknown option '" + args[k] + "'; allowed: --threads, --steps");
+    }
+    ++k;
+  }
+  std::cout << bench::runW2(options).dump() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
 int benchCommand(const Args& args) {
-  if (args.empty() || args[0] != "W1")
+  if (args.empty() || (args[0] != "W1" && args[0] != "W2"))
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
-                      "'; allowed: W1");
+                      "'; allowed: W1, W2");
+  if (args[0] == "W2") return benchW2(args);
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");

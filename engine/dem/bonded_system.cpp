@@ -12,6 +12,7 @@
 namespace rupture {
 
 void BondedSystem::initialize() {
+  m_loadTime = time;
   if (std::holds_alternative<BeamModel>(model)) {
     // σ_f <= 0 means unbreakable.
     const double sigma = beam.failureStress > 0 ? beam.failureStress : std::numeric_limits<double>::infinity();
@@ -61,6 +62,7 @@ void BondedSystem::computeLoads() {
     gatherBondLoads<Law::kRotational, false>(bonds, particles, nullptr);
   });
   contact.addForces(particles, bonds);
+  if (externalLoads) externalLoads(particles, m_loadTime);
   if (particles.dimension == 2) {
     // Planar motion: no out-of-plane force, no torque about in-plane axes.
     std::fill(particles.fz.begin(), particles.fz.end(), 0.0);
@@ -143,6 +145,7 @@ void BondedSystem::step(double dt) {
   kick(0.5 * dt);                                  // v(t + dt/2) from F(t)
   if (prescribe) prescribe(particles, time + 0.5 * dt);
   drift(dt);                                       // x(t + dt), q(t + dt)
+  m_loadTime = time + dt;
   computeLoads();                                  // F(t + dt); beams may break
   kick(0.5 * dt);                                  // v(t + dt)
   time += dt;

@@ -29,6 +29,10 @@ public:
   /// each drift (t = mid-step) and after each step (t = end of step).
   std::function<void(ParticleStore&, double t)> prescribe;
 
+  /// Adds external loads (body forces, indenters, projectiles) at time t, after the bonds and
+  /// contacts have set the particle forces; called at every force evaluation.
+  std::function<void(ParticleStore&, double t)> externalLoads;
+
   /// Cundall local damping coefficient γ in [0, 1) (0: none). Only for quasi-static runs.
   double localDamping = 0.0;
 
@@ -76,7 +80,8 @@ private:
   void kick(double halfDt);
   void drift(double dt);
   std::vector<std::uint8_t> m_wasIntact;
-  std::vector<double> m_minStretch;  ///< per node, for criteria with a nodal shift (LAMMPS's α)
+  std::vector<double> m_minStretch;
+  double m_loadTime = 0.0;  ///< time of the configuration the loads are evaluated on  ///< per node, for criteria with a nodal shift (LAMMPS's α)
 };
 
 }  // namespace rupture
