@@ -10,9 +10,11 @@ namespace rupture {
 // One factory per scenario file.
 Scenario dynamicTensionScenario();
 Scenario elasticPropertiesScenario();
+Scenario impactScenario();  // scenarios/impact/
 
 const std::vector<Scenario>& scenarioRegistry() {
-  static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario()};
+  static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario(),
+                                                   impactScenario()};
   return registry;
 }
 
