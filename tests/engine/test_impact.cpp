@@ -87,9 +87,12 @@ TEST(CrackTracking, TipAndBranchesOfHandBuiltDamageFields) {
   p.add(100 * h, 0, 0, 0.4 * h);  // an undamaged particle farther away is not the tip
   damage.push_back(0.1);
   straight.push_back(0.1);
+  p.add(0, 80 * h, 0, 0.4 * h);   // nor a cracked one not connected to the crack
+  damage.push_back(0.9);
+  straight.push_back(0.9);
   EXPECT_EQ(countCrackBranches(p, straight, 0.25, {0, 0, 0}, h), 1);
   EXPECT_EQ(countCrackBranches(p, damage, 0.25, {0, 0, 0}, h), 2);
-  CrackTracker tracker({0, 0, 0}, 0.25, 1);
+  CrackTracker tracker({0, 0, 0}, 0.25, h, 1);
   tracker.observe(0.0, p, straight);
   EXPECT_NEAR(tracker.tip().distance, 30 * h, 1e-12);
   const double speed = tracker.observe(1e-5, p, damage);  // the tip moved to a branch end

@@ -2,16 +2,45 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
+#include <unordered_map>
 
 namespace rupture {
 
 double CrackTracker::observe(double t, const ParticleStore& p, const std::vector<double>& damage) {
+  // Cracked particles binned on a grid of the link length; a breadth-first search from the
+  // origin's neighbourhood follows the crack.
+  const double link = 2.5 * m_spacing, link2 = link * link, seed2 = 9.0 * m_spacing * m_spacing;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
+  auto cellOf = [&](double v, int a) { return static_cast<std::int64_t>(std::floor((v - m_origin[a]) / link)); };
+  auto key = [](std::int64_t a, std::int64_t b, std::int64_t c) { return (a * 1000003 + b) * 1000033 + c; };
+  std::vector<std::size_t> frontier;
+  std::vector<std::uint8_t> seen(p.size(), 0);
   for (std::size_t k = 0; k < p.size(); ++k) {
     if (damage[k] <= m_threshold) continue;
+    grid[key(cellOf(p.x[k], 0), cellOf(p.y[k], 1), cellOf(p.z[k], 2))].push_back(k);
+    const double dx = p.x[k] - m_origin[0], dy = p.y[k] - m_origin[1], dz = p.z[k] - m_origin[2];
+    if (dx * dx + dy * dy + dz * dz < seed2) { frontier.push_back(k); seen[k] = 1; }
+  }
+  while (!frontier.empty()) {
+    const std::size_t k = frontier.back();
+    frontier.pop_back();
     const double dx = p.x[k] - m_origin[0], dy = p.y[k] - m_origin[1], dz = p.z[k] - m_origin[2];
     const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (!m_tip.found || r > m_tip.distance) m_tip = {p.x[k], p.y[k], p.z[k], r, true};
+    const std::int64_t cx = cellOf(p.x[k], 0), cy = cellOf(p.y[k], 1), cz = cellOf(p.z[k], 2);
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c) {
+          auto it = grid.find(key(cx + a, cy + b, cz + c));
+          if (it == grid.end()) continue;
+          for (std::size_t m : it->second) {
+            if (seen[m]) continue;
+            const double ex = p.x[m] - p.x[k], ey = p.y[m] - p.y[k], ez = p.z[m] - p.z[k];
+            if (ex * ex + ey * ey + ez * ez < link2) { seen[m] = 1; frontier.push_back(m); }
+          }
+        }
   }
   m_times.push_back(t);
   m_distances.push_back(m_tip.distance);

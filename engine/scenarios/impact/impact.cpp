@@ -146,7 +146,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
   else if (!spec.velocityRegions.empty())
     for (int a = 0; a < 3; ++a) origin[a] = 0.5 * (spec.velocityRegions.front().box.min[a] + spec.velocityRegions.front().box.max[a]);
   if (d == 2) origin[2] = 0;
-  CrackTracker tracker(origin, spec.damageThreshold);
+  CrackTracker tracker(origin, spec.damageThreshold, spacing);
 
   io::ResultFile result(resultPath, "impact");
   result.writeSpec(toJson(spec), json);
