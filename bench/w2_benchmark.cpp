@@ -23,7 +23,7 @@ constexpr double kCriticalStretch = 0.0005;  // s00
 constexpr double kAlpha = 0.25;              // compression term
 constexpr double kIndenterRadius = 5 * kSpacing;
 constexpr double kIndenterSpeed = 100.0;     // m/s, towards −z
-constexpr double kIndenterStiffness = 1e17;  // N/m³ (LAMMPS fix indent: F = K (R − r)²)
+constexpr double kIndenterStiffness = 1e17;  // N/m² (LAMMPS fix indent: F = K (R − r)²)
 constexpr double kTimeStep = 1e-7;           // s
 
 }  // namespace

@@ -8,6 +8,8 @@
 
 namespace {
 
+using rupture::testing::runCli;
+
 TEST(CliBenchW2, PrintsOneJsonLineWithTheDocumentedKeys) {
   const auto r = runCli("bench W2 --steps 2 --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
