@@ -1,5 +1,6 @@
 #include "dem/bond_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -66,6 +67,21 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
     throw std::invalid_argument("unknown material model \"" + m.model + "\"");
   }
   const ParticleStore& p = system.particles;
+  if (!m.interblock.empty()) {  // interblock critical stretches replace the block's s0
+    std::vector<int> block(p.size(), 1);
+    for (std::size_t k = 0; k < p.size(); ++k)
+      for (const BlockRegion& r : sample.blocks)
+        if (r.box.contains(p.x[k], p.y[k], p.z[k])) block[k] = r.id;
+    for (std::size_t b = 0; b < bonds.size(); ++b) {
+      const int bi = block[bonds.i[b]], bj = block[bonds.j[b]];
+      if (bi == bj) continue;
+      const auto forward = m.interblock.find(bi * 1000 + bj), backward = m.interblock.find(bj * 1000 + bi);
+      if (forward == m.interblock.end() && backward == m.interblock.end()) continue;
+      const double own = bonds.threshold[b];
+      bonds.threshold[b] = std::min(forward != m.interblock.end() ? forward->second : own,
+                                    backward != m.interblock.end() ? backward->second : own);
+    }
+  }
   for (std::size_t b = 0; b < bonds.size(); ++b)
     for (const Box& box : m.noFailureRegions) {
       const std::int32_t i = bonds.i[b], j = bonds.j[b];

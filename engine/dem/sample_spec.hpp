@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,12 +27,20 @@ struct Box {
   }
 };
 
+/// A block of the sample (region, grain, phase): the particles whose centre is in the box at
+/// build time get its id (later blocks override earlier ones; particles in no block are block 1).
+struct BlockRegion {
+  int id = 1;
+  Box box;
+};
+
 struct SampleSpec {
   int dimension = 2;                     ///< 2 (disks in the x-y plane) or 3 (spheres)
   std::string lattice = "random";        ///< "random" packing, or a regular lattice (lattice/lattice_geometry.hpp)
   double spacing = 0;                    ///< lattice nearest-neighbour distance (m); lattices only
   double thickness = 0;                  ///< 2D out-of-plane thickness (m); 0: R_DE (random) or spacing (lattices)
   std::vector<Notch> notches;            ///< pre-cracks
+  std::vector<BlockRegion> blocks;       ///< blocks for interblock critical values
   std::array<double, 3> size{0, 0, 0};   ///< box edges (m); size[2] unused in 2D
   double elementRadius = 0;              ///< mean element radius R_DE (m)
   double radiusDispersion = 0.2;         ///< radii uniform in R_DE·[1 − d, 1 + d] (1)
@@ -68,6 +77,10 @@ struct MaterialSpec {
   PmbSpec pmb;                 ///< when model is pmb
   ContactParameters contact;
   std::vector<Box> noFailureRegions;  ///< bonds with an end inside never break
+  /// Interblock critical stretch (seed 003, PeriLab "Interblock Damage"): the s0 of bonds from
+  /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two
+  /// orientations' values (the block's own s0 for a missing orientation).
+  std::map<int, double> interblock;
 };
 
 }  // namespace rupture

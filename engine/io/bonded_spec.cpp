@@ -58,6 +58,20 @@ SampleSpec parseSample(const SpecReader& root) {
     notch.finish();
     s.notches.push_back(n);
   }
+  for (const SpecReader& block : sample.objects("blocks", "{\"id\": 2, \"min\": [...], \"max\": [...]} (m)")) {
+    BlockRegion b;
+    b.id = static_cast<int>(block.integer("id", 1, 999));
+    const auto lo = block.numbers("min", d, d, Range{}, "m");
+    const auto hi = block.numbers("max", d, d, Range{}, "m");
+    for (std::size_t k = 0; k < d; ++k) {
+      if (lo[k] > hi[k]) block.fail("max", "a corner with every coordinate >= min's (m)");
+      b.box.min[k] = lo[k];
+      b.box.max[k] = hi[k];
+    }
+    if (d == 2) { b.box.min[2] = -1e308; b.box.max[2] = 1e308; }
+    block.finish();
+    s.blocks.push_back(b);
+  }
   sample.finish();
 
   double volume = 1, elementVolume = 0;
@@ -222,6 +236,29 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     m.contact.dampingRatio = contact->number("damping_ratio", Range::closed(0.0, 1.0), "1", m.contact.dampingRatio);
     contact->finish();
   }
+  if (auto interblock = material.optionalObject("interblock")) {
+    const std::string criterion = m.model == "pmb" ? m.pmb.criterion : m.model == "beam" ? "rankine" : m.springs.criterion;
+    if (criterion != "critical_stretch")
+      material.fail("interblock", "absent unless the criterion is \"critical_stretch\" (interblock values are critical stretches)");
+    for (const auto& [key, value] : interblock->node().items()) {
+      const auto sep = key.find('_');
+      int a = 0, b = 0;
+      try {
+        if (sep == std::string::npos) throw std::invalid_argument(key);
+        std::size_t used = 0;
+        a = std::stoi(key.substr(0, sep), &used);
+        if (used != sep) throw std::invalid_argument(key);
+        b = std::stoi(key.substr(sep + 1), &used);
+        if (used != key.size() - sep - 1) throw std::invalid_argument(key);
+      } catch (const std::exception&) {
+        throw SpecError(interblock->pathOf(key), describeValue(value), "keys \"a_b\" with block ids a, b in [1, 999]");
+      }
+      if (a < 1 || a > 999 || b < 1 || b > 999)
+        throw SpecError(interblock->pathOf(key), describeValue(value), "keys \"a_b\" with block ids a, b in [1, 999]");
+      m.interblock[a * 1000 + b] = interblock->number(key, Range::positive(), "1");
+    }
+    interblock->finish();
+  }
   for (const SpecReader& box : material.objects("no_failure_regions", "{\"min\": [...], \"max\": [...]} (m)")) {
     m.noFailureRegions.push_back(parseBox(box, rawDimension(root)));
     box.finish();
@@ -251,6 +288,11 @@ nlohmann::json toJson(const SampleSpec& s) {
     if (s.dimension == 2) j["thickness"] = s.thickness;
   }
   if (s.porosity > 0) j["pore_radius"] = {s.poreRadius[0], s.poreRadius[1]};
+  if (!s.blocks.empty()) {
+    j["blocks"] = nlohmann::json::array();
+    for (const BlockRegion& b : s.blocks)
+      j["blocks"].push_back({{"id", b.id}, {"min", point(b.box.min, s.dimension)}, {"max", point(b.box.max, s.dimension)}});
+  }
   if (!s.notches.empty()) {
     j["notches"] = nlohmann::json::array();
     for (const Notch& n : s.notches)
@@ -291,6 +333,10 @@ nlohmann::json toJson(const MaterialSpec& m) {
                   {"poisson_ratio", m.contact.poissonRatio},
                   {"friction", m.contact.friction},
                   {"damping_ratio", m.contact.dampingRatio}};
+  if (!m.interblock.empty()) {
+    j["interblock"] = nlohmann::json::object();
+    for (const auto& [key, value] : m.interblock) j["interblock"][std::to_string(key / 1000) + "_" + std::to_string(key % 1000)] = value;
+  }
   if (!m.noFailureRegions.empty()) {
     j["no_failure_regions"] = nlohmann::json::array();
     for (const Box& b : m.noFailureRegions) {

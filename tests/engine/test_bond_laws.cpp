@@ -181,6 +181,18 @@ TEST(BondLawSpecs, RejectedParametersNameTheField) {
   EXPECT_EQ(rejectedField(latticeSpec("square", 2, pmb({{"young_modulus", 70e9}, {"horizon_factor", 0.5}}))), "material.pmb.horizon_factor");
   EXPECT_EQ(rejectedField(latticeSpec("square", 2, pmb({{"young_modulus", 70e9}, {"critical_stretch", 1e-3}, {"fracture_energy", 5}}))), "material.pmb.fracture_energy");
   EXPECT_EQ(rejectedField(latticeSpec("square", 2, pmb({{"young_modulus", 70e9}, {"criterion", "critical_energy"}}))), "material.pmb.fracture_energy");
+  // Interblock critical stretches: only with the critical-stretch criterion, keys "a_b".
+  nlohmann::json blocks = latticeSpec("square", 2, pmb({{"young_modulus", 70e9}, {"critical_stretch", 1e-3}}));
+  blocks["sample"]["blocks"] = {{{"id", 2}, {"min", {1e-3, 0.0}}, {"max", {2e-3, 1e-3}}}};
+  blocks["material"]["interblock"] = {{"1_2", 1e-4}, {"2_1", 2e-4}};
+  EXPECT_EQ(rejectedField(blocks), "");
+  blocks["material"]["interblock"] = {{"1-2", 1e-4}};
+  EXPECT_EQ(rejectedField(blocks), "material.interblock.1-2");
+  blocks["material"]["interblock"] = {{"1_2", -1.0}};
+  EXPECT_EQ(rejectedField(blocks), "material.interblock.1_2");
+  nlohmann::json griffith = latticeSpec("square", 2, hookean({{"young_modulus", 70e9}, {"criterion", "griffith"}, {"fracture_energy", 1.0}}));
+  griffith["material"]["interblock"] = {{"1_2", 1e-4}};
+  EXPECT_EQ(rejectedField(griffith), "material.interblock");
   // A model on a sample it does not support, a lattice of the wrong dimension.
   EXPECT_EQ(rejectedField(latticeSpec("triangular", 2, pmb({{"young_modulus", 70e9}}))), "material.model");
   EXPECT_EQ(rejectedField(latticeSpec("fcc", 2, hookean({{"young_modulus", 70e9}}))), "sample.lattice");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dem/bonded_system.hpp"
+#include "dem/sample_builder.hpp"
 #include "scenarios/bond_network.hpp"
 
 namespace rupture {
@@ -93,6 +94,55 @@ TEST(DamageIndex, HandBuiltNeighbourhoodGivesTheVolumeWeightedFraction) {
   EXPECT_DOUBLE_EQ(phi[1], 0.0);
   EXPECT_DOUBLE_EQ(phi[2], 1.0);                  // both of its bonds
   EXPECT_DOUBLE_EQ(phi[3], 2.0 / (4.0 + 2.0));    // lost V_2 of V_0 + V_2
+}
+
+}  // namespace
+}  // namespace rupture
+
+namespace rupture {
+namespace {
+
+TEST(Interblock, CrossingBondsBreakAtTheirOwnValueInnerBondsDoNot) {
+  // A 12 × 4 square lattice of Hookean springs: block 2 is the right half. Inside a block s0 = 1e-2;
+  // from block 1 to 2 the interblock value 1e-3. A uniform stretch ε = 5e-3 along x.
+  SampleSpec sample;
+  sample.dimension = 2;
+  sample.lattice = "square";
+  sample.spacing = 1e-3;
+  sample.thickness = 1e-3;
+  sample.elementRadius = 0.5e-3;
+  sample.size = {12e-3, 4e-3, 0};
+  BlockRegion right;
+  right.id = 2;
+  right.box.min = {6e-3, -1.0, -1e308};
+  right.box.max = {1.0, 1.0, 1e308};
+  sample.blocks.push_back(right);
+  MaterialSpec material;
+  material.model = "hookean";
+  material.density = 2500;
+  material.springs.youngModulus = 70e9;
+  material.springs.poissonRatio = 1.0 / 3.0;
+  material.springs.criterion = "critical_stretch";
+  material.springs.criticalValue = 1e-2;
+  material.interblock[1 * 1000 + 2] = 1e-3;  // one orientation given: the bond breaks at it
+  BondedSystem s;
+  buildSample(sample, material, s);
+  ParticleStore& p = s.particles;
+  const double eps = 5e-3;
+  for (std::size_t k = 0; k < p.size(); ++k) p.x[k] *= 1 + eps;
+  s.initialize();
+  std::size_t crossingBroken = 0, innerBroken = 0, crossingKept = 0;
+  for (std::size_t b = 0; b < s.bonds.size(); ++b) {
+    const bool crossing = (p.x[s.bonds.i[b]] < 6e-3 * (1 + eps)) != (p.x[s.bonds.j[b]] < 6e-3 * (1 + eps));
+    const double stretch = eps * s.bonds.n0x[b] * s.bonds.n0x[b];  // affine: ε n_x²
+    const bool broken = s.bonds.intact[b] < 0.5;
+    if (crossing && broken) ++crossingBroken;
+    if (crossing && !broken) { ++crossingKept; EXPECT_LT(stretch, 1e-3 * 1.001); }
+    if (!crossing && broken) ++innerBroken;
+  }
+  EXPECT_EQ(innerBroken, 0u);
+  EXPECT_EQ(crossingBroken, 4u + 2u * 3u);  // 4 horizontal bonds, and the diagonals (stretch ε/2)
+  EXPECT_EQ(crossingKept, 0u);
 }
 
 }  // namespace

@@ -51,6 +51,14 @@ TEST(ImpactSpec, ExamplesAndTheContractKeys) {
   EXPECT_TRUE(schema["properties"]["material"]["properties"]["pmb"]["properties"].contains("horizon_factor"));
   EXPECT_TRUE(schema["properties"]["material"]["properties"].contains("no_failure_regions"));
   EXPECT_TRUE(schema["properties"]["run"]["properties"].contains("end_time"));
+  // Every key of the resolved spec (all defaults filled in) is in the schema.
+  const nlohmann::json resolved = toJson(parseImpactSpec(spec));
+  for (const auto& [key, value] : resolved.items()) {
+    ASSERT_TRUE(schema["properties"].contains(key)) << key;
+    if (!value.is_object()) continue;
+    for (const auto& [sub, unused] : value.items())
+      EXPECT_TRUE(schema["properties"][key]["properties"].contains(sub)) << key << "." << sub;
+  }
   // The resolved spec parses back to the same resolved spec.
   EXPECT_EQ(toJson(parseImpactSpec(toJson(parseImpactSpec(spec)))), toJson(parseImpactSpec(spec)));
 }
