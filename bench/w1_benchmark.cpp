@@ -84,7 +84,7 @@ nlohmann::json runW1(const W1Options& options) {
   }
   s.initialize();
   const double initialPeakStress =
-      *std::max_element(s.bonds.equivalentStress.begin(), s.bonds.equivalentStress.end());
+      *std::max_element(s.bonds.failureMeasure.begin(), s.bonds.failureMeasure.end());
   const double dt = kSafety * s.criticalTimeStep();
 
   const auto start = std::chrono::steady_clock::now();

@@ -4,12 +4,14 @@
 # every test with ctest, stop the cluster.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+root="$PWD"
 bash deploy/setup.sh
 bash deploy/build.sh
 slurm_dir="$PWD/build/slurm-test-cluster"
-if bash deploy/slurm/test-cluster.sh start "$slurm_dir"; then
+if bash "$root/deploy/slurm/test-cluster.sh" start "$slurm_dir"; then
   export SLURM_CONF="$slurm_dir/slurm.conf"
-  trap 'bash deploy/slurm/test-cluster.sh stop "$slurm_dir"' EXIT
+  # Stop the daemons however ctest ends, keeping ctest's exit status.
+  trap 'status=$?; bash "$root/deploy/slurm/test-cluster.sh" stop "$slurm_dir" || true; exit $status' EXIT
 else
   echo "no Slurm test cluster: the tests labelled slurm will be skipped" >&2
 fi

@@ -2,6 +2,7 @@
 
 #include "cli/cli.hpp"
 #include "w1_benchmark.hpp"
+#include "w2_benchmark.hpp"
 #include "w3_benchmark.hpp"
 
 namespace rupture::cli {
@@ -29,13 +30,35 @@ int benchW3(const Args& args) {
   return 0;
 }
 
+/// rupture bench W2 [--threads N] [--steps N]: the peridynamics workload (bench/README.md).
+int benchW2(const Args& args) {
+  bench::W2Options options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
+    long long v = 0;
+    if (args[k] == "--threads") {
+      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
+      options.threads = static_cast<int>(v);
+    } else if (args[k] == "--steps") {
+      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
+      options.steps = static_cast<int>(v);
+    } else {
+      return usageError("bench W2: unknown option '" + args[k] + "'; allowed: --threads, --steps");
+    }
+    ++k;
+  }
+  std::cout << bench::runW2(options).dump() << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int benchCommand(const Args& args) {
   if (!args.empty() && args[0] == "W3") return benchW3(args);
+  if (!args.empty() && args[0] == "W2") return benchW2(args);
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
-                      "'; allowed: W1, W3");
+                      "'; allowed: W1, W2, W3");
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");

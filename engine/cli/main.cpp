@@ -16,6 +16,7 @@ commands:
   calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]
                                           measure (or fit the beams to) macroscopic E and nu
   bench W1 [--threads N] [--particles N] [--steps N]
+  bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
                                           run a benchmark, print one JSON line
 

@@ -1,6 +1,7 @@
 #include "core/bond_store.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace rupture {
@@ -16,13 +17,18 @@ std::size_t BondStore::add(const ParticleStore& p, std::size_t a, std::size_t b)
   n0y.push_back(dy / length);
   n0z.push_back(dz / length);
   intact.push_back(1.0);
+  stiffness.push_back(0.0);
+  threshold.push_back(std::numeric_limits<double>::infinity());
+  strength.push_back(1.0);
   return i.size() - 1;
 }
 
 void BondStore::finalize(std::size_t particleCount) {
   const std::size_t n = size();
-  for (auto* v : {&fjx, &fjy, &fjz, &tix, &tiy, &tiz, &tjx, &tjy, &tjz, &equivalentStress})
+  for (auto* v : {&fjx, &fjy, &fjz, &tix, &tiy, &tiz, &tjx, &tjy, &tjz, &failureMeasure})
     v->assign(n, 0.0);
+  failureThreshold.resize(n);
+  for (std::size_t b = 0; b < n; ++b) failureThreshold[b] = threshold[b] * strength[b];
   incidenceStart.assign(particleCount + 1, 0);
   for (std::size_t b = 0; b < n; ++b) {
     ++incidenceStart[i[b] + 1];
@@ -46,9 +52,30 @@ void BondStore::remap(const std::vector<std::int32_t>& newIndex) {
     restLength[m] = restLength[b];
     n0x[m] = n0x[b]; n0y[m] = n0y[b]; n0z[m] = n0z[b];
     intact[m] = intact[b];
+    stiffness[m] = stiffness[b];
+    threshold[m] = threshold[b];
+    strength[m] = strength[b];
     ++m;
   }
-  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact}) v->resize(m);
+  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
+  i.resize(m);
+  j.resize(m);
+}
+
+void BondStore::filter(const std::vector<std::uint8_t>& keep) {
+  std::size_t m = 0;
+  for (std::size_t b = 0; b < size(); ++b) {
+    if (!keep[b]) continue;
+    i[m] = i[b]; j[m] = j[b];
+    restLength[m] = restLength[b];
+    n0x[m] = n0x[b]; n0y[m] = n0y[b]; n0z[m] = n0z[b];
+    intact[m] = intact[b];
+    stiffness[m] = stiffness[b];
+    threshold[m] = threshold[b];
+    strength[m] = strength[b];
+    ++m;
+  }
+  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
   i.resize(m);
   j.resize(m);
 }

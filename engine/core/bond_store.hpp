@@ -16,11 +16,17 @@ struct BondStore {
   std::vector<double> n0x, n0y, n0z;   ///< reference direction i -> j
   std::vector<double> intact;          ///< 1 intact, 0 broken (a factor, so the kernel has no branch)
 
+  // Set once from the material (dem/bond_model.cpp) and the microstructure; carried by remap.
+  std::vector<double> stiffness;       ///< normal stiffness of laws with a per-bond k (N/m); 0 otherwise
+  std::vector<double> threshold;       ///< failure threshold, in the criterion's unit (+inf: unbreakable)
+  std::vector<double> strength;        ///< factor on the threshold (1; +inf: never breaks), e.g. regions
+
   // Written by the force kernel each step: force on j (force on i is its opposite), torques on i, j.
   std::vector<double> fjx, fjy, fjz;
   std::vector<double> tix, tiy, tiz;
   std::vector<double> tjx, tjy, tjz;
-  std::vector<double> equivalentStress;  ///< Rankine σ_eq at the last evaluation (Pa)
+  std::vector<double> failureMeasure;    ///< the criterion's measure at the last evaluation (its unit)
+  std::vector<double> failureThreshold;  ///< threshold × strength, refreshed by finalize (criterion's unit)
 
   // Particle -> bond incidence (CSR), built once after the bonds: entries are 2·b + end (0: i, 1: j).
   std::vector<std::int32_t> incidenceStart, incidence;
@@ -30,11 +36,15 @@ struct BondStore {
   /// Adds a bond between particles a and b in their current configuration (rest state).
   std::size_t add(const ParticleStore& particles, std::size_t a, std::size_t b);
 
-  /// Sizes the per-step outputs and builds the incidence lists; call after the last add().
+  /// Sizes the per-step outputs, the effective thresholds and the incidence lists; call after the
+  /// last add() and after any change of threshold or strength.
   void finalize(std::size_t particleCount);
 
   /// Renumbers particle indices after ParticleStore::compact and drops bonds touching removed particles.
   void remap(const std::vector<std::int32_t>& newIndex);
+
+  /// Keeps only the bonds with keep[b] != 0, in order (call before finalize).
+  void filter(const std::vector<std::uint8_t>& keep);
 
   std::size_t intactCount() const;
 

@@ -12,6 +12,7 @@ std::size_t ParticleStore::add(double px, double py, double pz, double r) {
   radius.push_back(r);
   mass.push_back(0.0);
   inertia.push_back(0.0);
+  volume.push_back(0.0);
   fixedDofs.push_back(0);
   return x.size() - 1;
 }
@@ -28,7 +29,7 @@ std::vector<std::int32_t> ParticleStore::compact(const std::vector<std::uint8_t>
     field.resize(m);
   };
   for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &qw, &qx, &qy, &qz, &wx, &wy, &wz, &tx,
-                  &ty, &tz, &radius, &mass, &inertia})
+                  &ty, &tz, &radius, &mass, &inertia, &volume})
     squeeze(*v);
   squeeze(fixedDofs);
   return newIndex;
@@ -39,10 +40,12 @@ void ParticleStore::setMassFromDensity(double elementDensity, double thickness2d
   for (std::size_t k = 0; k < size(); ++k) {
     const double r = radius[k];
     if (dimension == 2) {
-      mass[k] = elementDensity * pi * r * r * thickness2d;
+      volume[k] = pi * r * r * thickness2d;
+      mass[k] = elementDensity * volume[k];
       inertia[k] = 0.5 * mass[k] * r * r;
     } else {
-      mass[k] = elementDensity * 4.0 / 3.0 * pi * r * r * r;
+      volume[k] = 4.0 / 3.0 * pi * r * r * r;
+      mass[k] = elementDensity * volume[k];
       inertia[k] = 0.4 * mass[k] * r * r;
     }
   }

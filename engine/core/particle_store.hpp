@@ -29,6 +29,7 @@ struct ParticleStore {
 
   // Constant properties: radius (m), mass (kg), moment of inertia (kg·m²).
   std::vector<double> radius, mass, inertia;
+  std::vector<double> volume;           ///< volume the particle stands for (m³): weights the damage index
   std::vector<std::uint8_t> fixedDofs;  ///< bit set of FixedDof
 
   std::size_t size() const { return x.size(); }
@@ -40,7 +41,8 @@ struct ParticleStore {
   std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
 
   /// Sets mass and inertia from a material density (kg/m³) and each particle's volume
-  /// (sphere 4/3 π R³; in 2D a disk π R² × thickness). Inertia: 2/5 m R² (sphere), 1/2 m R² (disk).
+  /// (sphere 4/3 π R³; in 2D a disk π R² × thickness), and that volume. Inertia: 2/5 m R² (sphere),
+  /// 1/2 m R² (disk).
   void setMassFromDensity(double elementDensity, double thickness2d);
 
 };

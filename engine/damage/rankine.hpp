@@ -5,6 +5,8 @@
 // τ_max: shear stress from torsion. Pure compression without torsion gives σ_eq <= 0.
 #include <cmath>
 
+#include "core/bond_law.hpp"
+
 namespace rupture {
 
 inline double rankineEquivalentStress(double maxNormalStress, double maxShearStress) {
@@ -12,10 +14,12 @@ inline double rankineEquivalentStress(double maxNormalStress, double maxShearStr
                 std::sqrt(maxNormalStress * maxNormalStress + 4.0 * maxShearStress * maxShearStress));
 }
 
-/// The bond breaks (irreversibly) when the equivalent stress reaches the threshold σ_f.
+/// Failure measure of the beam law: the bond breaks (irreversibly) when σ_eq reaches σ_f, the
+/// per-bond threshold (Pa).
 struct RankineCriterion {
-  double failureStress;  ///< σ_f (Pa)
-  bool breaks(double equivalentStress) const { return equivalentStress >= failureStress; }
+  static constexpr const char* kName = "rankine";
+  static constexpr bool kNodalShift = false;
+  double measure(const BondResponse& r) const { return r.equivalentStress; }
 };
 
 }  // namespace rupture

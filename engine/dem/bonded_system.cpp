@@ -7,12 +7,19 @@
 #include <limits>
 
 #include "core/parallel.hpp"
-#include "dem/beam_forces.hpp"
+#include "core/bond_loop.hpp"
 
 namespace rupture {
 
 void BondedSystem::initialize() {
+  m_loadTime = time;
+  if (std::holds_alternative<BeamModel>(model)) {
+    // σ_f <= 0 means unbreakable.
+    const double sigma = beam.failureStress > 0 ? beam.failureStress : std::numeric_limits<double>::infinity();
+    std::fill(bonds.threshold.begin(), bonds.threshold.end(), sigma);
+  }
   bonds.finalize(particles.size());
+  m_minStretch.assign(particles.size(), 0.0);
   m_wasIntact.assign(bonds.size(), 0);
   for (std::size_t b = 0; b < bonds.size(); ++b) m_wasIntact[b] = bonds.intact[b] > 0.5;
   computeLoads();
@@ -41,10 +48,21 @@ void BondedSystem::handOverBrokenBonds() {
 }
 
 void BondedSystem::computeLoads() {
-  brokenLastStep = computeBeamLoads(beam, particles, bonds);
-  if (brokenLastStep > 0) handOverBrokenBonds();
-  gatherBondLoads(bonds, particles);
+  visitModel([&](const auto& law, const auto& criterion) {
+    using Law = std::decay_t<decltype(law)>;
+    using Criterion = std::decay_t<decltype(criterion)>;
+    brokenLastStep = evaluateBonds(law, criterion, particles, bonds, m_minStretch.data());
+    if (brokenLastStep > 0) handOverBrokenBonds();
+    if constexpr (Criterion::kNodalShift) {
+      if (criterion.alpha != 0.0) {
+        gatherBondLoads<Law::kRotational, true>(bonds, particles, m_minStretch.data());
+        return;
+      }
+    }
+    gatherBondLoads<Law::kRotational, false>(bonds, particles, nullptr);
+  });
   contact.addForces(particles, bonds);
+  if (externalLoads) externalLoads(particles, m_loadTime);
   if (particles.dimension == 2) {
     // Planar motion: no out-of-plane force, no torque about in-plane axes.
     std::fill(particles.fz.begin(), particles.fz.end(), 0.0);
@@ -127,6 +145,7 @@ void BondedSystem::step(double dt) {
   kick(0.5 * dt);                                  // v(t + dt/2) from F(t)
   if (prescribe) prescribe(particles, time + 0.5 * dt);
   drift(dt);                                       // x(t + dt), q(t + dt)
+  m_loadTime = time + dt;
   computeLoads();                                  // F(t + dt); beams may break
   kick(0.5 * dt);                                  // v(t + dt)
   time += dt;
@@ -135,25 +154,38 @@ void BondedSystem::step(double dt) {
 }
 
 double BondedSystem::criticalTimeStep() const {
-  const std::size_t n = particles.size();
-  std::vector<double> kTranslation(n, 0.0), kRotation(n, 0.0);
-  const double E = beam.youngModulus, G = beam.shearModulus();
-  for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
-    const std::int32_t i = bonds.i[b], j = bonds.j[b];
-    const BeamSection s = BeamSection::of(beam, particles.radius[i], particles.radius[j]);
-    const double L0 = bonds.restLength[b];
-    const double kt = std::max(E * s.area / L0, 12.0 * E * s.secondMoment / (L0 * L0 * L0));
-    const double kr = std::max(G * s.polarMoment / L0, 4.0 * E * s.secondMoment / L0);
-    kTranslation[i] += kt; kTranslation[j] += kt;
-    kRotation[i] += kr; kRotation[j] += kr;
-  }
+  std::vector<double> kTranslation, kRotation;
+  const bool central = visitModel([&](const auto& law, const auto&) {
+    accumulateBondStiffness(law, particles, bonds, kTranslation, kRotation);
+    return !std::decay_t<decltype(law)>::kRotational;
+  });
+  // Central forces: the Gershgorin row of the stiffness matrix is 2 Σ k, so ω² <= 2 Σ k / m and
+  // dt_c = 2/ω = √(2m / Σ k) (physics-reference §3.7). The rotational laws keep §1.8's √(m / Σ k).
+  const double factor = central ? 2.0 : 1.0;
   double dt = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (kTranslation[k] > 0) dt = std::min(dt, std::sqrt(particles.mass[k] / kTranslation[k]));
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    if (kTranslation[k] > 0) dt = std::min(dt, std::sqrt(factor * particles.mass[k] / kTranslation[k]));
     if (kRotation[k] > 0) dt = std::min(dt, std::sqrt(particles.inertia[k] / kRotation[k]));
   }
   return dt;
+}
+
+std::vector<double> BondedSystem::bondStiffness() const {
+  std::vector<double> k(bonds.size(), 0.0);
+  visitModel([&](const auto& law, const auto&) {
+    using Law = std::decay_t<decltype(law)>;
+    for (std::size_t b = 0; b < bonds.size(); ++b)
+      k[b] = law.stiffness(bondGeometry<Law>(particles, bonds, b)).translational;
+  });
+  return k;
+}
+
+double BondedSystem::maxFailureRatio() const {
+  double worst = 0;
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    if (bonds.intact[b] > 0.5 && std::isfinite(bonds.failureThreshold[b]) && bonds.failureThreshold[b] > 0)
+      worst = std::max(worst, bonds.failureMeasure[b] / bonds.failureThreshold[b]);
+  return worst;
 }
 
 double BondedSystem::kineticEnergy() const {
@@ -166,8 +198,10 @@ double BondedSystem::kineticEnergy() const {
   return e;
 }
 
-double BondedSystem::elasticEnergy() const {
-  return beamElasticEnergy(beam, particles, bonds) + contact.energy(particles);
+double BondedSystem::bondEnergy() const {
+  return visitModel([&](const auto& law, const auto&) { return rupture::bondEnergy(law, particles, bonds); });
 }
+
+double BondedSystem::elasticEnergy() const { return bondEnergy() + contact.energy(particles); }
 
 }  // namespace rupture

@@ -1,13 +1,18 @@
 #pragma once
-// A bonded discrete-element system: particles, cohesive beams, contact, and the velocity-Verlet
-// step. Scenarios own one, set the prescribed velocities through `prescribe`, and read observables.
+// A bonded particle system: particles, bonds with their material model (a bond law and a failure
+// criterion: beams, lattice springs, peridynamic bonds), contact between unbonded pairs, and the
+// velocity-Verlet step. Scenarios own one, set the prescribed velocities through `prescribe`, and
+// read observables.
 #include <cstddef>
 #include <functional>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "core/bond_store.hpp"
 #include "core/particle_store.hpp"
 #include "dem/beam_bond.hpp"
+#include "dem/bond_model.hpp"
 #include "dem/hertz_contact.hpp"
 
 namespace rupture {
@@ -16,12 +21,17 @@ class BondedSystem {
 public:
   ParticleStore particles;
   BondStore bonds;
-  BeamParameters beam;
+  BondModel model;      ///< law + criterion; per-bond constants live in `bonds` (stiffness, threshold)
+  BeamParameters beam;  ///< parameters of the beam law, read when `model` is a BeamModel
   HertzContact contact;
 
   /// Sets the velocity of the prescribed degrees of freedom (FixedDof) at time t; called before
   /// each drift (t = mid-step) and after each step (t = end of step).
   std::function<void(ParticleStore&, double t)> prescribe;
+
+  /// Adds external loads (body forces, indenters, projectiles) at time t, after the bonds and
+  /// contacts have set the particle forces; called at every force evaluation.
+  std::function<void(ParticleStore&, double t)> externalLoads;
 
   /// Cundall local damping coefficient γ in [0, 1) (0: none). Only for quasi-static runs.
   double localDamping = 0.0;
@@ -36,13 +46,33 @@ public:
   /// One velocity-Verlet step of length dt (translation and rotation).
   void step(double dt);
 
-  /// Gershgorin bound of the bonds' critical step (physics-reference §1.8):
-  /// min over particles of min(√(m / Σ k_tr), √(I / Σ k_rot)),
-  /// k_tr = max(E S/L0, 12 E I/L0³), k_rot = max(G J/L0, 4 E I/L0).
+  /// Gershgorin bound of the bonds' critical step: min over particles of
+  /// min(√(m / Σ k_tr), √(I / Σ k_rot)) with each law's k_tr, k_rot (physics-reference §1.8, §2.5);
+  /// central-force laws use the full Gershgorin row, √(2m / Σ k) (the PD bound of §3.7).
   double criticalTimeStep() const;
 
   double kineticEnergy() const;  ///< translational + rotational (J)
-  double elasticEnergy() const;  ///< beams + contacts (J)
+  double elasticEnergy() const;  ///< bonds + contacts (J)
+  double bondEnergy() const;     ///< intact bonds only (J)
+
+  /// Each bond's translational stiffness (N/m), for affine wave-speed estimates.
+  std::vector<double> bondStiffness() const;
+
+  /// Largest failure measure over threshold among intact bonds (0 if all are unbreakable). It grows
+  /// about linearly with the load before the first break: runs use it to estimate their progress.
+  double maxFailureRatio() const;
+
+  /// Calls f(law, criterion) with the model's concrete types (the beam law filled from `beam`).
+  template <class F>
+  decltype(auto) visitModel(F&& f) const {
+    return std::visit(
+        [&](const auto& m) -> decltype(auto) {
+          using M = std::decay_t<decltype(m)>;
+          if constexpr (std::is_same_v<M, BeamModel>) return f(BeamLaw{beam}, m.criterion);
+          else return f(m.law, m.criterion);
+        },
+        model);
+  }
 
 private:
   void computeLoads();
@@ -50,6 +80,8 @@ private:
   void kick(double halfDt);
   void drift(double dt);
   std::vector<std::uint8_t> m_wasIntact;
+  std::vector<double> m_minStretch;
+  double m_loadTime = 0.0;  ///< time of the configuration the loads are evaluated on  ///< per node, for criteria with a nodal shift (LAMMPS's α)
 };
 
 }  // namespace rupture

@@ -80,7 +80,7 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
   s.initialize();
   const double dt = options.timeStepSafety * s.criticalTimeStep();
 
-  const double thickness = spec.dimension == 2 ? spec.elementRadius : spec.size[2];
+  const double thickness = spec.dimension == 2 ? (spec.thickness > 0 ? spec.thickness : spec.elementRadius) : spec.size[2];
   const double section = spec.size[1] * thickness;
 
   auto measure = [&]() {

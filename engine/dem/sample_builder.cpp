@@ -5,9 +5,12 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "core/cell_list.hpp"
+#include "dem/bond_model.hpp"
+#include "dem/notches.hpp"
+#include "dem/pores.hpp"
+#include "lattice/lattice_builder.hpp"
 
 namespace rupture {
 
@@ -100,81 +103,11 @@ void dropUnbonded(BondedSystem& system) {
     system.bonds.remap(system.particles.compact(bonded));
 }
 
-/// Pores placed so far, binned on a grid of cells of edge 2 r_max (occupied cells only), so the
-/// overlap test of a candidate looks at its 3^d neighbouring cells instead of every pore.
-class PoreGrid {
-public:
-  PoreGrid(int dimension, double maxRadius) : m_dimension(dimension), m_inverseEdge(0.5 / maxRadius) {}
-
-  bool overlapsAny(const Pore& pore, const std::vector<Pore>& pores) const {
-    const auto c = cellOf(pore);
-    const int reach[3] = {1, 1, m_dimension == 3 ? 1 : 0};
-    for (std::int64_t a = -reach[2]; a <= reach[2]; ++a)
-      for (std::int64_t b = -reach[1]; b <= reach[1]; ++b)
-        for (std::int64_t d = -reach[0]; d <= reach[0]; ++d) {
-          auto it = m_cells.find(key({c[0] + d, c[1] + b, c[2] + a}));
-          if (it == m_cells.end()) continue;
-          for (std::size_t index : it->second) {
-            const Pore& q = pores[index];
-            double d2 = 0;
-            for (int ax = 0; ax < 3; ++ax) d2 += (pore.centre[ax] - q.centre[ax]) * (pore.centre[ax] - q.centre[ax]);
-            if (d2 < (pore.radius + q.radius) * (pore.radius + q.radius)) return true;
-          }
-        }
-    return false;
-  }
-  void insert(const Pore& pore, std::size_t index) { m_cells[key(cellOf(pore))].push_back(index); }
-
-private:
-  std::array<std::int64_t, 3> cellOf(const Pore& pore) const {
-    std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int ax = 0; ax < m_dimension; ++ax) c[ax] = static_cast<std::int64_t>(std::floor(pore.centre[ax] * m_inverseEdge));
-    return c;
-  }
-  static std::int64_t key(const std::array<std::int64_t, 3>& c) {  // 21 bits per axis: cells < 2^20 per edge
-    return ((c[2] + (1 << 20)) << 42) | ((c[1] + (1 << 20)) << 21) | (c[0] + (1 << 20));
-  }
-  int m_dimension;
-  double m_inverseEdge;
-  std::unordered_map<std::int64_t, std::vector<std::size_t>> m_cells;
-};
-
-/// Random sequential placement of non-overlapping pores until their volume reaches the target.
-/// The spec validation bounds the pore count and the porosity (io/bonded_spec.cpp), so this ends;
-/// a pore that finds no free place in kPlacementAttempts tries means the box is jammed.
-std::vector<Pore> placePores(const SampleSpec& s, double poreVolumeTarget, std::mt19937_64& rng,
-                             const Cancellation& cancel) {
-  constexpr int kPlacementAttempts = 20000;
-  std::vector<Pore> pores;
-  if (s.porosity <= 0) return pores;
-  std::uniform_real_distribution<double> radiusDraw(s.poreRadius[0], s.poreRadius[1]);
-  PoreGrid grid(s.dimension, s.poreRadius[1]);
-  double volume = 0;
-  while (volume < poreVolumeTarget) {
-    cancel.throwIfRequested();
-    const double r = radiusDraw(rng);
-    bool placed = false;
-    for (int attempt = 0; attempt < kPlacementAttempts && !placed; ++attempt) {
-      Pore pore{{0, 0, 0}, r};
-      for (int a = 0; a < s.dimension; ++a)
-        pore.centre[a] = std::uniform_real_distribution<double>(r, s.size[a] - r)(rng);
-      if (grid.overlapsAny(pore, pores)) continue;
-      placed = true;
-      grid.insert(pore, pores.size());
-      pores.push_back(pore);
-    }
-    if (!placed)
-      throw std::runtime_error("sample.porosity: could not place the pores without overlap (" +
-                               std::to_string(pores.size()) + " placed); lower the porosity or the pore radii");
-    volume += elementVolume(s.dimension, r);
-  }
-  return pores;
-}
-
 }  // namespace
 
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                          const Cancellation& cancel) {
+  if (s.lattice != "random") return buildLatticeSample(s, m, system, cancel);  // lattice/lattice_builder.hpp
   system = BondedSystem{};
   ParticleStore& p = system.particles;
   p.dimension = s.dimension;
@@ -215,66 +148,16 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   report.elementDensity = m.density * boxVolume / solid;
   p.setMassFromDensity(report.elementDensity, report.thickness);
 
-  // Pores: for each element, the smallest common scale s_i of the pore radii that would swallow
-  // its centre; removing the elements with s_i < scale gives a porosity that grows with scale.
+  // Pores (dem/pores.hpp): placed at random without overlap, then carved out of the elements.
   report.pores = placePores(s, s.porosity * boxVolume, rng, cancel);
   std::vector<std::uint8_t> keep(p.size(), 1);
-  if (!report.pores.empty()) {
-    // The largest scale keeping pores apart and inside the box.
-    double maxScale = 1.5;
-    for (std::size_t a = 0; a < report.pores.size(); ++a) {
-      if (a % 256 == 0) cancel.throwIfRequested();
-      const Pore& pa = report.pores[a];
-      for (int ax = 0; ax < s.dimension; ++ax)
-        maxScale = std::min({maxScale, pa.centre[ax] / pa.radius, (s.size[ax] - pa.centre[ax]) / pa.radius});
-      for (std::size_t b = a + 1; b < report.pores.size(); ++b) {
-        const Pore& pb = report.pores[b];
-        double d2 = 0;
-        for (int ax = 0; ax < 3; ++ax) d2 += (pa.centre[ax] - pb.centre[ax]) * (pa.centre[ax] - pb.centre[ax]);
-        maxScale = std::min(maxScale, std::sqrt(d2) / (pa.radius + pb.radius));
-      }
-    }
-    // Only elements within maxScale × radius of a pore centre can be carved: visit those through
-    // a cell list instead of testing every element against every pore.
-    std::vector<double> swallowScale(p.size(), 1e300);
-    CellList cells;
-    cells.build(p, 2.0 * s.elementRadius);
-    for (std::size_t q = 0; q < report.pores.size(); ++q) {
-      if (q % 64 == 0) cancel.throwIfRequested();
-      const Pore& pore = report.pores[q];
-      const double reach = maxScale * pore.radius;
-      double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-      for (int ax = 0; ax < 3; ++ax) { lo[ax] = pore.centre[ax] - reach; hi[ax] = pore.centre[ax] + reach; }
-      cells.forEachInBox(lo, hi, [&](std::int32_t k) {
-        const double ex = p.x[k] - pore.centre[0], ey = p.y[k] - pore.centre[1], ez = p.z[k] - pore.centre[2];
-        swallowScale[k] = std::min(swallowScale[k], std::sqrt(ex * ex + ey * ey + ez * ez) / pore.radius);
-      });
-    }
-    std::vector<std::size_t> order;
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (swallowScale[k] < maxScale) order.push_back(k);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return swallowScale[a] < swallowScale[b] || (swallowScale[a] == swallowScale[b] && a < b);
-    });
-    const double wanted = s.porosity * solid;
-    double removed = 0, scale = 0;
-    for (std::size_t n = 0; n < order.size(); ++n) {
-      const std::size_t k = order[n];
-      const double v = elementVolume(s.dimension, p.radius[k]);
-      // Stop where the removed volume is closest to the target.
-      if (removed + v > wanted && (removed + v - wanted) > (wanted - removed)) break;
-      removed += v;
-      keep[k] = 0;
-      scale = swallowScale[k];
-    }
-    // Report pores at the radius that was actually carved (just above the last swallowed centre).
-    for (Pore& pore : report.pores) pore.radius *= scale;
-    report.porosity = removed / solid;
-  }
+  report.porosity = carvePores(s, report.pores, p, keep, cancel);
   // Drop the pore elements, then any element the pores left with no bond.
   system.bonds.remap(p.compact(keep));
   dropUnbonded(system);
 
+  cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
+  assignMaterial(system, s, m);            // law, criterion, per-bond constants (dem/bond_model.hpp)
   system.beam = m.beam;
   system.contact.setParameters(m.contact);
   cancel.throwIfRequested();

@@ -19,14 +19,10 @@
 
 #include "core/cancellation.hpp"
 #include "dem/bonded_system.hpp"
+#include "dem/pores.hpp"
 #include "dem/sample_spec.hpp"
 
 namespace rupture {
-
-struct Pore {
-  std::array<double, 3> centre;
-  double radius;
-};
 
 struct SampleReport {
   std::size_t elements = 0, bonds = 0;

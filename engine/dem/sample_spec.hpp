@@ -3,15 +3,44 @@
 // in io/bonded_spec.cpp, built in dem/sample_builder.cpp). SI units.
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "dem/beam_bond.hpp"
 #include "dem/hertz_contact.hpp"
 
 namespace rupture {
 
+/// A pre-crack: bonds whose segment crosses it are never created. In 2D the segment [start, end];
+/// in 3D the strip swept by that segment along z through the whole sample (m).
+struct Notch {
+  std::array<double, 3> start{0, 0, 0}, end{0, 0, 0};
+};
+
+/// A box [min, max] (m); in 2D the z bounds are ±infinity.
+struct Box {
+  std::array<double, 3> min{0, 0, 0}, max{0, 0, 0};
+  bool contains(double x, double y, double z) const {
+    return x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1] && z >= min[2] && z <= max[2];
+  }
+};
+
+/// A block of the sample (region, grain, phase): the particles whose centre is in the box at
+/// build time get its id (later blocks override earlier ones; particles in no block are block 1).
+struct BlockRegion {
+  int id = 1;
+  Box box;
+};
+
 struct SampleSpec {
   int dimension = 2;                     ///< 2 (disks in the x-y plane) or 3 (spheres)
+  std::string lattice = "random";        ///< "random" packing, or a regular lattice (lattice/lattice_geometry.hpp)
+  double spacing = 0;                    ///< lattice nearest-neighbour distance (m); lattices only
+  double thickness = 0;                  ///< 2D out-of-plane thickness (m); 0: R_DE (random) or spacing (lattices)
+  std::vector<Notch> notches;            ///< pre-cracks
+  std::vector<BlockRegion> blocks;       ///< blocks for interblock critical values
   std::array<double, 3> size{0, 0, 0};   ///< box edges (m); size[2] unused in 2D
   double elementRadius = 0;              ///< mean element radius R_DE (m)
   double radiusDispersion = 0.2;         ///< radii uniform in R_DE·[1 − d, 1 + d] (1)
@@ -21,11 +50,37 @@ struct SampleSpec {
   double bondGap = 0.1;                  ///< pairs closer than (R_i + R_j)(1 + gap/2) are bonded (1)
 };
 
+/// Hookean or Born lattice springs (material.hookean / material.born).
+struct LatticeSpringSpec {
+  double youngModulus = 0;                                        ///< target E (Pa)
+  double poissonRatio = std::numeric_limits<double>::quiet_NaN(); ///< target ν (1); Hookean: the lattice's
+  std::string criterion = "critical_stretch";  ///< critical_stretch | critical_energy | stress | griffith
+  double criticalValue = std::numeric_limits<double>::infinity();  ///< s0 (1), w_c (J), σ_c (Pa) or G_c (J/m²)
+};
+
+/// Bond-based prototype microelastic brittle peridynamics (material.pmb).
+struct PmbSpec {
+  double youngModulus = 0;      ///< E (Pa); ν is 1/4 (3D) or 1/3 (2D plane stress)
+  double horizonFactor = 3.015; ///< δ / spacing (1)
+  double criticalStretch = std::numeric_limits<double>::quiet_NaN();  ///< s0 (1), or NaN
+  double fractureEnergy = std::numeric_limits<double>::quiet_NaN();   ///< G0 (J/m²), or NaN
+  std::string criterion = "critical_stretch";  ///< critical_stretch | critical_energy
+  double compressionFactor = 0;  ///< α of s0 = s00 − α s_min (1), as LAMMPS peri/pmb
+  std::string partialVolume = "exact";  ///< "exact" cell–ball overlap, or "linear" (LAMMPS's ramp)
+};
+
 struct MaterialSpec {
-  std::string model = "beam";  ///< bond law registry key
+  std::string model = "beam";  ///< "beam" | "hookean" | "born" | "pmb"
   double density = 0;          ///< bulk density of the dense material (kg/m³)
   BeamParameters beam;
+  LatticeSpringSpec springs;   ///< when model is hookean or born
+  PmbSpec pmb;                 ///< when model is pmb
   ContactParameters contact;
+  std::vector<Box> noFailureRegions;  ///< bonds with an end inside never break
+  /// Interblock critical stretch (seed 003, PeriLab "Interblock Damage"): the s0 of bonds from
+  /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two
+  /// orientations' values (the block's own s0 for a missing orientation).
+  std::map<int, double> interblock;
 };
 
 }  // namespace rupture

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
+
+#include "lattice/lattice_geometry.hpp"
+#include "lattice/spring_mapping.hpp"
 
 namespace rupture::io {
 
@@ -38,6 +43,9 @@ double meanPower(int dimension, double a, double b) {
 double estimatedElements(const SampleSpec& s) {
   double volume = 1;
   for (int a = 0; a < s.dimension; ++a) volume *= s.size[a];
+  const LatticeKind kind = latticeKind(s.lattice);
+  if (kind != LatticeKind::Random)  // one site per lattice cell
+    return volume / (siteMeasure(kind) * std::pow(s.spacing, s.dimension)) * (1.0 - s.porosity);
   const double meanElement = (s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
                              meanPower(s.dimension, s.elementRadius * (1 - s.radiusDispersion),
                                        s.elementRadius * (1 + s.radiusDispersion));
@@ -53,7 +61,10 @@ double estimatedMemoryBytes(const SampleSpec& s) {
 }
 
 RunEstimate estimateBondedRun(const SampleSpec& sample) {
-  return {estimatedElements(sample), estimatedMemoryBytes(sample), "sample.element_radius"};
+  // Memory per element is measured on random packings; lattice bonds (PMB horizons of 3 spacings
+  // hold tens of bonds per site) can need more: the estimate is then a floor.
+  return {estimatedElements(sample), estimatedMemoryBytes(sample),
+          sample.lattice == "random" ? "sample.element_radius" : "sample.spacing"};
 }
 
 SampleSpec parseSample(const SpecReader& root) {
@@ -61,10 +72,23 @@ SampleSpec parseSample(const SpecReader& root) {
   s.dimension = static_cast<int>(root.integer("dimension", 2, 3));
   const SpecReader sample = root.object("sample");
   const std::size_t d = static_cast<std::size_t>(s.dimension);
+  s.lattice = sample.choice("lattice", {"random", "triangular", "square", "simple-cubic", "fcc"}, "random");
+  const LatticeKind kind = latticeKind(s.lattice);
+  if (kind != LatticeKind::Random && latticeDimension(kind) != s.dimension)
+    sample.fail("lattice", s.dimension == 2 ? "\"random\", \"triangular\" or \"square\" when dimension is 2"
+                                            : "\"random\", \"simple-cubic\" or \"fcc\" when dimension is 3");
   const auto size = sample.numbers("size", d, d, Range::positive(), "m");
   for (std::size_t a = 0; a < d; ++a) s.size[a] = size[a];
-  s.elementRadius = sample.number("element_radius", Range::positive(), "m");
-  s.radiusDispersion = sample.number("radius_dispersion", Range::closed(0.0, 0.5), "1", s.radiusDispersion);
+  const bool lattice = kind != LatticeKind::Random;
+  if (lattice) {
+    s.spacing = sample.number("spacing", Range::positive(), "m");
+    s.elementRadius = 0.5 * s.spacing;  // node radius l/2 (contact after breakage, physics-reference §2.4)
+    if (s.dimension == 2) s.thickness = sample.number("thickness", Range::positive(), "m", s.spacing);
+  } else {
+    s.elementRadius = sample.number("element_radius", Range::positive(), "m");
+    s.radiusDispersion = sample.number("radius_dispersion", Range::closed(0.0, 0.5), "1", s.radiusDispersion);
+    s.bondGap = sample.number("bond_gap", Range::closed(0.0, 1.0), "1", s.bondGap);
+  }
   const double maxPorosity = s.dimension == 2 ? kMaxPorosity2D : kMaxPorosity3D;
   s.porosity = sample.number("porosity", Range::closed(0.0, maxPorosity), "1", 0.0);
   if (s.porosity > 0 || sample.has("pore_radius")) {
@@ -76,22 +100,48 @@ SampleSpec parseSample(const SpecReader& root) {
       sample.fail("pore_radius", "pore diameters smaller than the smallest sample edge");
     // A pore is carved out of whole elements: one smaller than an element carves nothing.
     if (pores[0] < s.elementRadius)
-      sample.fail("pore_radius", "pore radii >= sample.element_radius (" + shortNumber(s.elementRadius) + " m)");
+      sample.fail("pore_radius", std::string("pore radii >= ") + (lattice ? "half the sample.spacing" : "sample.element_radius") +
+                                     " (" + shortNumber(s.elementRadius) + " m)");
   }
   s.seed = static_cast<std::uint64_t>(sample.integer("seed", 0, (std::int64_t{1} << 53), 1));
-  s.bondGap = sample.number("bond_gap", Range::closed(0.0, 1.0), "1", s.bondGap);
+  for (const SpecReader& notch : sample.objects("notches", "{\"start\": [x, y(, z)], \"end\": [...]} (m)")) {
+    Notch n;
+    const auto a = notch.numbers("start", d, d, Range{}, "m");
+    const auto b = notch.numbers("end", d, d, Range{}, "m");
+    for (std::size_t k = 0; k < d; ++k) { n.start[k] = a[k]; n.end[k] = b[k]; }
+    if (a == b) notch.fail("end", "a point different from start (m)");
+    notch.finish();
+    s.notches.push_back(n);
+  }
+  for (const SpecReader& block : sample.objects("blocks", "{\"id\": 2, \"min\": [...], \"max\": [...]} (m)")) {
+    BlockRegion b;
+    b.id = static_cast<int>(block.integer("id", 1, 999));
+    const auto lo = block.numbers("min", d, d, Range{}, "m");
+    const auto hi = block.numbers("max", d, d, Range{}, "m");
+    for (std::size_t k = 0; k < d; ++k) {
+      if (lo[k] > hi[k]) block.fail("max", "a corner with every coordinate >= min's (m)");
+      b.box.min[k] = lo[k];
+      b.box.max[k] = hi[k];
+    }
+    if (d == 2) { b.box.min[2] = -1e308; b.box.max[2] = 1e308; }
+    block.finish();
+    s.blocks.push_back(b);
+  }
   sample.finish();
 
   double volume = 1;
   for (std::size_t a = 0; a < d; ++a) volume *= s.size[a];
-  const double estimate = volume / ballVolume(s.dimension, s.elementRadius);
+  const std::string key = lattice ? "spacing" : "element_radius";
+  const double value = lattice ? s.spacing : s.elementRadius;
+  const double estimate = volume / (lattice ? siteMeasure(kind) * std::pow(s.spacing, s.dimension)
+                                            : ballVolume(s.dimension, s.elementRadius));
   if (estimate > kMaxElements)
-    throw SpecError(sample.pathOf("element_radius"), shortNumber(s.elementRadius),
-                    "a radius giving at most 5e6 elements for this sample.size (this gives about " +
+    throw SpecError(sample.pathOf(key), shortNumber(value),
+                    "a value giving at most 5e6 elements for this sample.size (this gives about " +
                         shortNumber(std::round(estimate)) + ")");
   if (estimate < 8)
-    throw SpecError(sample.pathOf("element_radius"), shortNumber(s.elementRadius),
-                    "a radius small enough for at least 8 elements in sample.size");
+    throw SpecError(sample.pathOf(key), shortNumber(value),
+                    "a value small enough for at least 8 elements in sample.size");
   if (s.porosity > 0) {
     const double pores = s.porosity * volume /
                          ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
@@ -104,21 +154,139 @@ SampleSpec parseSample(const SpecReader& root) {
   return s;
 }
 
+namespace {
+
+/// The lattice named by the (already validated) sample, read from the raw spec: the material's
+/// admissible range depends on it.
+LatticeKind rawLattice(const SpecReader& root) {
+  const auto& node = root.node();
+  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("lattice") &&
+      node["sample"]["lattice"].is_string()) {
+    try {
+      return latticeKind(node["sample"]["lattice"].get<std::string>());
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  return LatticeKind::Random;
+}
+
+int rawDimension(const SpecReader& root) {
+  const auto& node = root.node();
+  return node.contains("dimension") && node["dimension"].is_number_integer() ? node["dimension"].get<int>() : 2;
+}
+
+void requireLattice(const SpecReader& material, LatticeKind lattice, const std::vector<LatticeKind>& allowed,
+                    const std::string& model) {
+  for (LatticeKind k : allowed)
+    if (k == lattice) return;
+  std::string names;
+  for (LatticeKind k : allowed) names += (names.empty() ? "" : ", ") + ("sample.lattice \"" + toString(k) + "\"");
+  throw SpecError(material.pathOf("model"), "\"" + model + "\"",
+                  "\"" + model + "\" on " + names + " (this sample is \"" + toString(lattice) + "\")");
+}
+
+LatticeSpringSpec parseLatticeSprings(const SpecReader& block, LatticeKind lattice, bool born) {
+  LatticeSpringSpec m;
+  m.youngModulus = block.number("young_modulus", Range::positive(), "Pa");
+  const PoissonRange range = poissonRange(lattice, born);
+  std::ostringstream allowed;
+  if (range.fixed) {
+    allowed << "exactly " << range.max << " (Hookean springs on the " << toString(lattice)
+            << " lattice fix ν; use \"born\" for another value)";
+    m.poissonRatio = block.number("poisson_ratio", Range{-1e308, 1e308}, "1", range.max);
+    if (std::fabs(m.poissonRatio - range.max) > 1e-3) block.fail("poisson_ratio", allowed.str());
+  } else {
+    allowed << "(" << range.min << ", " << range.max << "] (Born springs on the " << toString(lattice)
+            << " lattice; k_s >= 0)";
+    m.poissonRatio = block.number("poisson_ratio", Range{-1e308, 1e308}, "1");
+    if (!(m.poissonRatio > range.min && m.poissonRatio <= range.max)) block.fail("poisson_ratio", allowed.str());
+  }
+  m.criterion = block.choice("criterion", {"critical_stretch", "critical_energy", "stress", "griffith"},
+                             "critical_stretch");
+  const std::string key = m.criterion == "critical_stretch" ? "critical_stretch"
+                          : m.criterion == "critical_energy" ? "critical_energy"
+                          : m.criterion == "stress"          ? "failure_stress"
+                                                             : "fracture_energy";
+  const std::string unit = m.criterion == "critical_stretch" ? "1"
+                           : m.criterion == "critical_energy" ? "J"
+                           : m.criterion == "stress"          ? "Pa"
+                                                              : "J/m^2";
+  // Absent: unbreakable springs (elastic runs).
+  m.criticalValue = block.number(key, Range::positive(), unit, std::numeric_limits<double>::infinity());
+  block.finish();
+  return m;
+}
+
+PmbSpec parsePmb(const SpecReader& block) {
+  PmbSpec m;
+  m.youngModulus = block.number("young_modulus", Range::positive(), "Pa");
+  m.horizonFactor = block.number("horizon_factor", Range::closed(1.0, 6.0), "1", m.horizonFactor);
+  m.criterion = block.choice("criterion", {"critical_stretch", "critical_energy"}, "critical_stretch");
+  const bool hasStretch = block.has("critical_stretch"), hasEnergy = block.has("fracture_energy");
+  if (hasStretch && hasEnergy)
+    block.fail("fracture_energy", "absent when critical_stretch is given (give one of the two)");
+  if (hasStretch) m.criticalStretch = block.number("critical_stretch", Range::positive(), "1");
+  if (hasEnergy) m.fractureEnergy = block.number("fracture_energy", Range::positive(), "J/m^2");
+  if (m.criterion == "critical_energy" && hasStretch)
+    block.fail("critical_stretch", "absent with criterion \"critical_energy\" (give fracture_energy, J/m^2)");
+  m.compressionFactor = block.number("compression_factor", Range::closed(0.0, 10.0), "1", 0.0);
+  if (m.compressionFactor > 0 && m.criterion != "critical_stretch")
+    block.fail("compression_factor", "0 unless criterion is \"critical_stretch\"");
+  m.partialVolume = block.choice("partial_volume", {"exact", "linear"}, "exact");
+  block.finish();
+  return m;
+}
+
+Box parseBox(const SpecReader& box, int dimension) {
+  const std::size_t d = static_cast<std::size_t>(dimension);
+  Box b;
+  const auto lo = box.numbers("min", d, d, Range{}, "m");
+  const auto hi = box.numbers("max", d, d, Range{}, "m");
+  for (std::size_t k = 0; k < d; ++k) {
+    if (lo[k] > hi[k]) box.fail("max", "a corner with every coordinate >= min's (m)");
+    b.min[k] = lo[k];
+    b.max[k] = hi[k];
+  }
+  if (d == 2) { b.min[2] = -1e308; b.max[2] = 1e308; }
+  return b;
+}
+
+}  // namespace
+
 MaterialSpec parseMaterial(const SpecReader& root) {
   MaterialSpec m;
   const SpecReader material = root.object("material");
-  m.model = material.choice("model", {"beam"});
+  const LatticeKind lattice = rawLattice(root);
+  m.model = material.choice("model", {"beam", "hookean", "born", "pmb"});
   m.density = material.number("density", Range::positive(), "kg/m^3");
-  const SpecReader beam = material.object("beam");
-  m.beam.youngModulus = beam.number("young_modulus", Range::positive(), "Pa");
-  m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
-  m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
-  m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
-  beam.finish();
-  // Default contact modulus ~ the macroscopic modulus the beams give (E_M ∝ E_μ r_μ², see
-  // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
-  m.contact.youngModulus = m.beam.youngModulus * m.beam.radiusRatio * m.beam.radiusRatio;
-  m.contact.poissonRatio = m.beam.poissonRatio;
+  double contactModulus = 0, contactPoisson = 0.25;
+  if (m.model == "beam") {
+    const SpecReader beam = material.object("beam");
+    m.beam.youngModulus = beam.number("young_modulus", Range::positive(), "Pa");
+    m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
+    m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
+    m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
+    beam.finish();
+    // Default contact modulus ~ the macroscopic modulus the beams give (E_M ∝ E_μ r_μ², see
+    // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
+    contactModulus = m.beam.youngModulus * m.beam.radiusRatio * m.beam.radiusRatio;
+    contactPoisson = m.beam.poissonRatio;
+  } else if (m.model == "hookean" || m.model == "born") {
+    requireLattice(material, lattice,
+                   {LatticeKind::Triangular, LatticeKind::Square, LatticeKind::SimpleCubic, LatticeKind::Fcc}, m.model);
+    m.springs = parseLatticeSprings(material.object(m.model), lattice, m.model == "born");
+    contactModulus = m.springs.youngModulus;
+    contactPoisson = std::clamp(m.springs.poissonRatio, -0.99, 0.5);
+  } else {
+    requireLattice(material, lattice, {LatticeKind::Square, LatticeKind::SimpleCubic}, m.model);
+    m.pmb = parsePmb(material.object("pmb"));
+    if (m.pmb.criterion == "critical_energy" && std::isnan(m.pmb.fractureEnergy))
+      material.object("pmb").fail("fracture_energy", "a positive number (J/m^2), required by criterion \"critical_energy\"");
+    contactModulus = m.pmb.youngModulus;
+    contactPoisson = rawDimension(root) == 3 ? 0.25 : 1.0 / 3.0;
+  }
+  m.contact.youngModulus = contactModulus;
+  m.contact.poissonRatio = contactPoisson;
   if (auto contact = material.optionalObject("contact")) {
     m.contact.enabled = contact->boolean("enabled", true);
     m.contact.youngModulus = contact->number("young_modulus", Range::positive(), "Pa", m.contact.youngModulus);
@@ -127,37 +295,115 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     m.contact.dampingRatio = contact->number("damping_ratio", Range::closed(0.0, 1.0), "1", m.contact.dampingRatio);
     contact->finish();
   }
+  if (auto interblock = material.optionalObject("interblock")) {
+    const std::string criterion = m.model == "pmb" ? m.pmb.criterion : m.model == "beam" ? "rankine" : m.springs.criterion;
+    if (criterion != "critical_stretch")
+      material.fail("interblock", "absent unless the criterion is \"critical_stretch\" (interblock values are critical stretches)");
+    for (const auto& [key, value] : interblock->node().items()) {
+      const auto sep = key.find('_');
+      int a = 0, b = 0;
+      try {
+        if (sep == std::string::npos) throw std::invalid_argument(key);
+        std::size_t used = 0;
+        a = std::stoi(key.substr(0, sep), &used);
+        if (used != sep) throw std::invalid_argument(key);
+        b = std::stoi(key.substr(sep + 1), &used);
+        if (used != key.size() - sep - 1) throw std::invalid_argument(key);
+      } catch (const std::exception&) {
+        throw SpecError(interblock->pathOf(key), describeValue(value), "keys \"a_b\" with block ids a, b in [1, 999]");
+      }
+      if (a < 1 || a > 999 || b < 1 || b > 999)
+        throw SpecError(interblock->pathOf(key), describeValue(value), "keys \"a_b\" with block ids a, b in [1, 999]");
+      m.interblock[a * 1000 + b] = interblock->number(key, Range::positive(), "1");
+    }
+    interblock->finish();
+  }
+  for (const SpecReader& box : material.objects("no_failure_regions", "{\"min\": [...], \"max\": [...]} (m)")) {
+    m.noFailureRegions.push_back(parseBox(box, rawDimension(root)));
+    box.finish();
+  }
   material.finish();
   return m;
 }
 
+namespace {
+nlohmann::json point(const std::array<double, 3>& p, int dimension) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int k = 0; k < dimension; ++k) a.push_back(p[k]);
+  return a;
+}
+}  // namespace
+
 nlohmann::json toJson(const SampleSpec& s) {
   nlohmann::json size = nlohmann::json::array();
   for (int a = 0; a < s.dimension; ++a) size.push_back(s.size[a]);
-  nlohmann::json j = {{"size", size},
-                      {"element_radius", s.elementRadius},
-                      {"radius_dispersion", s.radiusDispersion},
-                      {"porosity", s.porosity},
-                      {"seed", s.seed},
-                      {"bond_gap", s.bondGap}};
+  nlohmann::json j = {{"lattice", s.lattice}, {"size", size}, {"porosity", s.porosity}, {"seed", s.seed}};
+  if (s.lattice == "random") {
+    j["element_radius"] = s.elementRadius;
+    j["radius_dispersion"] = s.radiusDispersion;
+    j["bond_gap"] = s.bondGap;
+  } else {
+    j["spacing"] = s.spacing;
+    if (s.dimension == 2) j["thickness"] = s.thickness;
+  }
   if (s.porosity > 0) j["pore_radius"] = {s.poreRadius[0], s.poreRadius[1]};
+  if (!s.blocks.empty()) {
+    j["blocks"] = nlohmann::json::array();
+    for (const BlockRegion& b : s.blocks)
+      j["blocks"].push_back({{"id", b.id}, {"min", point(b.box.min, s.dimension)}, {"max", point(b.box.max, s.dimension)}});
+  }
+  if (!s.notches.empty()) {
+    j["notches"] = nlohmann::json::array();
+    for (const Notch& n : s.notches)
+      j["notches"].push_back({{"start", point(n.start, s.dimension)}, {"end", point(n.end, s.dimension)}});
+  }
   return j;
 }
 
 nlohmann::json toJson(const MaterialSpec& m) {
-  return {{"model", m.model},
-          {"density", m.density},
-          {"beam",
-           {{"young_modulus", m.beam.youngModulus},
-            {"poisson_ratio", m.beam.poissonRatio},
-            {"radius_ratio", m.beam.radiusRatio},
-            {"failure_stress", m.beam.failureStress}}},
-          {"contact",
-           {{"enabled", m.contact.enabled},
-            {"young_modulus", m.contact.youngModulus},
-            {"poisson_ratio", m.contact.poissonRatio},
-            {"friction", m.contact.friction},
-            {"damping_ratio", m.contact.dampingRatio}}}};
+  nlohmann::json j = {{"model", m.model}, {"density", m.density}};
+  if (m.model == "beam") {
+    j["beam"] = {{"young_modulus", m.beam.youngModulus},
+                 {"poisson_ratio", m.beam.poissonRatio},
+                 {"radius_ratio", m.beam.radiusRatio},
+                 {"failure_stress", m.beam.failureStress}};
+  } else if (m.model == "hookean" || m.model == "born") {
+    const LatticeSpringSpec& sp = m.springs;
+    nlohmann::json b = {{"young_modulus", sp.youngModulus}, {"poisson_ratio", sp.poissonRatio}, {"criterion", sp.criterion}};
+    const std::string key = sp.criterion == "critical_stretch" ? "critical_stretch"
+                            : sp.criterion == "critical_energy" ? "critical_energy"
+                            : sp.criterion == "stress"          ? "failure_stress"
+                                                                : "fracture_energy";
+    if (std::isfinite(sp.criticalValue)) b[key] = sp.criticalValue;
+    j[m.model] = b;
+  } else {
+    const PmbSpec& p = m.pmb;
+    nlohmann::json b = {{"young_modulus", p.youngModulus},
+                        {"horizon_factor", p.horizonFactor},
+                        {"criterion", p.criterion},
+                        {"compression_factor", p.compressionFactor},
+                        {"partial_volume", p.partialVolume}};
+    if (!std::isnan(p.criticalStretch)) b["critical_stretch"] = p.criticalStretch;
+    if (!std::isnan(p.fractureEnergy)) b["fracture_energy"] = p.fractureEnergy;
+    j["pmb"] = b;
+  }
+  j["contact"] = {{"enabled", m.contact.enabled},
+                  {"young_modulus", m.contact.youngModulus},
+                  {"poisson_ratio", m.contact.poissonRatio},
+                  {"friction", m.contact.friction},
+                  {"damping_ratio", m.contact.dampingRatio}};
+  if (!m.interblock.empty()) {
+    j["interblock"] = nlohmann::json::object();
+    for (const auto& [key, value] : m.interblock) j["interblock"][std::to_string(key / 1000) + "_" + std::to_string(key % 1000)] = value;
+  }
+  if (!m.noFailureRegions.empty()) {
+    j["no_failure_regions"] = nlohmann::json::array();
+    for (const Box& b : m.noFailureRegions) {
+      const int d = b.min[2] < -1e307 ? 2 : 3;
+      j["no_failure_regions"].push_back({{"min", point(b.min, d)}, {"max", point(b.max, d)}});
+    }
+  }
+  return j;
 }
 
 nlohmann::json bondedSpecJson(const std::string& scenario, const std::string& description,

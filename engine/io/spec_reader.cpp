@@ -65,6 +65,19 @@ void SpecReader::fail(const std::string& key, const std::string& allowed) const 
   throw SpecError(pathOf(key), it == m_node.end() ? "(missing)" : describeValue(*it), allowed);
 }
 
+std::vector<SpecReader> SpecReader::objects(const std::string& key, const std::string& what) const {
+  std::vector<SpecReader> out;
+  const nlohmann::json* v = find(key);
+  if (!v) return out;
+  if (!v->is_array()) fail(key, "an array of " + what);
+  for (std::size_t k = 0; k < v->size(); ++k) {
+    const std::string path = pathOf(key) + "[" + std::to_string(k) + "]";
+    if (!(*v)[k].is_object()) throw SpecError(path, describeValue((*v)[k]), what);
+    out.emplace_back((*v)[k], path);
+  }
+  return out;
+}
+
 SpecReader SpecReader::object(const std::string& key) const {
   const nlohmann::json* v = find(key);
   if (!v || !v->is_object()) fail(key, "a JSON object (required)");

@@ -48,6 +48,9 @@ public:
   std::vector<double> numbers(const std::string& key, std::size_t minLength, std::size_t maxLength,
                               const Range& range, const std::string& unit) const;
 
+  /// An optional array of JSON objects ("notches": [{...}, ...]), one reader each with the path
+  /// "key[k]"; empty when absent. `what` describes one element for the error message.
+  std::vector<SpecReader> objects(const std::string& key, const std::string& what) const;
   /// Throws for the first key of this object that no accessor read.
   void finish() const;
 

@@ -7,25 +7,20 @@
 
 namespace rupture {
 
-std::vector<double> elementDamage(const BondStore& bonds, std::size_t elementCount) {
+std::vector<double> elementDamage(const BondStore& bonds, std::size_t elementCount,
+                                  const std::vector<double>* volume) {
   std::vector<double> initial(elementCount, 0.0), broken(elementCount, 0.0);
   for (std::size_t b = 0; b < bonds.size(); ++b) {
     const double lost = bonds.intact[b] > 0.5 ? 0.0 : 1.0;
-    initial[bonds.i[b]] += 1.0;
-    initial[bonds.j[b]] += 1.0;
-    broken[bonds.i[b]] += lost;
-    broken[bonds.j[b]] += lost;
+    const std::int32_t i = bonds.i[b], j = bonds.j[b];
+    const double vi = volume ? (*volume)[i] : 1.0, vj = volume ? (*volume)[j] : 1.0;
+    initial[i] += vj;  // i's neighbourhood weighs its partner j, and the converse
+    initial[j] += vi;
+    broken[i] += lost * vj;
+    broken[j] += lost * vi;
   }
   for (std::size_t k = 0; k < elementCount; ++k) broken[k] = initial[k] > 0 ? broken[k] / initial[k] : 0.0;
   return broken;
-}
-
-double maxStressRatio(const BondStore& bonds, double failureStress) {
-  if (!(failureStress > 0) || !std::isfinite(failureStress)) return 0.0;
-  double worst = 0;
-  for (std::size_t b = 0; b < bonds.size(); ++b)
-    if (bonds.intact[b] > 0.5) worst = std::max(worst, bonds.equivalentStress[b]);
-  return worst / failureStress;
 }
 
 std::size_t countFragments(const BondStore& bonds, std::size_t elementCount, std::size_t minSize) {

@@ -8,13 +8,13 @@
 
 namespace rupture {
 
-/// Damage of each element: the fraction of its initial bonds (every bond of the store, intact or
-/// not) that are broken; 0 for an element that never had a bond.
-std::vector<double> elementDamage(const BondStore& bonds, std::size_t elementCount);
-
-/// Largest Rankine stress of the intact bonds over the failure stress (0 if unbreakable). It grows
-/// about linearly with the load before the first break: runs use it to estimate their progress.
-double maxStressRatio(const BondStore& bonds, double failureStress);
+/// Damage index of each element (seed 003; LAMMPS damage/atom; physics-reference §3.6):
+///   φ_i = Σ_j (1 − χ_ij) V_j / Σ_j V_j
+/// over its initial bonds (every bond of the store, intact or not), χ = 1 intact, 0 broken, V_j the
+/// partner's volume (all equal when `volume` is null: the fraction of broken bonds); 0 for an
+/// element that never had a bond.
+std::vector<double> elementDamage(const BondStore& bonds, std::size_t elementCount,
+                                  const std::vector<double>* volume = nullptr);
 
 /// Number of fragments: connected clusters of at least `minSize` elements linked by intact bonds
 /// (union–find with path halving and union by size). An intact sample is one fragment.

@@ -287,7 +287,7 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
         lastReport = Clock::now();
         const double main = observed.progress(system.time, loading.ramp(), geometry.gaugeLength, spec.run.maxStrain,
                                               spec.run.stopFraction,
-                                              maxStressRatio(system.bonds, system.beam.failureStress));
+                                              system.maxFailureRatio());
         reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
       }
     }

@@ -40,6 +40,10 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
   s.sample = io::parseSample(root);
   s.material = io::parseMaterial(root);
   if (const auto target = root.optionalObject("target")) {
+    // The fit varies the beams; lattice springs and PMB are mapped from E and ν directly.
+    if (s.material.model != "beam")
+      throw SpecError("target", "(present)", "absent unless material.model is \"beam\" (the " + s.material.model +
+                                                  " model takes its E and nu in material." + s.material.model + ")");
     ElasticTarget t;
     t.youngModulus = target->number("young_modulus", Range::positive(), "Pa");
     t.poissonRatio = target->number("poisson_ratio", {-1.0, 0.5, true, true}, "1");

@@ -10,12 +10,13 @@ namespace rupture {
 // One factory per scenario file.
 Scenario dynamicTensionScenario();
 Scenario elasticPropertiesScenario();
-Scenario damBreakScenario();
-Scenario pistonColumnScenario();
+Scenario damBreakScenario();      // scenarios/dam_break/
+Scenario pistonColumnScenario();   // scenarios/piston_column/
+Scenario impactScenario();         // scenarios/impact/
 
 const std::vector<Scenario>& scenarioRegistry() {
   static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario(),
-                                                 damBreakScenario(), pistonColumnScenario()};
+                                                 damBreakScenario(), pistonColumnScenario(), impactScenario()};
   return registry;
 }
 

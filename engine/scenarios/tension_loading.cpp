@@ -109,14 +109,13 @@ FaceStresses TensionLoading::stresses(const ParticleStore& p) const {
 }
 
 double affineWaveSpeed(const BondedSystem& system, const TensionGeometry& geometry) {
-  const ParticleStore& p = system.particles;
   const BondStore& bonds = system.bonds;
+  const std::vector<double> stiffness = system.bondStiffness();
   double modulus = 0;
   for (std::size_t b = 0; b < bonds.size(); ++b) {
     if (bonds.intact[b] < 0.5) continue;
-    const BeamSection s = BeamSection::of(system.beam, p.radius[bonds.i[b]], p.radius[bonds.j[b]]);
     const double L0 = bonds.restLength[b];
-    const double k = system.beam.youngModulus * s.area / L0;
+    const double k = stiffness[b];
     const double nx2 = bonds.n0x[b] * bonds.n0x[b];
     modulus += k * L0 * L0 * nx2 * nx2;
   }

@@ -99,7 +99,7 @@ void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFr
   m_file.writeDataset(base + "/position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
   m_file.writeDataset(base + "/velocity", io::interleave(p.vx, p.vy, p.vz), {n, 3}, "m/s");
   m_file.writeDataset(base + "/stress", virialStress(system, packingFraction, thickness2d), {n, 3, 3}, "Pa");
-  m_file.writeDataset(base + "/damage", elementDamage(system.bonds, n), {n}, "1");
+  m_file.writeDataset(base + "/damage", elementDamage(system.bonds, n, &p.volume), {n}, "1");
   m_file.writeDataset(base + "/radius", p.radius, {n}, "m");
   std::vector<std::uint8_t> intact(system.bonds.size());
   for (std::size_t b = 0; b < intact.size(); ++b) intact[b] = system.bonds.intact[b] > 0.5 ? 1 : 0;

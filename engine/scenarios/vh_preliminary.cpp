@@ -98,7 +98,7 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
       // (its stress grows about linearly with ε); progress = time over the time to reach it.
       double target = params.captureStrain ? *params.captureStrain : 0.0;
       if (!params.captureStrain) {
-        const double ratio = maxStressRatio(system.bonds, system.beam.failureStress);
+        const double ratio = system.maxFailureRatio();
         target = ratio > 1e-3 ? strain / ratio : params.maxStrain;
       }
       const double end = loading.ramp().timeToReach(target * geometry.gaugeLength);

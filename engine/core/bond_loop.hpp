@@ -1,0 +1,156 @@
+#pragma once
+// The bonded loop, written once for every bond law (core/bond_law.hpp) and failure criterion
+// (engine/damage/): evaluate every bond (one vectorised pass over the bond arrays, per-bond loads
+// stored), then gather the loads onto particles through the incidence lists (one pass over
+// particles). No atomics; the result does not depend on the thread count. The law and criterion
+// are template parameters: the caller dispatches once per loop (dem/bond_model.hpp), never per bond.
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "core/bond_law.hpp"
+#include "core/bond_store.hpp"
+#include "core/parallel.hpp"
+#include "core/particle_store.hpp"
+
+namespace rupture {
+
+/// The geometry of bond b in the current configuration.
+template <class Law>
+[[gnu::always_inline]] inline BondGeometry bondGeometry(const ParticleStore& p, const BondStore& bonds, std::size_t b) {
+  const std::int32_t i = bonds.i[b], j = bonds.j[b];
+  BondGeometry g{};
+  g.dx = p.x[j] - p.x[i]; g.dy = p.y[j] - p.y[i]; g.dz = p.z[j] - p.z[i];
+  g.restLength = bonds.restLength[b];
+  g.n0x = bonds.n0x[b]; g.n0y = bonds.n0y[b]; g.n0z = bonds.n0z[b];
+  g.radiusI = p.radius[i]; g.radiusJ = p.radius[j];
+  g.stiffness = bonds.stiffness[b];
+  g.qiw = p.qw[i]; g.qix = p.qx[i]; g.qiy = p.qy[i]; g.qiz = p.qz[i];
+  g.qjw = p.qw[j]; g.qjx = p.qx[j]; g.qjy = p.qy[j]; g.qjz = p.qz[j];
+  return g;
+}
+
+/// Evaluates every bond, breaks (irreversibly) those whose failure measure reaches their threshold,
+/// and stores the loads of the intact ones. `nodalMinStretch` (per particle, read only by criteria
+/// with a nodal shift) is the smallest bond stretch of each node at the previous evaluation.
+/// Returns the number of bonds that broke in this call.
+template <class Law, class Criterion>
+std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const ParticleStore& p, BondStore& bonds,
+                          const double* nodalMinStretch) {
+  // Bind the arrays to local pointers: the loop body is then plain loads, arithmetic and stores.
+  const std::int32_t* bi = bonds.i.data();
+  const std::int32_t* bj = bonds.j.data();
+  const double *L0 = bonds.restLength.data(), *n0x = bonds.n0x.data(), *n0y = bonds.n0y.data(),
+               *n0z = bonds.n0z.data(), *kb = bonds.stiffness.data(), *limit = bonds.failureThreshold.data();
+  double* intact = bonds.intact.data();
+  double *fjx = bonds.fjx.data(), *fjy = bonds.fjy.data(), *fjz = bonds.fjz.data();
+  double *tix = bonds.tix.data(), *tiy = bonds.tiy.data(), *tiz = bonds.tiz.data();
+  double *tjx = bonds.tjx.data(), *tjy = bonds.tjy.data(), *tjz = bonds.tjz.data();
+  double* measured = bonds.failureMeasure.data();
+  const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data(), *rad = p.radius.data();
+  const double *qw = p.qw.data(), *qx = p.qx.data(), *qy = p.qy.data(), *qz = p.qz.data();
+  const double* sMin = nodalMinStretch;
+  const Law lawCopy = law;
+  const Criterion crit = criterion;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
+  std::size_t broken = 0;
+
+#pragma omp parallel for simd schedule(static) reduction(+ : broken) firstprivate(lawCopy, crit) if (worthParallel(bonds.size()))
+  for (std::ptrdiff_t b = 0; b < n; ++b) {
+    const std::int32_t i = bi[b], j = bj[b];
+    BondGeometry g{};
+    g.dx = x[j] - x[i]; g.dy = y[j] - y[i]; g.dz = z[j] - z[i];
+    g.restLength = L0[b];
+    g.n0x = n0x[b]; g.n0y = n0y[b]; g.n0z = n0z[b];
+    g.radiusI = rad[i]; g.radiusJ = rad[j];
+    g.stiffness = kb[b];
+    if constexpr (Law::kRotational) {
+      g.qiw = qw[i]; g.qix = qx[i]; g.qiy = qy[i]; g.qiz = qz[i];
+      g.qjw = qw[j]; g.qjx = qx[j]; g.qjy = qy[j]; g.qjz = qz[j];
+    }
+    const BondResponse r = lawCopy.response(g);
+    const double m = crit.measure(r);
+    double effective = m;
+    if constexpr (Criterion::kNodalShift) effective += crit.alpha * std::max(sMin[i], sMin[j]);
+    // Arithmetic instead of && so the loop has no control flow: now = was · [measure < threshold].
+    const double was = intact[b];
+    const double now = was * static_cast<double>(effective < limit[b]);
+    broken += static_cast<std::size_t>(was - now);
+    intact[b] = now;
+    measured[b] = m;
+    fjx[b] = now * r.fjx; fjy[b] = now * r.fjy; fjz[b] = now * r.fjz;
+    if constexpr (Law::kRotational) {
+      tix[b] = now * r.tix; tiy[b] = now * r.tiy; tiz[b] = now * r.tiz;
+      tjx[b] = now * r.tjx; tjy[b] = now * r.tjy; tjz[b] = now * r.tjz;
+    }
+  }
+  return broken;
+}
+
+/// Sets each particle's force (and, with kTorques, torque) to the sum of its bonds' loads
+/// (overwrites f and t). With kMinStretch, also the smallest failure measure (the stretch, for the
+/// critical-stretch criterion) of its intact bonds into minStretch; a node without intact bond
+/// keeps its previous value.
+template <bool kTorques, bool kMinStretch>
+void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretch) {
+  const std::int32_t* start = bonds.incidenceStart.data();
+  const std::int32_t* inc = bonds.incidence.data();
+  const double *fjx = bonds.fjx.data(), *fjy = bonds.fjy.data(), *fjz = bonds.fjz.data();
+  const double *tix = bonds.tix.data(), *tiy = bonds.tiy.data(), *tiz = bonds.tiz.data();
+  const double *tjx = bonds.tjx.data(), *tjy = bonds.tjy.data(), *tjz = bonds.tjz.data();
+  const double *intact = bonds.intact.data(), *measure = bonds.failureMeasure.data();
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+#pragma omp parallel for schedule(static) if (worthParallel(p.size()))
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
+    double lowest = 1e300;
+    for (std::int32_t s = start[k]; s < start[k + 1]; ++s) {
+      const std::int32_t e = inc[s], b = e >> 1;
+      const double sign = (e & 1) ? 1.0 : -1.0;  // end j receives F_j, end i receives −F_j
+      fx += sign * fjx[b]; fy += sign * fjy[b]; fz += sign * fjz[b];
+      if constexpr (kTorques) {
+        tx += (e & 1) ? tjx[b] : tix[b];
+        ty += (e & 1) ? tjy[b] : tiy[b];
+        tz += (e & 1) ? tjz[b] : tiz[b];
+      }
+      if constexpr (kMinStretch) lowest = intact[b] > 0.5 ? std::min(lowest, measure[b]) : lowest;
+    }
+    p.fx[k] = fx; p.fy[k] = fy; p.fz[k] = fz;
+    if constexpr (kTorques) {
+      p.tx[k] = tx; p.ty[k] = ty; p.tz[k] = tz;
+    }
+    if constexpr (kMinStretch) minStretch[k] = lowest < 1e300 ? lowest : minStretch[k];
+  }
+  if constexpr (!kTorques) {
+    std::fill(p.tx.begin(), p.tx.end(), 0.0);
+    std::fill(p.ty.begin(), p.ty.end(), 0.0);
+    std::fill(p.tz.begin(), p.tz.end(), 0.0);
+  }
+}
+
+/// Elastic energy stored in the intact bonds (J).
+template <class Law>
+double bondEnergy(const Law& law, const ParticleStore& p, const BondStore& bonds) {
+  double e = 0;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
+#pragma omp parallel for reduction(+ : e) schedule(static) if (worthParallel(bonds.size()))
+  for (std::ptrdiff_t b = 0; b < n; ++b)
+    if (bonds.intact[b] > 0.5) e += law.response(bondGeometry<Law>(p, bonds, b)).energy;
+  return e;
+}
+
+/// Sums each intact bond's Gershgorin stiffness onto its two particles (N/m and N·m/rad).
+template <class Law>
+void accumulateBondStiffness(const Law& law, const ParticleStore& p, const BondStore& bonds,
+                             std::vector<double>& translational, std::vector<double>& rotational) {
+  translational.assign(p.size(), 0.0);
+  rotational.assign(p.size(), 0.0);
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    if (bonds.intact[b] < 0.5) continue;
+    const BondStiffness k = law.stiffness(bondGeometry<Law>(p, bonds, b));
+    translational[bonds.i[b]] += k.translational; translational[bonds.j[b]] += k.translational;
+    rotational[bonds.i[b]] += k.rotational; rotational[bonds.j[b]] += k.rotational;
+  }
+}
+
+}  // namespace rupture

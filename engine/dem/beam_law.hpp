@@ -1,0 +1,44 @@
+#pragma once
+// The cohesive beam (dem/beam_bond.hpp) as a bond law of the generic loop (core/bond_loop.hpp).
+#include <cmath>
+
+#include "core/bond_law.hpp"
+#include "dem/beam_bond.hpp"
+
+namespace rupture {
+
+struct BeamLaw {
+  static constexpr const char* kName = "beam";
+  static constexpr bool kRotational = true;
+  BeamParameters params;
+
+  [[gnu::always_inline]] BondResponse response(const BondGeometry& g) const {
+    const BeamResponse b = beamResponse(params, g.radiusI, g.radiusJ, g.restLength, g.n0x, g.n0y, g.n0z, g.dx, g.dy,
+                                        g.dz, g.qiw, g.qix, g.qiy, g.qiz, g.qjw, g.qjx, g.qjy, g.qjz);
+    const BeamSection sec = BeamSection::of(params, g.radiusI, g.radiusJ);
+    const double kAxial = params.youngModulus * sec.area / g.restLength;
+    const double stretch = b.axialForce / (kAxial * g.restLength);
+    const double axialEnergy = 0.5 * b.axialForce * b.axialForce / kAxial;
+    BondResponse r;
+    r.fjx = b.fjx; r.fjy = b.fjy; r.fjz = b.fjz;
+    r.tix = b.tix; r.tiy = b.tiy; r.tiz = b.tiz;
+    r.tjx = b.tjx; r.tjy = b.tjy; r.tjz = b.tjz;
+    r.energy = b.energy;
+    r.stretch = stretch;
+    r.normalForce = b.axialForce;
+    r.tensileNormalEnergy = stretch > 0 ? axialEnergy : 0.0;
+    r.shearEnergy = b.energy - axialEnergy;
+    r.equivalentStress = b.equivalentStress;
+    return r;
+  }
+
+  /// physics-reference §1.8: k_tr = max(E S/L0, 12 E I/L0³), k_rot = max(G J/L0, 4 E I/L0).
+  BondStiffness stiffness(const BondGeometry& g) const {
+    const BeamSection s = BeamSection::of(params, g.radiusI, g.radiusJ);
+    const double E = params.youngModulus, G = params.shearModulus(), L0 = g.restLength;
+    return {std::fmax(E * s.area / L0, 12.0 * E * s.secondMoment / (L0 * L0 * L0)),
+            std::fmax(G * s.polarMoment / L0, 4.0 * E * s.secondMoment / L0)};
+  }
+};
+
+}  // namespace rupture

@@ -1,0 +1,58 @@
+#pragma once
+// The material model of a bonded system: one bond law and one failure criterion, chosen by the
+// spec (material.model and its criterion). A std::variant of the supported pairs, visited once per
+// loop: the templated bonded loop (core/bond_loop.hpp) runs inside, so nothing is dispatched per
+// bond. Adding a law is its header, one line per meaningful criterion here, and its set-up in
+// dem/bond_model.cpp.
+#include <string>
+#include <variant>
+
+#include "damage/critical_energy.hpp"
+#include "damage/critical_stretch.hpp"
+#include "damage/griffith_energy.hpp"
+#include "damage/rankine.hpp"
+#include "damage/stress_threshold.hpp"
+#include "dem/beam_law.hpp"
+#include "lattice/born_law.hpp"
+#include "lattice/central_spring_law.hpp"
+
+namespace rupture {
+
+template <class L, class C>
+struct BondModelOf {
+  using Law = L;
+  using Criterion = C;
+  L law;
+  C criterion;
+};
+
+/// The beam model reads its parameters from BondedSystem::beam (the calibration fit varies them).
+using BeamModel = BondModelOf<BeamLaw, RankineCriterion>;
+
+using BondModel = std::variant<BeamModel,
+                               BondModelOf<CentralSpringLaw, CriticalStretchCriterion>,
+                               BondModelOf<CentralSpringLaw, CriticalEnergyCriterion>,
+                               BondModelOf<CentralSpringLaw, StressThresholdCriterion>,
+                               BondModelOf<CentralSpringLaw, GriffithEnergyCriterion>,
+                               BondModelOf<BornLaw, CriticalStretchCriterion>,
+                               BondModelOf<BornLaw, CriticalEnergyCriterion>,
+                               BondModelOf<BornLaw, StressThresholdCriterion>,
+                               BondModelOf<BornLaw, GriffithEnergyCriterion>>;
+
+/// "law/criterion", e.g. "born/griffith" (for logs and tests).
+std::string describe(const BondModel& model);
+
+}  // namespace rupture
+
+namespace rupture {
+
+struct SampleSpec;
+struct MaterialSpec;
+class BondedSystem;
+
+/// Chooses the law and criterion of `material` and sets every bond's constants (stiffness,
+/// threshold, strength from material.no_failure_regions), the beam parameters and the contact.
+/// The sample's particles and bonds must be built (volumes set); call initialize() afterwards.
+void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& material);
+
+}  // namespace rupture

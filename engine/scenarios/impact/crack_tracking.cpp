@@ -1,0 +1,92 @@
+#include "scenarios/impact/crack_tracking.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <unordered_map>
+
+namespace rupture {
+
+double CrackTracker::observe(double t, const ParticleStore& p, const std::vector<double>& damage) {
+  // Cracked particles binned on a grid of the link length; a breadth-first search from the
+  // origin's neighbourhood follows the crack.
+  const double link = 2.5 * m_spacing, link2 = link * link, seed2 = 9.0 * m_spacing * m_spacing;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
+  auto cellOf = [&](double v, int a) { return static_cast<std::int64_t>(std::floor((v - m_origin[a]) / link)); };
+  auto key = [](std::int64_t a, std::int64_t b, std::int64_t c) { return (a * 1000003 + b) * 1000033 + c; };
+  std::vector<std::size_t> frontier;
+  std::vector<std::uint8_t> seen(p.size(), 0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (damage[k] <= m_threshold) continue;
+    grid[key(cellOf(p.x[k], 0), cellOf(p.y[k], 1), cellOf(p.z[k], 2))].push_back(k);
+    const double dx = p.x[k] - m_origin[0], dy = p.y[k] - m_origin[1], dz = p.z[k] - m_origin[2];
+    if (dx * dx + dy * dy + dz * dz < seed2) { frontier.push_back(k); seen[k] = 1; }
+  }
+  while (!frontier.empty()) {
+    const std::size_t k = frontier.back();
+    frontier.pop_back();
+    const double dx = p.x[k] - m_origin[0], dy = p.y[k] - m_origin[1], dz = p.z[k] - m_origin[2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!m_tip.found || r > m_tip.distance) m_tip = {p.x[k], p.y[k], p.z[k], r, true};
+    const std::int64_t cx = cellOf(p.x[k], 0), cy = cellOf(p.y[k], 1), cz = cellOf(p.z[k], 2);
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c) {
+          auto it = grid.find(key(cx + a, cy + b, cz + c));
+          if (it == grid.end()) continue;
+          for (std::size_t m : it->second) {
+            if (seen[m]) continue;
+            const double ex = p.x[m] - p.x[k], ey = p.y[m] - p.y[k], ez = p.z[m] - p.z[k];
+            if (ex * ex + ey * ey + ez * ez < link2) { seen[m] = 1; frontier.push_back(m); }
+          }
+        }
+  }
+  m_times.push_back(t);
+  m_distances.push_back(m_tip.distance);
+  const std::size_t n = m_times.size();
+  if (n <= m_window) return 0.0;
+  const double speed = (m_distances[n - 1] - m_distances[n - 1 - m_window]) / (m_times[n - 1] - m_times[n - 1 - m_window]);
+  m_maxSpeed = std::max(m_maxSpeed, speed);
+  return speed;
+}
+
+int countCrackBranches(const ParticleStore& p, const std::vector<double>& damage, double threshold,
+                       std::array<double, 3> origin, double spacing) {
+  std::vector<std::size_t> cracked;
+  std::vector<double> radius;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (damage[k] > threshold) {
+      cracked.push_back(k);
+      radius.push_back(std::sqrt((p.x[k] - origin[0]) * (p.x[k] - origin[0]) + (p.y[k] - origin[1]) * (p.y[k] - origin[1]) +
+                                 (p.z[k] - origin[2]) * (p.z[k] - origin[2])));
+    }
+  if (cracked.empty()) return 0;
+  const double width = 4 * spacing, link2 = 6.25 * spacing * spacing;
+  const double rMax = *std::max_element(radius.begin(), radius.end());
+  int best = 1;
+  for (double r0 = 6 * spacing; r0 + width <= rMax; r0 += 0.5 * width) {
+    std::vector<std::size_t> shell;
+    for (std::size_t c = 0; c < cracked.size(); ++c)
+      if (radius[c] >= r0 && radius[c] < r0 + width) shell.push_back(cracked[c]);
+    // Union–find over the shell (a few hundred particles at most: pairwise is fine).
+    std::vector<std::size_t> parent(shell.size());
+    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    auto root = [&](std::size_t a) { while (parent[a] != a) a = parent[a] = parent[parent[a]]; return a; };
+    for (std::size_t a = 0; a < shell.size(); ++a)
+      for (std::size_t b = a + 1; b < shell.size(); ++b) {
+        const std::size_t i = shell[a], j = shell[b];
+        const double d2 = (p.x[i] - p.x[j]) * (p.x[i] - p.x[j]) + (p.y[i] - p.y[j]) * (p.y[i] - p.y[j]) +
+                          (p.z[i] - p.z[j]) * (p.z[i] - p.z[j]);
+        if (d2 < link2) parent[root(a)] = root(b);
+      }
+    std::vector<std::size_t> size(shell.size(), 0);
+    for (std::size_t a = 0; a < shell.size(); ++a) ++size[root(a)];
+    int clusters = 0;
+    for (std::size_t a = 0; a < shell.size(); ++a) clusters += parent[a] == a && size[a] >= 3;
+    best = std::max(best, clusters);
+  }
+  return best;
+}
+
+}  // namespace rupture

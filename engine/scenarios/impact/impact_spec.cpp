@@ -1,0 +1,122 @@
+#include "scenarios/impact/impact_spec.hpp"
+
+#include <algorithm>
+
+#include "io/bonded_spec.hpp"
+#include "io/spec_reader.hpp"
+
+namespace rupture {
+
+namespace {
+
+using io::Range;
+using io::SpecReader;
+
+std::array<double, 3> vector3(const SpecReader& r, const std::string& key, int d, const Range& range, const std::string& unit) {
+  const auto v = r.numbers(key, static_cast<std::size_t>(d), static_cast<std::size_t>(d), range, unit);
+  std::array<double, 3> out{0, 0, 0};
+  for (int k = 0; k < d; ++k) out[k] = v[k];
+  return out;
+}
+
+Box box(const SpecReader& r, int d) {
+  Box b;
+  b.min = vector3(r, "min", d, Range{}, "m");
+  b.max = vector3(r, "max", d, Range{}, "m");
+  for (int k = 0; k < d; ++k)
+    if (b.min[k] > b.max[k]) r.fail("max", "a corner with every coordinate >= min's (m)");
+  if (d == 2) { b.min[2] = -1e308; b.max[2] = 1e308; }
+  return b;
+}
+
+nlohmann::json point(const std::array<double, 3>& p, int d) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int k = 0; k < d; ++k) a.push_back(p[k]);
+  return a;
+}
+
+}  // namespace
+
+ImpactSpec parseImpactSpec(const nlohmann::json& json) {
+  const SpecReader root(json, "");
+  ImpactSpec s;
+  root.choice("scenario", {"impact"});
+  s.description = root.string("description", "");
+  s.sample = io::parseSample(root);
+  s.material = io::parseMaterial(root);
+  const int d = s.sample.dimension;
+
+  const SpecReader loading = root.object("loading");
+  if (auto p = loading.optionalObject("projectile")) {
+    ProjectileSpec proj;
+    proj.radius = p->number("radius", Range::positive(), "m");
+    proj.mass = p->number("mass", Range::positive(), "kg");
+    proj.position = vector3(*p, "position", d, Range{}, "m");
+    proj.velocity = vector3(*p, "velocity", d, Range{-1e5, 1e5}, "m/s");
+    proj.stiffness = p->number("stiffness", Range::positive(), "N/m^2", 0.0);
+    p->finish();
+    s.projectile = proj;
+  }
+  for (const SpecReader& r : loading.objects("velocity_regions", "{\"min\", \"max\", \"velocity\", \"ramp_time\"}")) {
+    VelocityRegion v;
+    v.box = box(r, d);
+    v.velocity = vector3(r, "velocity", d, Range{-1e5, 1e5}, "m/s");
+    v.rampTime = r.number("ramp_time", Range::nonNegative(), "s", 0.0);
+    r.finish();
+    s.velocityRegions.push_back(v);
+  }
+  for (const SpecReader& r : loading.objects("tractions", "{\"min\", \"max\", \"traction\"}")) {
+    TractionRegion t;
+    t.box = box(r, d);
+    t.traction = vector3(r, "traction", d, Range{-1e13, 1e13}, "Pa");
+    r.finish();
+    s.tractions.push_back(t);
+  }
+  if (!s.projectile && s.velocityRegions.empty() && s.tractions.empty())
+    loading.fail("projectile", "at least one of loading.projectile, loading.velocity_regions, loading.tractions");
+  loading.finish();
+
+  const SpecReader run = root.object("run");
+  s.endTime = run.number("end_time", Range::positive(), "s");
+  s.timeStepSafety = run.number("time_step_safety", {0.0, 1.0, true, false}, "1", s.timeStepSafety);
+  if (run.has("output_interval")) s.outputInterval = run.number("output_interval", Range::positive(), "s");
+  if (run.has("snapshot_times")) {
+    s.snapshotTimes = run.numbers("snapshot_times", 0, 1000, Range::nonNegative(), "s");
+    if (!std::is_sorted(s.snapshotTimes.begin(), s.snapshotTimes.end())) run.fail("snapshot_times", "times in increasing order (s)");
+  }
+  s.maxSteps = run.integer("max_steps", 1, 1'000'000'000, s.maxSteps);
+  s.damageThreshold = run.number("damage_threshold", {0.0, 1.0, true, false}, "1", s.damageThreshold);
+  if (s.endTime / s.interval() > 1e6) run.fail("output_interval", "an interval giving at most 1e6 series rows for end_time (s)");
+  run.finish();
+  root.finish();
+  return s;
+}
+
+nlohmann::json toJson(const ImpactSpec& s) {
+  const int d = s.sample.dimension;
+  nlohmann::json j = io::bondedSpecJson("impact", s.description, s.sample, s.material);
+  nlohmann::json loading = nlohmann::json::object();
+  if (s.projectile) {
+    const ProjectileSpec& p = *s.projectile;
+    loading["projectile"] = {{"radius", p.radius}, {"mass", p.mass}, {"position", point(p.position, d)},
+                             {"velocity", point(p.velocity, d)}};
+    if (p.stiffness > 0) loading["projectile"]["stiffness"] = p.stiffness;
+  }
+  if (!s.velocityRegions.empty()) {
+    loading["velocity_regions"] = nlohmann::json::array();
+    for (const auto& v : s.velocityRegions)
+      loading["velocity_regions"].push_back({{"min", point(v.box.min, d)}, {"max", point(v.box.max, d)},
+                                             {"velocity", point(v.velocity, d)}, {"ramp_time", v.rampTime}});
+  }
+  if (!s.tractions.empty()) {
+    loading["tractions"] = nlohmann::json::array();
+    for (const auto& t : s.tractions)
+      loading["tractions"].push_back({{"min", point(t.box.min, d)}, {"max", point(t.box.max, d)}, {"traction", point(t.traction, d)}});
+  }
+  j["loading"] = loading;
+  j["run"] = {{"end_time", s.endTime}, {"time_step_safety", s.timeStepSafety}, {"output_interval", s.interval()},
+              {"snapshot_times", s.snapshotTimes}, {"max_steps", s.maxSteps}, {"damage_threshold", s.damageThreshold}};
+  return j;
+}
+
+}  // namespace rupture

@@ -1,0 +1,29 @@
+// `rupture bench W2` through the real binary: the documented keys and the problem's size
+// (bench/README.md: 100,000 sites, every pair within 3.015 dx bonded).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace {
+
+using rupture::testing::runCli;
+
+TEST(CliBenchW2, PrintsOneJsonLineWithTheDocumentedKeys) {
+  const auto r = runCli("bench W2 --steps 2 --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  for (const char* key : {"workload", "particles", "bonds", "steps", "threads", "seconds", "particle_steps_per_s", "bond_steps_per_s"})
+    EXPECT_TRUE(out.contains(key)) << key;
+  EXPECT_EQ(out["workload"], "W2");
+  EXPECT_EQ(out["particles"], 100000);
+  EXPECT_EQ(out["steps"], 2);
+  // Interior sites have 122 partners within 3.015 dx (61 bonds each); the surfaces have fewer.
+  const double bondsPerSite = out["bonds"].get<double>() / out["particles"].get<double>();
+  EXPECT_GT(bondsPerSite, 50.0);
+  EXPECT_LT(bondsPerSite, 61.0);
+  EXPECT_EQ(runCli("bench W2 --particles 10").exitCode, 2);  // W2 has a fixed size
+}
+
+}  // namespace

@@ -1,0 +1,141 @@
+// The impact scenario: spec validation naming the field, the crack observables on hand-built damage
+// fields, and a notched plate of every bonded model cracking from its notch tip.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "io/hdf5_file.hpp"
+#include "scenarios/impact/crack_tracking.hpp"
+#include "scenarios/impact/impact_spec.hpp"
+#include "support/test_support.hpp"
+#include "test_dynamic_tension_support.hpp"
+
+namespace rupture::test {
+namespace {
+
+using rupture::testing::rejectedField;
+
+/// A 20 × 10 mm plate notched from the left edge to 8 mm, pulled apart by its top and bottom rows.
+nlohmann::json notchedPlate(const std::string& model) {
+  nlohmann::json sample = {{"lattice", model == "pmb" ? "square" : "triangular"}, {"size", {0.02, 0.01}}, {"spacing", 2.5e-4},
+                           {"notches", {{{"start", {0.0, 0.005}}, {"end", {0.008, 0.005}}}}}};
+  nlohmann::json material;
+  if (model == "hookean") material = {{"model", "hookean"}, {"density", 2440}, {"hookean", {{"young_modulus", 72e9}, {"criterion", "griffith"}, {"fracture_energy", 3.8}}}};
+  if (model == "born") material = {{"model", "born"}, {"density", 2440}, {"born", {{"young_modulus", 72e9}, {"poisson_ratio", 0.22}, {"criterion", "critical_stretch"}, {"critical_stretch", 1.5e-3}}}};
+  if (model == "pmb") material = {{"model", "pmb"}, {"density", 2440}, {"pmb", {{"young_modulus", 72e9}, {"fracture_energy", 3.8}}}};
+  if (model == "beam") {
+    sample = {{"size", {0.02, 0.01}}, {"element_radius", 1.25e-4}, {"seed", 3}, {"notches", sample["notches"]}};
+    material = {{"model", "beam"}, {"density", 2440}, {"beam", {{"young_modulus", 8e11}, {"poisson_ratio", 0.3}, {"radius_ratio", 0.3}, {"failure_stress", 1.5e9}}}};
+  }
+  // The driven rows and their neighbours never break: the crack must come from the notch.
+  material["no_failure_regions"] = {{{"min", {0.0, 0.0}}, {"max", {0.02, 0.0015}}}, {{"min", {0.0, 0.0085}}, {"max", {0.02, 0.01}}}};
+  return {{"scenario", "impact"},
+          {"dimension", 2},
+          {"sample", sample},
+          {"material", material},
+          {"loading", {{"velocity_regions", {{{"min", {0.0, 0.0095}}, {"max", {0.02, 0.01}}, {"velocity", {0.0, 4.0}}, {"ramp_time", 1e-6}},
+                                             {{"min", {0.0, 0.0}}, {"max", {0.02, 0.0005}}, {"velocity", {0.0, -4.0}}, {"ramp_time", 1e-6}}}}}},
+          {"run", {{"end_time", 8e-6}, {"snapshot_times", {4e-6}}}}};
+}
+
+TEST(ImpactSpec, ExamplesAndTheContractKeys) {
+  EXPECT_EQ(rejectedField(readJson(examplePath("impact-branching-pmb.json"))), "");
+  EXPECT_EQ(rejectedField(readJson(examplePath("impact-branching-born.json"))), "");
+  nlohmann::json spec = notchedPlate("pmb");
+  spec["loading"]["projectile"] = {{"radius", 1e-3}, {"mass", 1e-3}, {"position", {0.01, 0.012}}, {"velocity", {0.0, -50.0}}};
+  spec["loading"]["tractions"] = {{{"min", {0.0, 0.0}}, {"max", {0.001, 0.01}}, {"traction", {-1e6, 0.0}}}};
+  EXPECT_EQ(rejectedField(spec), "");
+  const nlohmann::json schema = scenarioSchema("impact");
+  for (const char* key : {"lattice", "spacing", "thickness", "notches"}) EXPECT_TRUE(schema["properties"]["sample"]["properties"].contains(key)) << key;
+  for (const char* key : {"projectile", "velocity_regions", "tractions"}) EXPECT_TRUE(schema["properties"]["loading"]["properties"].contains(key)) << key;
+  EXPECT_TRUE(schema["properties"]["material"]["properties"]["pmb"]["properties"].contains("horizon_factor"));
+  EXPECT_TRUE(schema["properties"]["material"]["properties"].contains("no_failure_regions"));
+  EXPECT_TRUE(schema["properties"]["run"]["properties"].contains("end_time"));
+  // Every key of the resolved spec (all defaults filled in) is in the schema.
+  const nlohmann::json resolved = toJson(parseImpactSpec(spec));
+  for (const auto& [key, value] : resolved.items()) {
+    ASSERT_TRUE(schema["properties"].contains(key)) << key;
+    if (!value.is_object()) continue;
+    for (const auto& [sub, unused] : value.items())
+      EXPECT_TRUE(schema["properties"][key]["properties"].contains(sub)) << key << "." << sub;
+  }
+  // The resolved spec parses back to the same resolved spec.
+  EXPECT_EQ(toJson(parseImpactSpec(toJson(parseImpactSpec(spec)))), toJson(parseImpactSpec(spec)));
+}
+
+TEST(ImpactSpec, ErrorsNameTheField) {
+  auto with = [](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json spec = notchedPlate("pmb");
+    edit(spec);
+    return rejectedField(spec);
+  };
+  EXPECT_EQ(with([](auto& s) { s["loading"] = nlohmann::json::object(); }), "loading.projectile");
+  EXPECT_EQ(with([](auto& s) { s["loading"]["projectile"] = {{"radius", -1.0}, {"mass", 1.0}, {"position", {0, 0}}, {"velocity", {0, 0}}}; }), "loading.projectile.radius");
+  EXPECT_EQ(with([](auto& s) { s["loading"]["velocity_regions"][0]["velocity"] = {1.0}; }), "loading.velocity_regions[0].velocity");
+  EXPECT_EQ(with([](auto& s) { s["run"].erase("end_time"); }), "run.end_time");
+  EXPECT_EQ(with([](auto& s) { s["run"]["snapshot_times"] = {2e-6, 1e-6}; }), "run.snapshot_times");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["notches"][0]["end"] = {0.0, 0.005}; }), "sample.notches[0].end");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["notches"][0]["colour"] = 1; }), "sample.notches[0].colour");
+}
+
+TEST(CrackTracking, TipAndBranchesOfHandBuiltDamageFields) {
+  const double h = 1e-3;
+  ParticleStore p;
+  p.dimension = 2;
+  std::vector<double> damage;
+  // A straight crack along x from the origin to 30 h, then two branches at ±30° from 30 h to 60 h.
+  for (int k = 0; k <= 30; ++k) { p.add(k * h, 0, 0, 0.4 * h); damage.push_back(0.5); }
+  std::vector<double> straight = damage;
+  for (int k = 1; k <= 30; ++k)
+    for (double sign : {1.0, -1.0}) {
+      p.add((30 + k * std::cos(0.52)) * h, sign * k * std::sin(0.52) * h, 0, 0.4 * h);
+      damage.push_back(0.5);
+      straight.push_back(0.0);
+    }
+  p.add(100 * h, 0, 0, 0.4 * h);  // an undamaged particle farther away is not the tip
+  damage.push_back(0.1);
+  straight.push_back(0.1);
+  p.add(0, 80 * h, 0, 0.4 * h);   // nor a cracked one not connected to the crack
+  damage.push_back(0.9);
+  straight.push_back(0.9);
+  EXPECT_EQ(countCrackBranches(p, straight, 0.25, {0, 0, 0}, h), 1);
+  EXPECT_EQ(countCrackBranches(p, damage, 0.25, {0, 0, 0}, h), 2);
+  CrackTracker tracker({0, 0, 0}, 0.25, h, 1);
+  tracker.observe(0.0, p, straight);
+  EXPECT_NEAR(tracker.tip().distance, 30 * h, 1e-12);
+  const double speed = tracker.observe(1e-5, p, damage);  // the tip moved to a branch end
+  const double far = std::hypot(30 + 30 * std::cos(0.52), 30 * std::sin(0.52)) * h;
+  EXPECT_NEAR(tracker.tip().distance, far, 1e-9);
+  EXPECT_NEAR(speed, (far - 30 * h) / 1e-5, 1e-6);
+  EXPECT_EQ(countCrackBranches(p, std::vector<double>(p.size(), 0.0), 0.25, {0, 0, 0}, h), 0);
+}
+
+class ImpactEveryModel : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ImpactEveryModel, ANotchedPlateCracksFromItsNotchTip) {
+  rupture::testing::ScratchDir dir;
+  RunControl control;
+  const RunOutcome out = runSpec(notchedPlate(GetParam()), (dir / "impact.h5").string(), control, 1);
+  ASSERT_TRUE(out.completed);
+  const nlohmann::json& s = out.summary;
+  EXPECT_GT(s["broken_bonds"].get<double>(), 0) << s.dump();
+  EXPECT_GT(s["crack_length"].get<double>(), 0) << s.dump();
+  EXPECT_GE(s["branches"].get<int>(), 1);
+  // The crack runs ahead of the notch: its tip lies right of the notch end, near mid-height.
+  io::Hdf5File file = io::Hdf5File::openReadOnly((dir / "impact.h5").string());
+  const std::vector<double> tipX = file.readDatasetDouble("/series/crack_tip_x");
+  ASSERT_FALSE(tipX.empty());
+  EXPECT_GT(tipX.back(), 0.008) << GetParam();
+  // The crack starts at the notch tip: the particles just ahead of it are cracked.
+  const std::vector<double> damage = file.readDatasetDouble("/snapshots/000001/damage");
+  const std::vector<double> position = file.readDatasetDouble("/snapshots/000001/position");
+  double nearTip = 0;
+  for (std::size_t k = 0; k < damage.size(); ++k)
+    if (std::hypot(position[3 * k] - 0.0085, position[3 * k + 1] - 0.005) < 1e-3) nearTip = std::max(nearTip, damage[k]);
+  EXPECT_GT(nearTip, 0.25) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryModel, ImpactEveryModel, ::testing::Values("beam", "hookean", "born", "pmb"));
+
+}  // namespace
+}  // namespace rupture::test
