@@ -95,15 +95,15 @@ void bondNeighbours(BondedSystem& system, double gap, const Cancellation& cancel
   }
 }
 
-void dropUnbonded(BondedSystem& system) {
+}  // namespace
+
+void dropUnbondedElements(BondedSystem& system) {
   std::vector<std::uint8_t> bonded(system.particles.size(), 0);
   for (std::size_t b = 0; b < system.bonds.size(); ++b)
     bonded[system.bonds.i[b]] = bonded[system.bonds.j[b]] = 1;
   if (std::find(bonded.begin(), bonded.end(), 0) != bonded.end())
     system.bonds.remap(system.particles.compact(bonded));
 }
-
-}  // namespace
 
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                          const Cancellation& cancel) {
@@ -138,7 +138,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
 
   // Rattlers (elements of the dense packing with no bond) would float free: drop them first, so
   // that the dense sample is exactly what gets the bulk density.
-  dropUnbonded(system);
+  dropUnbondedElements(system);
   solid = 0;
   for (double r : p.radius) solid += elementVolume(s.dimension, r);
   report.packingFraction = solid / boxVolume;
@@ -154,7 +154,7 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   report.porosity = carvePores(s, report.pores, p, keep, cancel);
   // Drop the pore elements, then any element the pores left with no bond.
   system.bonds.remap(p.compact(keep));
-  dropUnbonded(system);
+  dropUnbondedElements(system);
 
   cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
   assignMaterial(system, s, m);            // law, criterion, per-bond constants (dem/bond_model.hpp)

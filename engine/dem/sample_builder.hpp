@@ -36,6 +36,9 @@ struct SampleReport {
 };
 
 /// Fills `system` (particles, bonds, beam and contact parameters) from the spec and initialises it.
+/// Removes the elements left without any bond (they would float free), renumbering the bonds.
+void dropUnbondedElements(BondedSystem& system);
+
 /// Every stage polls `cancel` at least every ~0.1 s of wall time (inside packing sweeps too) and
 /// throws RunCancelled once it is set; `system` is then not for use.
 SampleReport buildSample(const SampleSpec& sample, const MaterialSpec& material, BondedSystem& system,

@@ -17,12 +17,6 @@ namespace rupture {
 
 namespace {
 
-void dropUnbondedSites(BondedSystem& system) {
-  std::vector<std::uint8_t> bonded(system.particles.size(), 0);
-  for (std::size_t b = 0; b < system.bonds.size(); ++b) bonded[system.bonds.i[b]] = bonded[system.bonds.j[b]] = 1;
-  if (std::find(bonded.begin(), bonded.end(), 0) != bonded.end()) system.bonds.remap(system.particles.compact(bonded));
-}
-
 /// The longest bond the material puts between sites (m).
 double bondReach(const SampleSpec& s, const MaterialSpec& m, LatticeKind kind) {
   const double l = s.spacing;
@@ -93,7 +87,7 @@ SampleReport buildLatticeSample(const SampleSpec& s, const MaterialSpec& m, Bond
     report.porosity = carvePores(s, report.pores, p, keep, cancel);
     system.bonds.remap(p.compact(keep));
   }
-  dropUnbondedSites(system);
+  dropUnbondedElements(system);
 
   assignMaterial(system, s, m);
   cancel.throwIfRequested();
