@@ -9,45 +9,39 @@ namespace rupture::cli {
 
 namespace {
 
-/// rupture bench W3 [--threads N] [--steps N]: the SPH workload (bench/README.md).
-int benchW3(const Args& args) {
-  bench::W3Options options;
+/// Reads the "--threads N" and "--steps N" that follow the workload name; returns 0, or 2 after
+/// printing what is wrong.
+int readThreadsAndSteps(const Args& args, const std::string& workload, int& threads, int& steps) {
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
     long long v = 0;
     if (args[k] == "--threads") {
       if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
-      options.threads = static_cast<int>(v);
+      threads = static_cast<int>(v);
     } else if (args[k] == "--steps") {
       if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
-      options.steps = static_cast<int>(v);
+      steps = static_cast<int>(v);
     } else {
-      return usageError("bench: unknown option '" + args[k] + "' for W3; allowed: --threads, --steps");
+      return usageError("bench " + workload + ": unknown option '" + args[k] + "'; allowed: --threads, --steps");
     }
     ++k;
   }
-  std::cout << bench::runW3(options).dump() << std::endl;
   return 0;
 }
 
 /// rupture bench W2 [--threads N] [--steps N]: the peridynamics workload (bench/README.md).
 int benchW2(const Args& args) {
   bench::W2Options options;
-  for (std::size_t k = 1; k < args.size(); ++k) {
-    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
-    long long v = 0;
-    if (args[k] == "--threads") {
-      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
-      options.threads = static_cast<int>(v);
-    } else if (args[k] == "--steps") {
-      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
-      options.steps = static_cast<int>(v);
-    } else {
-      return usageError("bench W2: unknown option '" + args[k] + "'; allowed: --threads, --steps");
-    }
-    ++k;
-  }
+  if (int code = readThreadsAndSteps(args, "W2", options.threads, options.steps)) return code;
   std::cout << bench::runW2(options).dump() << std::endl;
+  return 0;
+}
+
+/// rupture bench W3 [--threads N] [--steps N]: the SPH workload (bench/README.md).
+int benchW3(const Args& args) {
+  bench::W3Options options;
+  if (int code = readThreadsAndSteps(args, "W3", options.threads, options.steps)) return code;
+  std::cout << bench::runW3(options).dump() << std::endl;
   return 0;
 }
 

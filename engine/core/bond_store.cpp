@@ -43,23 +43,30 @@ void BondStore::finalize(std::size_t particleCount) {
   }
 }
 
+void BondStore::moveBond(std::size_t from, std::size_t to) {
+  restLength[to] = restLength[from];
+  n0x[to] = n0x[from]; n0y[to] = n0y[from]; n0z[to] = n0z[from];
+  intact[to] = intact[from];
+  stiffness[to] = stiffness[from];
+  threshold[to] = threshold[from];
+  strength[to] = strength[from];
+}
+
+void BondStore::truncate(std::size_t m) {
+  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
+  i.resize(m);
+  j.resize(m);
+}
+
 void BondStore::remap(const std::vector<std::int32_t>& newIndex) {
   std::size_t m = 0;
   for (std::size_t b = 0; b < size(); ++b) {
     const std::int32_t a = newIndex[i[b]], c = newIndex[j[b]];
     if (a < 0 || c < 0) continue;
     i[m] = a; j[m] = c;
-    restLength[m] = restLength[b];
-    n0x[m] = n0x[b]; n0y[m] = n0y[b]; n0z[m] = n0z[b];
-    intact[m] = intact[b];
-    stiffness[m] = stiffness[b];
-    threshold[m] = threshold[b];
-    strength[m] = strength[b];
-    ++m;
+    moveBond(b, m++);
   }
-  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
-  i.resize(m);
-  j.resize(m);
+  truncate(m);
 }
 
 void BondStore::filter(const std::vector<std::uint8_t>& keep) {
@@ -67,17 +74,9 @@ void BondStore::filter(const std::vector<std::uint8_t>& keep) {
   for (std::size_t b = 0; b < size(); ++b) {
     if (!keep[b]) continue;
     i[m] = i[b]; j[m] = j[b];
-    restLength[m] = restLength[b];
-    n0x[m] = n0x[b]; n0y[m] = n0y[b]; n0z[m] = n0z[b];
-    intact[m] = intact[b];
-    stiffness[m] = stiffness[b];
-    threshold[m] = threshold[b];
-    strength[m] = strength[b];
-    ++m;
+    moveBond(b, m++);
   }
-  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
-  i.resize(m);
-  j.resize(m);
+  truncate(m);
 }
 
 std::size_t BondStore::intactCount() const {

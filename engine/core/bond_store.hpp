@@ -50,6 +50,12 @@ struct BondStore {
 
   /// Number of intact bonds per particle.
   std::vector<int> coordination(std::size_t particleCount) const;
+
+private:
+  /// Copies bond `from`'s reference state (all but i, j) onto slot `to` (to <= from), for remap/filter.
+  void moveBond(std::size_t from, std::size_t to);
+  /// Keeps the first m bonds of every reference array.
+  void truncate(std::size_t m);
 };
 
 }  // namespace rupture
