@@ -6,6 +6,8 @@
 
 namespace rupture::io {
 
+RunEstimate estimateFluidRun(double particles) { return {particles, 1e3 * particles, "resolution.spacing"}; }
+
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
   FluidSpec f;
   f.alpha = defaultAlpha;

@@ -4,9 +4,12 @@
 // snapshots at the requested times, checks cancel every step and reports progress.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
+#include "io/fluid_recorder.hpp"
 #include "io/fluid_spec.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/run_support.hpp"
@@ -64,6 +67,47 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
   }
   if (lastRowStep != s.steps) row();  // the last state is always a row
   return out;
+}
+
+/// What a fluid run tracked while it ran, for the summary every SPH scenario reports.
+struct FluidRunTotals {
+  double initialFluidMass = 0;   ///< kg (kg/m in 2D)
+  double maxDensityError = 0;    ///< max over fluid particles and rows of |ρ/ρ0 − 1|
+  std::int64_t outsideMax = 0;   ///< most fluid particles outside the container at once
+  std::size_t fluidParticles = 0;
+  double soundSpeed = 0;         ///< c0 (m/s)
+};
+
+/// Adds the scalars every SPH run reports (completion, stop reason, mass and density errors,
+/// particles outside, steps and time steps, counts, c0, h, list builds, wall time) to the
+/// scenario's own, writes /summary, finishes the file and tells the watcher.
+inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSystem& s, const FluidLoopOutcome& loop,
+                                 const FluidRunTotals& totals, nlohmann::json summary,
+                                 const std::map<std::string, std::string>& units, RunControl& control,
+                                 std::chrono::steady_clock::time_point wallStart) {
+  const bool completed = loop.stopReason != "cancelled";
+  auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  summary.update(nlohmann::json{
+      {"completed", completed ? 1 : 0},
+      {"stop_reason", loop.stopReason},
+      {"mass_error", (s.fluidMass() - totals.initialFluidMass) / totals.initialFluidMass},
+      {"max_density_error", totals.maxDensityError},
+      {"particles_outside_max", totals.outsideMax},
+      {"final_time", s.time},
+      {"steps", static_cast<std::int64_t>(s.steps)},
+      {"time_step_min", nullUnless(std::isfinite(loop.minTimeStep), loop.minTimeStep)},
+      {"time_step_max", nullUnless(loop.maxTimeStep > 0, loop.maxTimeStep)},
+      {"particles", static_cast<std::int64_t>(s.particles.size())},
+      {"fluid_particles", static_cast<std::int64_t>(totals.fluidParticles)},
+      {"sound_speed", totals.soundSpeed},
+      {"smoothing_length", s.model.h()},
+      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())},
+      {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}});
+  recorder.writeAttributes("/summary", summary, units);
+  recorder.finish(completed);
+  if (completed) reportProgress(control, 1.0);
+  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
+  return {summary, completed};
 }
 
 }  // namespace rupture

@@ -58,8 +58,9 @@ void validateSpec(const nlohmann::json& spec) { scenarioFor(spec).validate(spec)
 
 RunEstimate estimateRun(const nlohmann::json& spec) {
   const Scenario& scenario = scenarioFor(spec);
+  if (scenario.estimate) return scenario.estimate(spec);  // parses, so it validates too
   scenario.validate(spec);
-  return scenario.estimate ? scenario.estimate(spec) : RunEstimate{};
+  return {};
 }
 
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control, int threads) {

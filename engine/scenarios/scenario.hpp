@@ -15,7 +15,8 @@ struct Scenario {
   ScenarioInfo info;
   /// Throws SpecError for the first invalid field (the "scenario" key is already checked).
   std::function<void(const nlohmann::json& spec)> validate;
-  /// Size of a valid spec's run (optional: scenarios without one report particles = 0).
+  /// Size of a spec's run; validates like `validate` (optional: scenarios without one report
+  /// particles = 0).
   std::function<RunEstimate(const nlohmann::json& spec)> estimate;
   /// Runs a valid spec; see rupture::runSpec for the file contract.
   std::function<RunOutcome(const nlohmann::json& spec, const std::string& resultPath, RunControl& control)> run;

@@ -100,42 +100,23 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
   const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, [&](double dt) { lastStep = dt; });
-  const bool completed = loop.stopReason != "cancelled";
   recorder.writeSnapshot(s, "final");
 
   double front = -1e300;
   for (std::size_t k = 0; k < s.particles.size(); ++k)
     if (s.particles.isFluid(k)) front = std::max(front, s.particles.x[k]);
   nlohmann::json summary = {
-      {"completed", completed ? 1 : 0},
-      {"stop_reason", loop.stopReason},
       {"front_position_final", front + 0.5 * g.dx},
       {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakPressure)},
-      {"mass_error", (s.fluidMass() - mass0) / mass0},
-      {"max_density_error", maxDensityError},
-      {"particles_outside_max", outsideMax},
-      {"final_time", s.time},
-      {"steps", static_cast<std::int64_t>(s.steps)},
-      {"time_step_min", std::isfinite(loop.minTimeStep) ? nlohmann::json(loop.minTimeStep) : nlohmann::json(nullptr)},
-      {"time_step_max", loop.maxTimeStep > 0 ? nlohmann::json(loop.maxTimeStep) : nlohmann::json(nullptr)},
-      {"particles", static_cast<std::int64_t>(s.particles.size())},
-      {"fluid_particles", static_cast<std::int64_t>(fluidCount)},
-      {"sound_speed", spec.soundSpeed},
-      {"smoothing_length", s.model.h()},
       {"kinetic_energy_final", s.kineticEnergy()},
       {"potential_energy_initial", potential0},
-      {"potential_energy_final", s.potentialEnergy()},
-      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
-  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+      {"potential_energy_final", s.potentialEnergy()}};
   std::map<std::string, std::string> units = summaryUnits();
   if (dim == 2)
     for (const char* energy : {"kinetic_energy_final", "potential_energy_initial", "potential_energy_final"})
       units[energy] = "J/m";
-  recorder.writeAttributes("/summary", summary, units);
-  recorder.finish(completed);
-  if (completed) reportProgress(control, 1.0);
-  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
-  return {summary, completed};
+  return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
+                        std::move(summary), units, control, wallStart);
 }
 
 }  // namespace
@@ -151,10 +132,7 @@ Scenario damBreakScenario() {
       "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
       "and snapshots of position, velocity, density and pressure.";
   s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) {
-    const double n = parseDamBreakSpec(spec).estimatedParticles;
-    return RunEstimate{n, n * 600.0, "resolution.spacing"};  // about 0.6 kB per particle
-  };
+  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parseDamBreakSpec(spec).estimatedParticles); };
   s.run = runDamBreak;
   return s;
 }

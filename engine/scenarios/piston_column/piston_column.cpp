@@ -122,13 +122,10 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
   const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
-  const bool completed = loop.stopReason != "cancelled";
   recorder.writeSnapshot(s, "final");
 
   const sph::PistonShock shock = sph::pistonShock(s.model.eos, std::max(v0, 1e-12));
   nlohmann::json summary = {
-      {"completed", completed ? 1 : 0},
-      {"stop_reason", loop.stopReason},
       {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakProbe)},
       {"peak_bottom_pressure", peakBottom},
       {"first_peak_bottom_pressure", firstPeak},
@@ -141,31 +138,15 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
       {"piston_impulse", -(piston.impulse[0] * piston.axis[0] + piston.impulse[1] * piston.axis[1] +
                            piston.impulse[2] * piston.axis[2])},
       {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
-      {"section_area", g.area},
-      {"mass_error", (s.fluidMass() - mass0) / mass0},
-      {"max_density_error", maxDensityError},
-      {"particles_outside_max", outsideMax},
-      {"final_time", s.time},
-      {"steps", static_cast<std::int64_t>(s.steps)},
-      {"time_step_min", std::isfinite(loop.minTimeStep) ? nlohmann::json(loop.minTimeStep) : nlohmann::json(nullptr)},
-      {"time_step_max", loop.maxTimeStep > 0 ? nlohmann::json(loop.maxTimeStep) : nlohmann::json(nullptr)},
-      {"particles", static_cast<std::int64_t>(s.particles.size())},
-      {"fluid_particles", static_cast<std::int64_t>(fluidCount)},
-      {"sound_speed", spec.soundSpeed},
-      {"smoothing_length", s.model.h()},
-      {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())}};
-  summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
+      {"section_area", g.area}};
   std::map<std::string, std::string> units = summaryUnits();
   if (dim == 2) {  // a 2D slice carries mass, force and impulse per metre of depth
     units["piston_mass"] = "kg/m";
     units["piston_impulse"] = "N s/m";
     units["section_area"] = "m";
   }
-  recorder.writeAttributes("/summary", summary, units);
-  recorder.finish(completed);
-  if (completed) reportProgress(control, 1.0);
-  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
-  return {summary, completed};
+  return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
+                        std::move(summary), units, control, wallStart);
 }
 
 }  // namespace
@@ -181,10 +162,7 @@ Scenario pistonColumnScenario() {
       "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
       "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
   s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) {
-    const double n = parsePistonColumnSpec(spec).estimatedParticles;
-    return RunEstimate{n, n * 600.0, "resolution.spacing"};  // about 0.6 kB per particle
-  };
+  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parsePistonColumnSpec(spec).estimatedParticles); };
   s.run = runPistonColumn;
   return s;
 }

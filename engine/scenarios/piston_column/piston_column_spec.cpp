@@ -82,7 +82,7 @@ PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
   const double layers = s.resolution.wallLayers;
   const double across = (s.diameter + 2 * layers * dx) / dx;
   const double particles = across * (s.dimension == 3 ? across : 1.0) * (s.columnHeight / dx + 4 * layers);
-  if (particles > 5e6)  // about 0.6 kB per particle: 3 GB
+  if (particles > 5e6)  // about 1 kB per particle (io::estimateFluidRun): 5 GB
     throw SpecError("resolution.spacing", formatNumber(dx),
                     "a spacing giving at most 5e6 particles (this one gives about " + formatNumber(std::round(particles)) + ")");
   s.estimatedParticles = particles;
