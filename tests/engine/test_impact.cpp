@@ -139,3 +139,26 @@ INSTANTIATE_TEST_SUITE_P(EveryModel, ImpactEveryModel, ::testing::Values("beam",
 
 }  // namespace
 }  // namespace rupture::test
+
+namespace rupture::test {
+namespace {
+
+TEST(ImpactRun, CancelledBeforeTheSampleIsBuiltLeavesASpecAndSummaryOnly) {
+  // Issue 7's contract for every bonded scenario: a run cancelled while its sample is built stops
+  // at once and leaves a valid file marked incomplete, with the spec and a summary saying so.
+  rupture::testing::ScratchDir dir;
+  RunControl control;
+  control.cancel = true;
+  const RunOutcome out = runSpec(notchedPlate("pmb"), (dir / "cancelled.h5").string(), control, 1);
+  EXPECT_FALSE(out.completed);
+  EXPECT_EQ(out.summary["completed"], 0);
+  EXPECT_EQ(out.summary["stop_reason"], "cancelled");
+  const io::Hdf5File f = io::Hdf5File::openReadOnly((dir / "cancelled.h5").string());
+  EXPECT_EQ(f.readAttributeInt("/", "completed"), 0);
+  EXPECT_EQ(f.readAttributeInt("/summary", "completed"), 0);
+  EXPECT_TRUE(f.hasAttribute("/spec", "json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cancelled.h5.part"));
+}
+
+}  // namespace
+}  // namespace rupture::test
