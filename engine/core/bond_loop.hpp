@@ -5,6 +5,7 @@
 // particles). No atomics; the result does not depend on the thread count. The law and criterion
 // are template parameters: the caller dispatches once per loop (dem/bond_model.hpp), never per bond.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/bond_store.hpp"
 #include "core/parallel.hpp"
 #include "core/particle_store.hpp"
+#include "damage/local_damping.hpp"
 
 namespace rupture {
 
@@ -33,10 +35,11 @@ template <class Law>
 /// Evaluates every bond, breaks (irreversibly) those whose failure measure reaches their threshold,
 /// and stores the loads of the intact ones. `nodalMinStretch` (per particle, read only by criteria
 /// with a nodal shift) is the smallest bond stretch of each node at the previous evaluation.
+/// With kDamped, each intact bond also carries Silling's local damping (damage/local_damping.hpp).
 /// Returns the number of bonds that broke in this call.
-template <class Law, class Criterion>
+template <class Law, class Criterion, bool kDamped = false>
 std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const ParticleStore& p, BondStore& bonds,
-                          const double* nodalMinStretch) {
+                          const double* nodalMinStretch, const SillingDamping& damping = {}) {
   // Bind the arrays to local pointers: the loop body is then plain loads, arithmetic and stores.
   const std::int32_t* bi = bonds.i.data();
   const std::int32_t* bj = bonds.j.data();
@@ -52,6 +55,7 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
   const double* sMin = nodalMinStretch;
   const Law lawCopy = law;
   const Criterion crit = criterion;
+  const SillingDamping damper = damping;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
   std::size_t broken = 0;
 
@@ -68,7 +72,13 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
       g.qiw = qw[i]; g.qix = qx[i]; g.qiy = qy[i]; g.qiz = qz[i];
       g.qjw = qw[j]; g.qjx = qx[j]; g.qjy = qy[j]; g.qjz = qz[j];
     }
-    const BondResponse r = lawCopy.response(g);
+    BondResponse r = lawCopy.response(g);
+    if constexpr (kDamped) {
+      const double length = std::sqrt(g.dx * g.dx + g.dy * g.dy + g.dz * g.dz);
+      const double axial = damper.axialForce(b, i, j, length, lawCopy.stiffness(g).translational, g.restLength);
+      const double perLength = axial / length;  // force on j: −F_damp e, e = (x_j − x_i)/L
+      r.fjx -= perLength * g.dx; r.fjy -= perLength * g.dy; r.fjz -= perLength * g.dz;
+    }
     const double m = crit.measure(r);
     double effective = m;
     if constexpr (Criterion::kNodalShift) effective += crit.alpha * std::max(sMin[i], sMin[j]);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "dem/bonded_system.hpp"
+#include "dem/grains.hpp"
 #include "dem/sample_spec.hpp"
 #include "lattice/lattice_geometry.hpp"
 #include "lattice/spring_mapping.hpp"
@@ -82,6 +83,7 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
                                     backward != m.interblock.end() ? backward->second : own);
     }
   }
+  if (sample.grains.count > 0) weakenGrainBoundaries(voronoiGrains(sample, p), sample.grains.boundaryFactor, bonds);
   for (std::size_t b = 0; b < bonds.size(); ++b)
     for (const Box& box : m.noFailureRegions) {
       const std::int32_t i = bonds.i[b], j = bonds.j[b];
@@ -89,6 +91,8 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
         bonds.strength[b] = std::numeric_limits<double>::infinity();
     }
   system.contact.setParameters(m.contact);
+  system.bondDamping = m.localDamping;
+  system.dampingWaveSpeed = m.dampingWaveSpeed;
 }
 
 }  // namespace rupture

@@ -22,6 +22,26 @@ void BondedSystem::initialize() {
   m_minStretch.assign(particles.size(), 0.0);
   m_wasIntact.assign(bonds.size(), 0);
   for (std::size_t b = 0; b < bonds.size(); ++b) m_wasIntact[b] = bonds.intact[b] > 0.5;
+  m_bondedVolume.assign(particles.size(), 0.0);
+  m_brokenVolume.assign(particles.size(), 0.0);
+  m_damage.assign(particles.size(), 0.0);
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    m_bondedVolume[bonds.i[b]] += partnerVolume(bonds.j[b]);
+    m_bondedVolume[bonds.j[b]] += partnerVolume(bonds.i[b]);
+  }
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    if (!m_wasIntact[b]) recordDamage(b);
+  m_previousLength.clear();
+  if (bondDamping > 0) {
+    m_previousLength.resize(bonds.size());
+    for (std::size_t b = 0; b < bonds.size(); ++b) {
+      const std::int32_t i = bonds.i[b], j = bonds.j[b];
+      const double dx = particles.x[j] - particles.x[i], dy = particles.y[j] - particles.y[i],
+                   dz = particles.z[j] - particles.z[i];
+      m_previousLength[b] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+  }
+  m_step = 0.0;
   computeLoads();
 }
 
@@ -43,15 +63,34 @@ void BondedSystem::handOverBrokenBonds() {
   for (const auto& list : found)
     for (std::size_t b : list) {
       m_wasIntact[b] = 0;
+      recordDamage(b);
       contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
     }
+}
+
+double BondedSystem::partnerVolume(std::int32_t k) const {
+  return particles.volume.size() == particles.size() ? particles.volume[k] : 1.0;
+}
+
+void BondedSystem::recordDamage(std::size_t b) {
+  const std::int32_t i = bonds.i[b], j = bonds.j[b];
+  m_brokenVolume[i] += partnerVolume(j);
+  m_brokenVolume[j] += partnerVolume(i);
+  m_damage[i] = m_brokenVolume[i] / m_bondedVolume[i];
+  m_damage[j] = m_brokenVolume[j] / m_bondedVolume[j];
 }
 
 void BondedSystem::computeLoads() {
   visitModel([&](const auto& law, const auto& criterion) {
     using Law = std::decay_t<decltype(law)>;
     using Criterion = std::decay_t<decltype(criterion)>;
-    brokenLastStep = evaluateBonds(law, criterion, particles, bonds, m_minStretch.data());
+    if (bondDamping > 0 && m_step > 0) {
+      const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
+                                   m_previousLength.data()};
+      brokenLastStep = evaluateBonds<Law, Criterion, true>(law, criterion, particles, bonds, m_minStretch.data(), damping);
+    } else {
+      brokenLastStep = evaluateBonds(law, criterion, particles, bonds, m_minStretch.data());
+    }
     if (brokenLastStep > 0) handOverBrokenBonds();
     if constexpr (Criterion::kNodalShift) {
       if (criterion.alpha != 0.0) {
@@ -146,6 +185,7 @@ void BondedSystem::step(double dt) {
   if (prescribe) prescribe(particles, time + 0.5 * dt);
   drift(dt);                                       // x(t + dt), q(t + dt)
   m_loadTime = time + dt;
+  m_step = dt;
   computeLoads();                                  // F(t + dt); beams may break
   kick(0.5 * dt);                                  // v(t + dt)
   time += dt;

@@ -36,6 +36,11 @@ public:
   /// Cundall local damping coefficient γ in [0, 1) (0: none). Only for quasi-static runs.
   double localDamping = 0.0;
 
+  /// Silling's local damping of bonds around damage (damage/local_damping.hpp; material.local_damping):
+  /// coefficient d (1; 0: none) and the bar wave speed v0 = √(E/ρ) it is scaled by (m/s).
+  double bondDamping = 0.0;
+  double dampingWaveSpeed = 0.0;
+
   double time = 0.0;          ///< s
   std::size_t steps = 0;
   std::size_t brokenLastStep = 0;
@@ -62,6 +67,10 @@ public:
   /// about linearly with the load before the first break: runs use it to estimate their progress.
   double maxFailureRatio() const;
 
+  /// Damage index φ of each particle (seed 003, physics-reference §3.6) over its initial bonds,
+  /// weighted by the partners' volumes; kept up to date as bonds break (O(broken bonds) per step).
+  const std::vector<double>& damageIndex() const { return m_damage; }
+
   /// Calls f(law, criterion) with the model's concrete types (the beam law filled from `beam`).
   template <class F>
   decltype(auto) visitModel(F&& f) const {
@@ -79,7 +88,12 @@ private:
   void handOverBrokenBonds();
   void kick(double halfDt);
   void drift(double dt);
+  double partnerVolume(std::int32_t particle) const;  ///< V (m³), or 1 without volumes
+  void recordDamage(std::size_t bond);               ///< adds a broken bond to its ends' φ
   std::vector<std::uint8_t> m_wasIntact;
+  std::vector<double> m_damage, m_brokenVolume, m_bondedVolume;  ///< φ = broken / bonded partner volume
+  std::vector<double> m_previousLength;  ///< bond lengths at the last evaluation, for the damping
+  double m_step = 0.0;                   ///< Δt of the step being taken (0 before the first)
   std::vector<double> m_minStretch;
   double m_loadTime = 0.0;  ///< time of the configuration the loads are evaluated on  ///< per node, for criteria with a nodal shift (LAMMPS's α)
 };

@@ -34,6 +34,13 @@ struct BlockRegion {
   Box box;
 };
 
+/// Voronoi grains (dem/grains.hpp): `count` grains (0: none); bonds across grain boundaries have
+/// their failure threshold multiplied by `boundaryFactor`.
+struct GrainSpec {
+  int count = 0;
+  double boundaryFactor = 1.0;
+};
+
 struct SampleSpec {
   int dimension = 2;                     ///< 2 (disks in the x-y plane) or 3 (spheres)
   std::string lattice = "random";        ///< "random" packing, or a regular lattice (lattice/lattice_geometry.hpp)
@@ -41,6 +48,7 @@ struct SampleSpec {
   double thickness = 0;                  ///< 2D out-of-plane thickness (m); 0: R_DE (random) or spacing (lattices)
   std::vector<Notch> notches;            ///< pre-cracks
   std::vector<BlockRegion> blocks;       ///< blocks for interblock critical values
+  GrainSpec grains;                      ///< Voronoi grains and their boundary strength
   std::array<double, 3> size{0, 0, 0};   ///< box edges (m); size[2] unused in 2D
   double elementRadius = 0;              ///< mean element radius R_DE (m)
   double radiusDispersion = 0.2;         ///< radii uniform in R_DE·[1 − d, 1 + d] (1)
@@ -81,6 +89,10 @@ struct MaterialSpec {
   /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two
   /// orientations' values (the block's own s0 for a missing orientation).
   std::map<int, double> interblock;
+  /// Silling's local damping coefficient d of bonds around damage (seed 003; 0: none) and the bar
+  /// wave speed √(E/ρ) it is scaled by, E being the model's Young's modulus (m/s).
+  double localDamping = 0;
+  double dampingWaveSpeed = 0;
 };
 
 }  // namespace rupture

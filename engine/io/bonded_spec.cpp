@@ -20,6 +20,7 @@ constexpr double kMaxElements = 5e6;
 // random sequential addition (0.547 for equal disks, 0.382 for equal spheres) with a margin for
 // the finite box, where pore centres stay one radius away from the walls.
 constexpr double kMaxPores = 1e4;
+constexpr std::int64_t kMaxGrains = 100000;  // the grid search stays O(particles) whatever the count
 constexpr double kMaxPorosity2D = 0.5;
 constexpr double kMaxPorosity3D = 0.35;
 
@@ -126,6 +127,11 @@ SampleSpec parseSample(const SpecReader& root) {
     if (d == 2) { b.box.min[2] = -1e308; b.box.max[2] = 1e308; }
     block.finish();
     s.blocks.push_back(b);
+  }
+  if (auto grains = sample.optionalObject("grains")) {
+    s.grains.count = static_cast<int>(grains->integer("count", 2, kMaxGrains));
+    s.grains.boundaryFactor = grains->number("boundary_factor", {0.0, 10.0, true, false}, "1", 1.0);
+    grains->finish();
   }
   sample.finish();
 
@@ -287,6 +293,8 @@ MaterialSpec parseMaterial(const SpecReader& root) {
   }
   m.contact.youngModulus = contactModulus;
   m.contact.poissonRatio = contactPoisson;
+  m.localDamping = material.number("local_damping", Range::closed(0.0, 10.0), "1", 0.0);
+  m.dampingWaveSpeed = std::sqrt(contactModulus / m.density);  // the model's E (beams: E_μ r², as contact)
   if (auto contact = material.optionalObject("contact")) {
     m.contact.enabled = contact->boolean("enabled", true);
     m.contact.youngModulus = contact->number("young_modulus", Range::positive(), "Pa", m.contact.youngModulus);
@@ -352,6 +360,9 @@ nlohmann::json toJson(const SampleSpec& s) {
     for (const BlockRegion& b : s.blocks)
       j["blocks"].push_back({{"id", b.id}, {"min", point(b.box.min, s.dimension)}, {"max", point(b.box.max, s.dimension)}});
   }
+  if (s.grains.count > 0) {
+    j["grains"] = {{"count", s.grains.count}, {"boundary_factor", s.grains.boundaryFactor}};
+  }
   if (!s.notches.empty()) {
     j["notches"] = nlohmann::json::array();
     for (const Notch& n : s.notches)
@@ -392,6 +403,7 @@ nlohmann::json toJson(const MaterialSpec& m) {
                   {"poisson_ratio", m.contact.poissonRatio},
                   {"friction", m.contact.friction},
                   {"damping_ratio", m.contact.dampingRatio}};
+  j["local_damping"] = m.localDamping;
   if (!m.interblock.empty()) {
     j["interblock"] = nlohmann::json::object();
     for (const auto& [key, value] : m.interblock) j["interblock"][std::to_string(key / 1000) + "_" + std::to_string(key % 1000)] = value;

@@ -46,6 +46,17 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
   EXPECT_EQ(with([](auto& s) { s["extra"] = 1; }), "extra");
   EXPECT_EQ(with([](auto& s) { s["sample"]["porosity"] = 0.9; }), "sample.porosity");
   EXPECT_EQ(with([](auto& s) { s["material"]["beam"]["failure_stress"] = -4e9; }), "material.beam.failure_stress");
+  EXPECT_EQ(with([](auto& s) { s["material"]["local_damping"] = -0.5; }), "material.local_damping");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 1}}; }), "sample.grains.count");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"boundary_factor", 0.5}}; }), "sample.grains.count");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0}}; }),
+            "sample.grains.boundary_factor");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 8}, {"factor", 0.5}}; }), "sample.grains.factor");
+  EXPECT_EQ(with([](auto& s) {
+              s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0.5}};
+              s["material"]["local_damping"] = 1.0;
+            }),
+            "");
 
   try {
     nlohmann::json spec = minimalSpec();
