@@ -7,6 +7,7 @@
 
 #include "dem/bonded_system.hpp"
 #include "dem/grains.hpp"
+#include "dem/inclusions.hpp"
 #include "dem/sample_spec.hpp"
 #include "lattice/lattice_geometry.hpp"
 #include "lattice/spring_mapping.hpp"
@@ -84,6 +85,9 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
     }
   }
   if (sample.grains.count > 0) weakenGrainBoundaries(voronoiGrains(sample, p), sample.grains.boundaryFactor, bonds);
+  if (sample.inclusions.volumeFraction > 0)
+    applyInclusionProperties(sample.inclusions, insideInclusions(placeInclusions(sample), system.particles),
+                             system.particles, bonds);
   for (std::size_t b = 0; b < bonds.size(); ++b)
     for (const Box& box : m.noFailureRegions) {
       const std::int32_t i = bonds.i[b], j = bonds.j[b];

@@ -41,6 +41,17 @@ struct GrainSpec {
   double boundaryFactor = 1.0;
 };
 
+/// Second-phase inclusions (dem/inclusions.hpp): their volume fraction of the box (0: none), radii,
+/// and the factors on the matrix's properties.
+struct InclusionSpec {
+  double volumeFraction = 0;                 ///< (1)
+  std::array<double, 2> radius{0, 0};        ///< [min, max] (m)
+  double stiffnessFactor = 1;                ///< on the bond stiffness inside an inclusion (1)
+  double strengthFactor = 1;                 ///< on the failure threshold inside (1)
+  double interfaceStrengthFactor = 1;        ///< on the threshold of bonds crossing the interface (1)
+  double densityFactor = 1;                  ///< on the mass of elements inside (1)
+};
+
 struct SampleSpec {
   int dimension = 2;                     ///< 2 (disks in the x-y plane) or 3 (spheres)
   std::string lattice = "random";        ///< "random" packing, or a regular lattice (lattice/lattice_geometry.hpp)
@@ -49,6 +60,7 @@ struct SampleSpec {
   std::vector<Notch> notches;            ///< pre-cracks
   std::vector<BlockRegion> blocks;       ///< blocks for interblock critical values
   GrainSpec grains;                      ///< Voronoi grains and their boundary strength
+  InclusionSpec inclusions;              ///< second-phase inclusions
   std::array<double, 3> size{0, 0, 0};   ///< box edges (m); size[2] unused in 2D
   double elementRadius = 0;              ///< mean element radius R_DE (m)
   double radiusDispersion = 0.2;         ///< radii uniform in R_DE·[1 − d, 1 + d] (1)

@@ -133,6 +133,24 @@ SampleSpec parseSample(const SpecReader& root) {
     s.grains.boundaryFactor = grains->number("boundary_factor", {0.0, 10.0, true, false}, "1", 1.0);
     grains->finish();
   }
+  if (auto inclusions = sample.optionalObject("inclusions")) {
+    InclusionSpec& c = s.inclusions;
+    c.volumeFraction = inclusions->number("volume_fraction", {0.0, 0.5, true, false}, "1");
+    const auto radius = inclusions->numbers("radius", 2, 2, Range::positive(), "m");
+    if (radius[0] > radius[1]) inclusions->fail("radius", "[min, max] with min <= max (m)");
+    c.radius = {radius[0], radius[1]};
+    const double smallestEdge = *std::min_element(size.begin(), size.end());
+    if (2.0 * radius[1] >= smallestEdge) inclusions->fail("radius", "diameters smaller than the smallest sample edge");
+    if (radius[0] < s.elementRadius)
+      inclusions->fail("radius", std::string("radii >= ") + (lattice ? "half the sample.spacing" : "sample.element_radius") +
+                                     " (" + shortNumber(s.elementRadius) + " m)");
+    const Range factor{0.0, 100.0, true, false};
+    c.stiffnessFactor = inclusions->number("stiffness_factor", factor, "1", 1.0);
+    c.strengthFactor = inclusions->number("strength_factor", factor, "1", 1.0);
+    c.interfaceStrengthFactor = inclusions->number("interface_strength_factor", factor, "1", 1.0);
+    c.densityFactor = inclusions->number("density_factor", factor, "1", 1.0);
+    inclusions->finish();
+  }
   sample.finish();
 
   double volume = 1;
@@ -148,6 +166,16 @@ SampleSpec parseSample(const SpecReader& root) {
   if (estimate < 8)
     throw SpecError(sample.pathOf(key), shortNumber(value),
                     "a value small enough for at least 8 elements in sample.size");
+  if (s.inclusions.volumeFraction > 0) {
+    const double count = s.inclusions.volumeFraction * volume /
+                         ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
+                          meanPower(s.dimension, s.inclusions.radius[0], s.inclusions.radius[1]));
+    if (count > kMaxPores)
+      throw SpecError(sample.pathOf("inclusions") + ".radius",
+                      "[" + shortNumber(s.inclusions.radius[0]) + ", " + shortNumber(s.inclusions.radius[1]) + "]",
+                      "radii large enough for at most 10000 inclusions at this volume_fraction and sample.size (these need about " +
+                          shortNumber(std::round(count)) + ")");
+  }
   if (s.porosity > 0) {
     const double pores = s.porosity * volume /
                          ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
@@ -277,6 +305,14 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
     contactModulus = m.beam.youngModulus * m.beam.radiusRatio * m.beam.radiusRatio;
     contactPoisson = m.beam.poissonRatio;
+    // Beam stiffness comes from one set of beam parameters, not from a per-bond constant.
+    const auto& raw = root.node();
+    if (raw.contains("sample") && raw["sample"].is_object() && raw["sample"].contains("inclusions") &&
+        raw["sample"]["inclusions"].is_object() && raw["sample"]["inclusions"].contains("stiffness_factor") &&
+        raw["sample"]["inclusions"]["stiffness_factor"] != 1)
+      throw SpecError("sample.inclusions.stiffness_factor", describeValue(raw["sample"]["inclusions"]["stiffness_factor"]),
+                      "1 with material.model \"beam\" (beams take one set of parameters; use hookean, born or pmb "
+                      "for stiffer or softer inclusions)");
   } else if (m.model == "hookean" || m.model == "born") {
     requireLattice(material, lattice,
                    {LatticeKind::Triangular, LatticeKind::Square, LatticeKind::SimpleCubic, LatticeKind::Fcc}, m.model);
@@ -359,6 +395,12 @@ nlohmann::json toJson(const SampleSpec& s) {
     j["blocks"] = nlohmann::json::array();
     for (const BlockRegion& b : s.blocks)
       j["blocks"].push_back({{"id", b.id}, {"min", point(b.box.min, s.dimension)}, {"max", point(b.box.max, s.dimension)}});
+  }
+  if (s.inclusions.volumeFraction > 0) {
+    const InclusionSpec& c = s.inclusions;
+    j["inclusions"] = {{"volume_fraction", c.volumeFraction}, {"radius", {c.radius[0], c.radius[1]}},
+                       {"stiffness_factor", c.stiffnessFactor}, {"strength_factor", c.strengthFactor},
+                       {"interface_strength_factor", c.interfaceStrengthFactor}, {"density_factor", c.densityFactor}};
   }
   if (s.grains.count > 0) {
     j["grains"] = {{"count", s.grains.count}, {"boundary_factor", s.grains.boundaryFactor}};

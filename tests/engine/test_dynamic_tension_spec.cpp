@@ -52,6 +52,20 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
   EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0}}; }),
             "sample.grains.boundary_factor");
   EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 8}, {"factor", 0.5}}; }), "sample.grains.factor");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["inclusions"] = {{"volume_fraction", 0.2}}; }), "sample.inclusions.radius");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["inclusions"] = {{"volume_fraction", 0.7}, {"radius", {2e-8, 3e-8}}}; }),
+            "sample.inclusions.volume_fraction");
+  EXPECT_EQ(with([](auto& s) { s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {3e-8, 2e-8}}}; }),
+            "sample.inclusions.radius");
+  // Beams take one set of parameters: no stiffer inclusions (lattice springs and PMB do).
+  EXPECT_EQ(with([](auto& s) {
+              s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {2e-8, 3e-8}}, {"stiffness_factor", 2}};
+            }),
+            "sample.inclusions.stiffness_factor");
+  EXPECT_EQ(with([](auto& s) {
+              s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {2e-8, 3e-8}}, {"strength_factor", 2}};
+            }),
+            "");
   EXPECT_EQ(with([](auto& s) {
               s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0.5}};
               s["material"]["local_damping"] = 1.0;
