@@ -321,6 +321,10 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
       link(base + "/summary?format=csv", "alternate", "text/csv", "summary table as CSV"),
       link(base + "/summary.svg", "related", "image/svg+xml", "summary plot"),
   });
+  if (job.study.is_object() && job.study.contains("replicates")) {
+    doc["links"].push_back(link(base + "/summary?aggregate=replicates", "related", kJsonType,
+                                "mean, sd, 95 % confidence interval and n per sweep point"));
+  }
   return doc;
 }
 
@@ -431,9 +435,12 @@ public:
     doc["sweep"] = {
         {"description",
          "POST body: {\"inputs\": {...spec without scenario...}, \"sweep\": {\"dotted.path\": [values]}, "
-         "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\"}"},
+         "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\", \"replicates\": {\"count\": N, \"vary\": \"sample.seed\"}, "
+         "\"refine\": {\"path\": \"loading.strain_rate\", \"quantity\": \"peak_stress\", \"max_runs\": N, "
+         "\"tolerance\": 0.1}} (docs/server.md, Studies)"},
         {"modes", Json::array({"grid", "zip"})},
         {"max_runs", m_ctx.config.maxRuns},
+        {"max_replicates", kMaxReplicates},
     };
     sendJson(res, doc);
   }
