@@ -35,6 +35,12 @@ TEST_F(StudyHttp, ReplicatedSweepReportsMeansAndIntervalsOfItsRowsAndComparesWit
   // A second, plain job to compare with: one run at the higher rate.
   const std::int64_t other = test::submit(
       *client, Json{{"name", "single"}, {"inputs", test::smallInputs()}, {"sweep", {{"loading.strain_rate", {rates[1]}}}}});
+  // Unfinished jobs compare as they stand: every run is a row, the unfinished ones without scalars.
+  const Json early = getJson(*client, "/summary?jobs=" + std::to_string(id) + "," + std::to_string(other));
+  ASSERT_EQ(early["rows"].size(), 7u);
+  EXPECT_NE(early["rows"][5]["status"], "successful");  // the last replicate of 6 runs on 2 workers
+  EXPECT_TRUE(early["rows"][5].value("peak_stress", Json()).is_null());
+  EXPECT_NE(early["jobs"][0]["status"], "successful");
   // Bad replicates are refused whole, naming the field.
   Json bad = body;
   bad["replicates"]["count"] = 0;
