@@ -655,12 +655,16 @@ public:
 
   void jobResults(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
-    if (job.runsAccepted + job.runsRunning > 0) {
+    // A job whose refinement is pending gets more runs: its merged file waits for the last round.
+    const bool refining = job.study.is_object() && job.study.contains("refinement") &&
+                          job.study["refinement"].value("state", "") == "pending";
+    if (job.runsAccepted + job.runsRunning > 0 || refining) {
       throw ApiError(409, problem::kResultNotReady, "Result not ready",
                      "job " + std::to_string(job.id) + " is " + toString(job.status) + " (" +
                          std::to_string(job.runsTotal - job.runsAccepted - job.runsRunning) + " of " +
                          std::to_string(job.runsTotal) +
-                         " runs finished); its results file is ready when every run has finished",
+                         " runs finished" + (refining ? ", refinement pending" : "") +
+                         "); its results file is ready when every run has finished",
                      "", Json{{"jobStatus", toString(job.status)}});
     }
     if (job.runsSuccessful == 0) {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "io/hdf5_file.hpp"
 #include "server_test_support.hpp"
-#include "student_t.hpp"
 
 namespace rupture::server {
 namespace {
@@ -101,6 +101,17 @@ TEST_F(StudyHttp, ReplicatedSweepReportsMeansAndIntervalsOfItsRowsAndComparesWit
   EXPECT_EQ(svg->status, 200);
   EXPECT_NE(svg->body.find("class=\"error-bar\""), std::string::npos);
   expectProblem(client->Get((base + "?aggregate=seeds").c_str()), 400, "aggregate");
+  // The merged HDF5 file names each run's replicate and holds the study.
+  {
+    auto merged = client->Get(("/jobs/" + std::to_string(id) + "/results").c_str());
+    ASSERT_TRUE(merged);
+    ASSERT_EQ(merged->status, 200);
+    test::TempDir dir;
+    std::ofstream(dir.path() / "job.h5", std::ios::binary) << merged->body;
+    const auto file = rupture::io::Hdf5File::openReadOnly((dir.path() / "job.h5").string());
+    EXPECT_EQ(file.readAttributeInt("/run-4", "sweep.replicate"), 1);
+    EXPECT_EQ(Json::parse(file.readAttributeString("/", "study"))["replicates"]["count"], 3);
+  }
 
   // Comparison of the two jobs: rows of both, with a job column; one plot series per job.
   ASSERT_EQ(test::waitForJob(*client, other, {"successful", "failed"}, 120)["status"], "successful");
