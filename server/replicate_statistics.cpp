@@ -67,6 +67,7 @@ std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table) {
   std::vector<PointAggregate> points;
   std::map<std::string, std::size_t> byKey;
   std::vector<std::vector<std::vector<double>>> samples;  // point -> scalar -> values
+  std::vector<std::vector<bool>> nonNumeric;              // point -> scalar -> reported, not as a number
   for (const SummaryRow& row : table.rows) {
     const std::string key = row.swept.dump();
     auto [it, inserted] = byKey.emplace(key, points.size());
@@ -75,6 +76,7 @@ std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table) {
       p.swept = row.swept;
       points.push_back(std::move(p));
       samples.emplace_back(table.scalarNames.size());
+      nonNumeric.emplace_back(table.scalarNames.size(), false);
     }
     PointAggregate& p = points[it->second];
     p.runs.push_back(row.run);
@@ -87,23 +89,15 @@ std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table) {
       const Json v = table.value(row, table.scalarNames[s]);
       if (v.is_number() && !v.is_boolean() && std::isfinite(v.get<double>())) {
         samples[it->second][s].push_back(v.get<double>());
+      } else if (!v.is_null() && !v.is_number()) {
+        nonNumeric[it->second][s] = true;
       }
     }
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (std::size_t s = 0; s < table.scalarNames.size(); ++s) {
       // Scalars that are never numbers at this point (text, lists) have no statistics.
-      bool numeric = !samples[i][s].empty();
-      if (!numeric) {
-        bool anyValue = false;
-        for (const SummaryRow& row : table.rows) {
-          if (row.swept == points[i].swept && row.status == Status::Successful &&
-              !table.value(row, table.scalarNames[s]).is_null()) {
-            anyValue = true;
-          }
-        }
-        if (anyValue) continue;  // reported, but not as a number
-      }
+      if (samples[i][s].empty() && nonNumeric[i][s]) continue;
       points[i].scalars.emplace_back(table.scalarNames[s], describeSample(samples[i][s]));
       points[i].values.push_back(samples[i][s]);
     }
