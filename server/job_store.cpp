@@ -128,11 +128,11 @@ CREATE TABLE IF NOT EXISTS idempotency_keys(  -- POST Idempotency-Key -> the job
 
 constexpr const char* kJobColumns =
     "id, process_id, name, status, sweep_mode, swept_paths, inputs, sweep, message, created, started, "
-    "finished, updated";
+    "finished, updated, study";
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts";
+    "attempts, replicate";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -155,6 +155,7 @@ JobRecord readJob(const Stmt& q) {
   j.started = q.text(10);
   j.finished = q.text(11);
   j.updated = q.text(12);
+  j.study = q.json(13);
   return j;
 }
 
@@ -172,6 +173,7 @@ RunRecord readRun(const Stmt& q) {
   r.finished = q.text(10);
   r.updated = q.text(11);
   r.attempts = static_cast<int>(q.i64(12));
+  r.replicate = static_cast<int>(q.i64(13));
   return r;
 }
 
@@ -240,6 +242,21 @@ JobStore::JobStore(const std::string& path) {
   exec("PRAGMA synchronous=FULL");  // a committed status survives power loss, not only a crash
   exec("PRAGMA foreign_keys=ON");
   exec(kSchema);
+  migrate();
+}
+
+void JobStore::migrate() {
+  // Studies (replicates, refinement): a JSON column per job and a replicate index per run. A
+  // database from before gets them with their neutral values.
+  auto hasColumn = [this](const char* table, const char* column) {
+    Stmt q(m_db, (std::string("PRAGMA table_info(") + table + ")").c_str());
+    while (q.step()) {
+      if (q.text(1) == column) return true;
+    }
+    return false;
+  };
+  if (!hasColumn("jobs", "study")) exec("ALTER TABLE jobs ADD COLUMN study TEXT");
+  if (!hasColumn("runs", "replicate")) exec("ALTER TABLE runs ADD COLUMN replicate INTEGER NOT NULL DEFAULT 0");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
@@ -274,19 +291,22 @@ CreatedJob JobStore::createJobOnce(const NewJob& job) {
   }
   Stmt insertJob(m_db,
                  "INSERT INTO jobs(process_id, name, status, sweep_mode, swept_paths, inputs, sweep, "
-                 "message, created, updated) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?)");
+                 "message, created, updated, study) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?, ?)");
   insertJob.bind(1, job.processId).bind(2, job.name).bind(3, job.sweepMode).bind(4, job.sweptPaths.dump())
       .bind(5, job.inputs.dump()).bind(6, job.sweep.dump())
       .bind(7, std::to_string(job.runs.size()) + (job.runs.size() == 1 ? " run queued" : " runs queued"))
       .bind(8, now).bind(9, now);
+  if (job.study.is_null()) insertJob.bindNull(10); else insertJob.bind(10, job.study.dump());
   insertJob.run();
   const std::int64_t id = sqlite3_last_insert_rowid(m_db);
   Stmt insertRun(m_db,
-                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated) VALUES(?, ?, ?, ?, 'accepted', ?)");
+                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate) "
+                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?)");
   for (std::size_t k = 0; k < job.runs.size(); ++k) {
     insertRun.reset();
     insertRun.bind(1, id).bind(2, static_cast<int>(k)).bind(3, job.runs[k].first.dump())
-        .bind(4, job.runs[k].second.dump()).bind(5, now);
+        .bind(4, job.runs[k].second.dump()).bind(5, now)
+        .bind(6, k < job.replicates.size() ? job.replicates[k] : 0);
     insertRun.run();
   }
   if (!job.idempotencyKey.empty()) {
@@ -384,6 +404,57 @@ std::vector<RunKey> JobStore::failedRuns() {
   std::vector<RunKey> out;
   while (q.step()) out.push_back({q.i64(0), static_cast<int>(q.i64(1))});
   return out;
+}
+
+std::vector<std::int64_t> JobStore::jobsAwaitingRefinement() {
+  std::lock_guard lock(m_mutex);
+  Stmt q(m_db,
+         "SELECT j.id FROM jobs j WHERE j.study IS NOT NULL "
+         "AND json_extract(j.study, '$.refinement.state') = 'pending' "
+         "AND NOT EXISTS (SELECT 1 FROM runs r WHERE r.job_id = j.id AND r.status IN ('accepted', 'running')) "
+         "ORDER BY j.id");
+  std::vector<std::int64_t> out;
+  while (q.step()) out.push_back(q.i64(0));
+  return out;
+}
+
+std::vector<int> JobStore::appendRuns(std::int64_t jobId, const std::vector<std::pair<Json, Json>>& runs,
+                                      const std::vector<int>& replicates, const Json& study) {
+  std::lock_guard lock(m_mutex);
+  const std::string now = utcNow();
+  Transaction tx(m_db);
+  int next = 0;
+  {
+    Stmt q(m_db, "SELECT COALESCE(MAX(idx), -1) + 1 FROM runs WHERE job_id = ?");
+    q.bind(1, jobId);
+    if (q.step()) next = static_cast<int>(q.i64(0));
+  }
+  Stmt insertRun(m_db,
+                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate) "
+                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?)");
+  std::vector<int> indices;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    insertRun.reset();
+    insertRun.bind(1, jobId).bind(2, next).bind(3, runs[k].first.dump()).bind(4, runs[k].second.dump())
+        .bind(5, now).bind(6, k < replicates.size() ? replicates[k] : 0);
+    insertRun.run();
+    indices.push_back(next++);
+  }
+  Stmt u(m_db, "UPDATE jobs SET study = ? WHERE id = ?");
+  u.bind(1, study.dump()).bind(2, jobId).run();
+  updateJobStatus(jobId, now);
+  tx.commit();
+  return indices;
+}
+
+void JobStore::setStudy(std::int64_t jobId, const Json& study) {
+  std::lock_guard lock(m_mutex);
+  const std::string now = utcNow();
+  Transaction tx(m_db);
+  Stmt u(m_db, "UPDATE jobs SET study = ? WHERE id = ?");
+  u.bind(1, study.dump()).bind(2, jobId).run();
+  updateJobStatus(jobId, now);
+  tx.commit();
 }
 
 int JobStore::queueDepth() {
@@ -546,9 +617,14 @@ void JobStore::updateJobStatus(std::int64_t jobId, const std::string& now) {
     return;
   }
   const int finished = job->runsSuccessful + job->runsFailed + job->runsDismissed;
+  // A job whose refinement is pending is not finished when its runs are: the next round follows.
+  const bool refining = job->study.is_object() && job->study.contains("refinement") &&
+                        job->study["refinement"].value("state", "") == "pending";
   Status status = Status::Running;
   std::string message;
-  if (finished == job->runsTotal) {
+  if (finished == job->runsTotal && refining) {
+    message = "all " + std::to_string(job->runsTotal) + " runs finished; choosing refinement points";
+  } else if (finished == job->runsTotal) {
     status = job->runsFailed > 0 ? Status::Failed : Status::Successful;
     message = status == Status::Successful
                   ? "all " + std::to_string(job->runsTotal) + " runs successful"

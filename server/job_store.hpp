@@ -41,6 +41,7 @@ struct RunRecord {
   std::string resultPath;  ///< relative to the data directory, once successful
   std::string started, finished, updated;
   int attempts = 0;     ///< times the run was started (> 1 after a crash or restart)
+  int replicate = 0;    ///< replicate index within its sweep point (0 without replicates)
 };
 
 struct JobRecord {
@@ -57,6 +58,9 @@ struct JobRecord {
   int runsTotal = 0;
   int runsAccepted = 0, runsRunning = 0, runsSuccessful = 0, runsFailed = 0, runsDismissed = 0;
   double progress = 0;  ///< [0, 1]: finished runs count fully, running runs by their progress
+  /// The study plan and its record, null for a plain sweep: {"replicates": {count, vary},
+  /// "refine": {...}, "refinement": {"state": "pending"|"done", "rounds", "runs_added", "points", "stopped"}}
+  Json study;
 };
 
 struct NewJob {
@@ -67,6 +71,8 @@ struct NewJob {
   Json inputs;
   Json sweep;
   std::vector<std::pair<Json, Json>> runs;  ///< (swept values, full spec) per run, in run order
+  std::vector<int> replicates;  ///< replicate index per run (empty: all 0)
+  Json study;                   ///< JobRecord::study (null: none)
   std::string idempotencyKey;  ///< the POST's Idempotency-Key header, "" when none
   std::string requestHash;     ///< identifies the request body sent with that key
 };
@@ -141,6 +147,16 @@ public:
   /// successful or failed are left as they are. Returns the job after the change, or nullopt.
   std::optional<JobRecord> dismissJob(std::int64_t id);
 
+  /// Jobs whose refinement is pending and which have no accepted or running run (refinement's
+  /// next round is due), dismissed ones included (their refinement is closed).
+  std::vector<std::int64_t> jobsAwaitingRefinement();
+  /// Appends runs (accepted) after the job's last index and stores its new study record, in one
+  /// transaction: a stop between the two cannot lose or repeat a round. Returns the new indices.
+  std::vector<int> appendRuns(std::int64_t jobId, const std::vector<std::pair<Json, Json>>& runs,
+                              const std::vector<int>& replicates, const Json& study);
+  /// Stores the job's study record (e.g. refinement done) and updates its status.
+  void setStudy(std::int64_t jobId, const Json& study);
+
   /// Number of accepted runs in jobs not dismissed.
   int queueDepth();
   /// Number of runs recorded as running.
@@ -148,6 +164,7 @@ public:
 
 private:
   void exec(const std::string& sql);
+  void migrate();  // columns added after schema version 1
   void updateJobStatus(std::int64_t jobId, const std::string& now);  // caller holds m_mutex, in a transaction
   void finishRun(RunKey key, Status status, const Json* summary, const std::string* error,
                  const std::string* resultPath);

@@ -38,6 +38,7 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
     out.setAttribute("/", "inputs", job.inputs.dump());
     out.setAttribute("/", "created", job.created);
     out.setAttribute("/", "runs_total", std::int64_t{job.runsTotal});
+    if (job.study.is_object()) out.setAttribute("/", "study", job.study.dump());  // replicates, refinement record
     std::int64_t included = 0;
     for (const RunRecord& run : runs) {
       if (run.status != Status::Successful || run.resultPath.empty()) continue;
@@ -46,6 +47,8 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
       out.setAttribute(group, "sweep.values", run.swept.dump());
       out.setAttribute(group, "sweep.spec", run.spec.dump());
       out.setAttribute(group, "sweep.summary", run.summary.dump());
+      if (job.study.is_object() && job.study.contains("replicates"))
+        out.setAttribute(group, "sweep.replicate", std::int64_t{run.replicate});
       for (std::size_t i = 0; i < job.sweptPaths.size() && i < run.swept.size(); ++i) {
         const std::string name = "sweep." + job.sweptPaths[i].get<std::string>();
         const Json& v = run.swept[i];

@@ -18,6 +18,11 @@
 #include "request_guard.hpp"
 #include "results.hpp"
 #include "rupture/run.hpp"
+#include "job_comparison.hpp"
+#include "rate_dependence.hpp"
+#include "refinement.hpp"
+#include "replicate_statistics.hpp"
+#include "replicates.hpp"
 #include "summary.hpp"
 #include "svg_plot.hpp"
 #include "sweep.hpp"
@@ -265,6 +270,7 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (!run.started.empty()) doc["started"] = run.started;
   if (!run.finished.empty()) doc["finished"] = run.finished;
   if (run.attempts > 1) doc["attempts"] = run.attempts;
+  if (job.study.is_object() && job.study.contains("replicates")) doc["replicate"] = run.replicate;
   if (run.summary.is_object()) doc["summary"] = run.summary;
   if (!run.error.empty()) doc["error"] = publicMessage(run.error);
   const std::string base = "/jobs/" + std::to_string(job.id) + "/runs/" + std::to_string(run.key.index);
@@ -297,6 +303,11 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   doc["runs_by_status"] = {{"accepted", job.runsAccepted},     {"running", job.runsRunning},
                            {"successful", job.runsSuccessful}, {"failed", job.runsFailed},
                            {"dismissed", job.runsDismissed}};
+  if (job.study.is_object()) {  // replicates, refine (the plan) and refinement (what it added, and why)
+    for (const char* key : {"replicates", "refine", "refinement"}) {
+      if (job.study.contains(key)) doc[key] = job.study[key];
+    }
+  }
   if (runs) {
     Json list = Json::array();
     for (const RunRecord& r : *runs) list.push_back(runDocument(job, r));
@@ -310,6 +321,10 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
       link(base + "/summary?format=csv", "alternate", "text/csv", "summary table as CSV"),
       link(base + "/summary.svg", "related", "image/svg+xml", "summary plot"),
   });
+  if (job.study.is_object() && job.study.contains("replicates")) {
+    doc["links"].push_back(link(base + "/summary?aggregate=replicates", "related", kJsonType,
+                                "mean, sd, 95 % confidence interval and n per sweep point"));
+  }
   return doc;
 }
 
@@ -420,9 +435,12 @@ public:
     doc["sweep"] = {
         {"description",
          "POST body: {\"inputs\": {...spec without scenario...}, \"sweep\": {\"dotted.path\": [values]}, "
-         "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\"}"},
+         "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\", \"replicates\": {\"count\": N, \"vary\": \"sample.seed\"}, "
+         "\"refine\": {\"path\": \"loading.strain_rate\", \"quantity\": \"peak_stress\", \"max_runs\": N, "
+         "\"tolerance\": 0.1}} (docs/server.md, Studies)"},
         {"modes", Json::array({"grid", "zip"})},
         {"max_runs", m_ctx.config.maxRuns},
+        {"max_replicates", kMaxReplicates},
     };
     sendJson(res, doc);
   }
@@ -441,12 +459,13 @@ public:
       throw ApiError(400, problem::kInvalidRequest, "Invalid request",
                      "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
     }
-    static const std::vector<std::string> allowedKeys = {"inputs", "sweep",   "sweep_mode", "name",
-                                                         "outputs", "response", "subscriber"};
+    static const std::vector<std::string> allowedKeys = {"inputs",  "sweep",    "sweep_mode", "name",      "replicates",
+                                                         "refine",  "outputs",  "response",   "subscriber"};
     for (const auto& [key, value] : body.items()) {
       if (std::find(allowedKeys.begin(), allowedKeys.end(), key) == allowedKeys.end()) {
         throw ApiError(400, problem::kInvalidRequest, "Invalid request",
-                       "unknown member '" + key + "' in the request body; allowed: inputs, sweep, sweep_mode, name",
+                       "unknown member '" + key +
+                           "' in the request body; allowed: inputs, sweep, sweep_mode, name, replicates, refine",
                        key, Json{{"in", "body"}});
       }
     }
@@ -491,9 +510,23 @@ public:
       }
     }
     const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
-    const std::vector<SweepPoint> points =
-        expandSweep(scenario, inputs, plan, static_cast<std::size_t>(m_ctx.config.maxRuns));
+    const ReplicatePlan replicates = parseReplicatePlan(member("replicates"), scenario, plan);
+    const std::size_t maxRuns = static_cast<std::size_t>(m_ctx.config.maxRuns);
+    const std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
+    if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
+      const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
+      throw ApiError(400, problem::kTooManyRuns, "Too many runs",
+                     "the sweep's " + std::to_string(sweepPoints.size()) + " points x " +
+                         std::to_string(replicates.count) + " replicates make " + std::to_string(total) +
+                         " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
+                     "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
+    }
+    const std::vector<ReplicatedPoint> replicated = expandReplicates(sweepPoints, replicates, scenario);
+    std::vector<SweepPoint> points;
+    for (const ReplicatedPoint& rp : replicated) points.push_back(rp.point);
     validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements));
+    const std::optional<RefinePlan> refine =
+        parseRefinePlan(member("refine"), scenario, plan, replicates.count, points.size(), maxRuns);
 
     NewJob job;
     job.processId = scenario;
@@ -503,7 +536,18 @@ public:
     for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
     job.inputs = inputs;
     job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
-    for (const SweepPoint& p : points) job.runs.emplace_back(p.swept, p.spec);
+    for (const ReplicatedPoint& rp : replicated) {
+      job.runs.emplace_back(rp.point.swept, rp.point.spec);
+      job.replicates.push_back(rp.replicate);
+    }
+    if (replicates.requested() || refine) {
+      job.study = Json::object();
+      if (replicates.requested()) job.study["replicates"] = replicates.toJson();
+      if (refine) {
+        job.study["refine"] = refine->toJson();
+        job.study["refinement"] = {{"state", "pending"}, {"rounds", 0}, {"runs_added", 0}, {"points", Json::array()}};
+      }
+    }
     job.idempotencyKey = idempotencyKey;
     job.requestHash = requestHash;
     const CreatedJob created = m_ctx.store->createJobOnce(job);
@@ -611,12 +655,16 @@ public:
 
   void jobResults(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
-    if (job.runsAccepted + job.runsRunning > 0) {
+    // A job whose refinement is pending gets more runs: its merged file waits for the last round.
+    const bool refining = job.study.is_object() && job.study.contains("refinement") &&
+                          job.study["refinement"].value("state", "") == "pending";
+    if (job.runsAccepted + job.runsRunning > 0 || refining) {
       throw ApiError(409, problem::kResultNotReady, "Result not ready",
                      "job " + std::to_string(job.id) + " is " + toString(job.status) + " (" +
                          std::to_string(job.runsTotal - job.runsAccepted - job.runsRunning) + " of " +
                          std::to_string(job.runsTotal) +
-                         " runs finished); its results file is ready when every run has finished",
+                         " runs finished" + (refining ? ", refinement pending" : "") +
+                         "); its results file is ready when every run has finished",
                      "", Json{{"jobStatus", toString(job.status)}});
     }
     if (job.runsSuccessful == 0) {
@@ -680,18 +728,56 @@ public:
   void summary(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     const SummaryTable table = buildSummary(job, m_ctx.store->runs(job.id));
-    if (wantsCsv(req)) {
-      res.set_content(summaryCsv(table), kCsvType);
+    const bool aggregate = aggregateParam(req);
+    const bool csv = wantsCsv(req);
+    if (csv) {
+      res.set_content(aggregate ? aggregateCsv(table, aggregateReplicates(table)) : summaryCsv(table), kCsvType);
       return;
     }
-    Json doc = summaryJson(table, unitLookupFor(job.processId));
+    const std::vector<PointAggregate> points = aggregateReplicates(table);
+    Json doc = aggregate ? aggregateJson(table, points, unitLookupFor(job.processId))
+                         : summaryJson(table, unitLookupFor(job.processId));
     doc["status"] = toString(job.status);
+    if (Json rates = rateDependence(table, points); !rates.is_null()) doc["rate_dependence"] = rates;
     sendJson(res, doc);
+  }
+
+  /// GET /summary?jobs=3,5,7: the rows (or, with aggregate=replicates, the points) of several jobs.
+  void compareSummary(const Request& req, Response& res) {
+    const std::vector<ComparedJob> jobs = loadComparedJobs(req);
+    const bool aggregate = aggregateParam(req);
+    if (wantsCsv(req)) {
+      res.set_content(comparisonCsv(jobs, aggregate), kCsvType);
+      return;
+    }
+    sendJson(res, comparisonJson(jobs, aggregate, [](const std::string& scenario) { return unitLookupFor(scenario); }));
+  }
+
+  /// GET /plot?jobs=3,5,7: one series per job (point means, 95 % intervals as error bars).
+  void comparePlot(const Request& req, Response& res) {
+    const std::vector<ComparedJob> jobs = loadComparedJobs(req);
+    std::vector<std::pair<double, double>> intervals;
+    const std::string yName = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
+    SummaryTable table = comparisonPlotTable(jobs, yName, intervals);
+    PlotRequest plot;
+    plot.x = req.has_param("x") ? req.get_param_value("x") : (table.sweptPaths.size() > 1 ? table.sweptPaths[1] : "");
+    plot.y = yName;
+    if (plot.x.empty()) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "these jobs sweep nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
+    }
+    plot.xScale = scaleParam(req, "xscale");
+    plot.yScale = scaleParam(req, "yscale");
+    plot.yIntervals = intervals;
+    std::string ids;
+    for (const ComparedJob& j : jobs) ids += (ids.empty() ? "" : ", ") + std::to_string(j.job.id);
+    plot.title = plot.y + " vs " + plot.x + " - jobs " + ids;
+    res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(jobs.front().job.processId)), "image/svg+xml");
   }
 
   void summarySvg(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
-    const SummaryTable table = buildSummary(job, m_ctx.store->runs(job.id));
+    SummaryTable table = buildSummary(job, m_ctx.store->runs(job.id));
     PlotRequest plot;
     plot.x = req.has_param("x") ? req.get_param_value("x")
                                 : (table.sweptPaths.empty() ? std::string() : table.sweptPaths.front());
@@ -704,6 +790,11 @@ public:
     plot.yScale = scaleParam(req, "yscale");
     plot.title = plot.y + " vs " + plot.x + " - job " + std::to_string(job.id) +
                  (job.name.empty() ? "" : " (" + job.name + ")");
+    if (table.replicated && table.hasColumn(plot.y)) {
+      // Replicates: one point per sweep point, at the mean, with its 95 % interval as an error bar.
+      table = meansTable(table, aggregateReplicates(table), plot.y, plot.yIntervals);
+      plot.title += " - mean, 95 % CI";
+    }
     res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(job.processId)), "image/svg+xml");
   }
 
@@ -787,6 +878,56 @@ private:
                      name, Json{{"in", "query"}, {"value", text}});
     }
     return *v;
+  }
+
+  /// ?aggregate=replicates (statistics per sweep point) or ?aggregate=none (the runs; default).
+  static bool aggregateParam(const Request& req) {
+    if (!req.has_param("aggregate")) return false;
+    const std::string v = req.get_param_value("aggregate");
+    if (v == "replicates") return true;
+    if (v == "none") return false;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "aggregate must be 'replicates' or 'none', got '" + v + "'", "aggregate",
+                   Json{{"in", "query"}, {"value", v}, {"allowed", Json::array({"replicates", "none"})}});
+  }
+
+  /// The jobs of ?jobs=3,5,7 with their summary tables: 400 when the list is missing, malformed,
+  /// repeats a job or is longer than kMaxComparedJobs; 404 naming the first unknown job.
+  std::vector<ComparedJob> loadComparedJobs(const Request& req) {
+    const std::vector<std::string> ids = paramList(req, "jobs");
+    if (ids.empty()) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "jobs is required: a comma-separated list of job ids, e.g. ?jobs=3,5", "jobs", Json{{"in", "query"}});
+    }
+    if (ids.size() > kMaxComparedJobs) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "jobs lists " + std::to_string(ids.size()) + " jobs; at most " + std::to_string(kMaxComparedJobs) +
+                         " can be compared at once",
+                     "jobs", Json{{"in", "query"}, {"value", ids.size()}, {"maximum", kMaxComparedJobs}});
+    }
+    std::vector<ComparedJob> jobs;
+    for (const std::string& text : ids) {
+      auto id = parseIndex(text);
+      if (!id || *id < 1) {
+        throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                       "jobs holds '" + text + "', which is not a job id (a positive integer)", "jobs",
+                       Json{{"in", "query"}, {"value", text}});
+      }
+      for (const ComparedJob& j : jobs) {
+        if (j.job.id == *id) {
+          throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                         "jobs lists job " + text + " twice", "jobs", Json{{"in", "query"}, {"value", text}});
+        }
+      }
+      auto job = m_ctx.store->job(*id);
+      if (!job) {
+        throw ApiError(404, problem::kNoSuchJob, "No such job",
+                       "no job '" + text + "' (named in the jobs list; GET /jobs lists them)", "jobs",
+                       Json{{"in", "query"}, {"value", text}});
+      }
+      jobs.push_back({*job, buildSummary(*job, m_ctx.store->runs(*id))});
+    }
+    return jobs;
   }
 
   static AxisScale scaleParam(const Request& req, const char* name) {
@@ -890,6 +1031,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
   http.Get("/jobs/" + id + "/runs/" + id + "/series", wrap(&Api::series));
   http.Get("/jobs/" + id + "/summary", wrap(&Api::summary));
   http.Get(R"(/jobs/([^/]+)/summary\.svg)", wrap(&Api::summarySvg));
+  http.Get("/summary", wrap(&Api::compareSummary));
+  http.Get("/plot", wrap(&Api::comparePlot));
 
   // 405 (with Allow) for the other methods on every known path; OPTIONS answers with Allow.
   const std::vector<Route> routes = {
@@ -911,6 +1054,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
       {"/jobs/" + id + "/runs/" + id + "/series", {"GET"}},
       {"/jobs/" + id + "/summary", {"GET"}},
       {R"(/jobs/([^/]+)/summary\.svg)", {"GET"}},
+      {"/summary", {"GET"}},
+      {"/plot", {"GET"}},
   };
   for (const Route& route : routes) {
     std::string allow;

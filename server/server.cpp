@@ -92,6 +92,8 @@ RuptureServer::RuptureServer(ServerConfig config) {
   }
   m_context.store = m_store.get();
   m_context.scheduler = m_scheduler.get();
+  m_refinement = std::make_unique<RefinementDriver>(*m_store, *m_scheduler,
+                                                    static_cast<double>(m_context.config.maxElements));
 
   const ServerConfig& c = m_context.config;
   FrontendLimits limits;
@@ -126,6 +128,7 @@ int RuptureServer::bind() {
                              bindFailureReason(c.bind, c.port));
   }
   m_scheduler->start();
+  m_refinement->start();  // resumes refinements a stop interrupted
   logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " with " +
           std::to_string(m_scheduler->workers()) + " worker(s) x " + std::to_string(m_scheduler->threadsPerRun()) +
           " thread(s), data in " + m_context.dataDir.string());
@@ -149,6 +152,7 @@ int RuptureServer::startInBackground() {
 
 void RuptureServer::stopAcceptingWork() {
   m_context.stopping = true;
+  if (m_refinement) m_refinement->stop();  // no round is added while runs are being stopped
   m_scheduler->requestStop();
 }
 

@@ -12,6 +12,7 @@
 #include "config.hpp"
 #include "data_dir_lock.hpp"
 #include "http_frontend.hpp"
+#include "refinement.hpp"
 #include "routes.hpp"
 
 namespace rupture::server {
@@ -50,6 +51,7 @@ private:
   std::unique_ptr<DataDirLock> m_lock;
   std::unique_ptr<JobStore> m_store;
   std::unique_ptr<Executor> m_scheduler;
+  std::unique_ptr<RefinementDriver> m_refinement;  ///< adds refinement rounds to jobs that ask for them
   std::unique_ptr<HttpFrontend> m_http;
   std::thread m_background;
   std::atomic<bool> m_stopRequested{false};

@@ -98,6 +98,7 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
   SummaryTable table;
   table.jobId = job.id;
   for (const auto& p : job.sweptPaths) table.sweptPaths.push_back(p.get<std::string>());
+  table.replicated = job.study.is_object() && job.study.contains("replicates");
   std::vector<std::string> seen;
   for (const RunRecord& run : runs) {
     SummaryRow row;
@@ -107,6 +108,7 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
     row.scalars = Json::object();
     if (run.summary.is_object()) flatten(run.summary, "", row.scalars);
     row.error = run.error;
+    row.replicate = run.replicate;
     for (const auto& [k, v] : row.scalars.items()) {
       if (std::find(seen.begin(), seen.end(), k) == seen.end()) seen.push_back(k);
     }
@@ -139,6 +141,7 @@ Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
     Json r = Json::object();
     r["run"] = row.run;
     r["status"] = toString(row.status);
+    if (table.replicated) r["replicate"] = row.replicate;
     for (std::size_t i = 0; i < table.sweptPaths.size(); ++i) {
       r[table.sweptPaths[i]] = i < row.swept.size() ? row.swept[i] : Json();
     }
@@ -152,12 +155,13 @@ Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
 
 std::string summaryCsv(const SummaryTable& table) {
   std::ostringstream out;
-  out << "run,status";
+  out << "run,status" << (table.replicated ? ",replicate" : "");
   for (const auto& p : table.sweptPaths) out << ',' << csvTextCell(p);
   for (const auto& s : table.scalarNames) out << ',' << csvTextCell(s);
   out << ",error\r\n";
   for (const SummaryRow& row : table.rows) {
     out << row.run << ',' << toString(row.status);
+    if (table.replicated) out << ',' << row.replicate;
     for (const auto& p : table.sweptPaths) out << ',' << csvValue(table.value(row, p));
     for (const auto& s : table.scalarNames) out << ',' << csvValue(table.value(row, s));
     out << ',' << csvTextCell(row.error) << "\r\n";

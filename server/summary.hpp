@@ -18,6 +18,7 @@ struct SummaryRow {
   Json swept;    ///< array aligned with SummaryTable::sweptPaths
   Json scalars;  ///< flat object name -> value (nested objects flattened with dots)
   std::string error;
+  int replicate = 0;  ///< replicate index within the sweep point (replicate_statistics.hpp)
 };
 
 struct SummaryTable {
@@ -25,6 +26,7 @@ struct SummaryTable {
   std::vector<std::string> sweptPaths;
   std::vector<std::string> scalarNames;  ///< the well-known ones first, then the rest as they appear
   std::vector<SummaryRow> rows;
+  bool replicated = false;  ///< the job runs replicates: rows carry a "replicate" column
 
   /// The value of a column (swept path or scalar) in a row; null when absent.
   Json value(const SummaryRow& row, const std::string& column) const;

@@ -173,7 +173,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
   for (const auto& p : table.sweptPaths) {
     if (p != request.x && p != request.y) others.push_back(p);
   }
-  struct Point { double x; Json xRaw; double y; int run; };
+  struct Point { double x; Json xRaw; double y; int run; double lo = NAN, hi = NAN; };
   std::vector<std::string> seriesOrder;
   std::map<std::string, std::vector<Point>> series;
   bool categorical = false;
@@ -183,7 +183,8 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
   }
   std::vector<std::string> categories;
   std::vector<double> xs, ys;
-  for (const SummaryRow& row : table.rows) {
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const SummaryRow& row = table.rows[r];
     Json xv = table.value(row, request.x), yv = table.value(row, request.y);
     if (xv.is_null() || yv.is_null()) continue;
     if (!yv.is_number()) {
@@ -209,6 +210,14 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
     series[key].push_back({x, xv, yv.get<double>(), row.run});
     xs.push_back(x);
     ys.push_back(yv.get<double>());
+    if (r < request.yIntervals.size() && std::isfinite(request.yIntervals[r].first) &&
+        std::isfinite(request.yIntervals[r].second)) {  // error bar: the axis must hold it
+      series[key].back().lo = request.yIntervals[r].first;
+      series[key].back().hi = request.yIntervals[r].second;
+      // A low end <= 0 would turn an all-positive (log) axis linear: it is drawn clipped instead.
+      if (request.yIntervals[r].first > 0 || yv.get<double>() <= 0) ys.push_back(request.yIntervals[r].first);
+      ys.push_back(request.yIntervals[r].second);
+    }
   }
 
   const bool legend = !others.empty() && !seriesOrder.empty();
@@ -302,6 +311,14 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request, co
       svg << "\"/>\n";
     }
     for (const Point& p : pts) {
+      if (std::isfinite(p.lo) && std::isfinite(p.hi)) {
+        const double cx = px(p.x);
+        const double lo = yAxis.log && !(p.lo > 0) ? std::pow(10.0, yAxis.lo) : p.lo;
+        svg << "<path class=\"error-bar\" stroke=\"" << colour << "\" stroke-width=\"1.5\" fill=\"none\" d=\"M"
+            << num(cx) << ',' << num(py(lo)) << "V" << num(py(p.hi)) << "M" << num(cx - 4) << ',' << num(py(lo))
+            << "h8M" << num(cx - 4) << ',' << num(py(p.hi)) << "h8\"><title>95 % CI " << io::xmlEscape(tickLabel(p.lo))
+            << " to " << io::xmlEscape(tickLabel(p.hi)) << "</title></path>\n";
+      }
       svg << "<circle cx=\"" << num(px(p.x)) << "\" cy=\"" << num(py(p.y)) << "\" r=\"4\" fill=\"" << colour
           << "\"><title>run " << p.run << ": " << io::xmlEscape(request.x) << "=" << io::xmlEscape(valueText(p.xRaw))
           << ", " << io::xmlEscape(request.y) << "=" << io::xmlEscape(tickLabel(p.y)) << "</title></circle>\n";

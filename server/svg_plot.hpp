@@ -3,6 +3,8 @@
 // of the other swept parameters (with a legend), log axes when values span decades, axis labels
 // with units.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "summary.hpp"
 
@@ -16,6 +18,9 @@ struct PlotRequest {
   AxisScale xScale = AxisScale::Auto;
   AxisScale yScale = AxisScale::Auto;
   std::string title;  ///< shown above the plot; empty = "<y> vs <x>"
+  /// Optional error bars (replicates' 95 % intervals): (low, high) of y per table row, aligned with
+  /// SummaryTable::rows; empty, or NaN for a row without one.
+  std::vector<std::pair<double, double>> yIntervals;
 };
 
 /// Auto scale rule: log when every value is > 0 and they span at least a decade, unless they are

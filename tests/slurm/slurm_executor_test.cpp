@@ -84,6 +84,35 @@ TEST(SlurmExecutor, SameSweepSameResultsAsTheLocalExecutor) {
   EXPECT_TRUE(fs::exists(shared.path() / "jobs" / std::to_string(id) / "run-1.h5"));
 }
 
+TEST(SlurmExecutor, ReplicatesAndRefinementRunOnTheClusterAsLocally) {
+  REQUIRE_CLUSTER();
+  // 2 rates x 2 replicates, then one refined point (2 more runs, a second array submission).
+  const Json body = {{"inputs", test::smallInputs()},
+                     {"sweep", {{"loading.strain_rate", test::twoStrainRates()}}},
+                     {"replicates", {{"count", 2}, {"vary", "sample.seed"}}},
+                     {"refine", {{"path", "loading.strain_rate"}, {"quantity", "peak_stress"}, {"max_runs", 2}, {"tolerance", 0.01}}}};
+  test::TempDir shared;
+  test::LiveServer server(slurmConfig(shared.path()));
+  auto client = server.client();
+  const auto id = test::submit(*client, body);
+  const Json done = test::waitForJob(*client, id, {"successful", "failed", "dismissed"}, 240);
+  ASSERT_EQ(done["status"], "successful") << done.dump();
+  ASSERT_EQ(done["runs_total"], 6);
+  ASSERT_EQ(done["refinement"]["points"].size(), 1u);
+  EXPECT_EQ(done["refinement"]["points"][0]["runs"], Json::array({4, 5}));
+  const long long seed = test::smallInputs()["sample"]["seed"].get<long long>();
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_EQ(done["runs"][k]["replicate"], k % 2);
+    const Json spec = test::getJson(*client, "/jobs/" + std::to_string(id) + "/runs/" + std::to_string(k))["spec"];
+    EXPECT_EQ(spec["sample"]["seed"], seed + k % 2);
+    // What the cluster ran is the spec the store holds.
+    const auto written = readFile(shared.path() / "jobs" / std::to_string(id) / ("run-" + std::to_string(k) + ".spec.json"));
+    ASSERT_TRUE(written);
+    EXPECT_EQ(Json::parse(*written), spec);
+  }
+  EXPECT_EQ(test::getJson(*client, "/jobs/" + std::to_string(id) + "/summary?aggregate=replicates")["rows"][2]["peak_stress"]["n"], 2);
+}
+
 TEST(SlurmExecutor, DeleteCancelsTheClusterRuns) {
   REQUIRE_CLUSTER();
   test::TempDir shared;

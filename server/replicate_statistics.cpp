@@ -1,0 +1,214 @@
+#include "replicate_statistics.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "student_t.hpp"
+
+namespace rupture::server {
+namespace {
+
+Json numberOrNull(const std::optional<double>& v) { return v && std::isfinite(*v) ? Json(*v) : Json(); }
+
+Json statisticsJson(const ScalarStatistics& s) {
+  Json doc = Json::object();
+  doc["mean"] = s.n > 0 && std::isfinite(s.mean) ? Json(s.mean) : Json();
+  doc["sd"] = numberOrNull(s.sd);
+  doc["ci95_low"] = s.ciHalfWidth ? numberOrNull(s.mean - *s.ciHalfWidth) : Json();
+  doc["ci95_high"] = s.ciHalfWidth ? numberOrNull(s.mean + *s.ciHalfWidth) : Json();
+  doc["ci95_half_width"] = numberOrNull(s.ciHalfWidth);
+  doc["n"] = s.n;
+  return doc;
+}
+
+std::string csvNumber(const std::optional<double>& v) { return v ? formatNumber(*v) : std::string(); }
+
+std::string csvCell(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return csvTextCell(v.get<std::string>());
+  if (v.is_number_float()) return formatNumber(v.get<double>());
+  return csvTextCell(v.dump());
+}
+
+}  // namespace
+
+ScalarStatistics describeSample(const std::vector<double>& values) {
+  ScalarStatistics s;
+  s.n = static_cast<int>(values.size());
+  if (s.n == 0) return s;
+  double sum = 0;
+  for (double v : values) sum += v;
+  s.mean = sum / s.n;
+  if (s.n < 2) return s;
+  double squares = 0;
+  for (double v : values) squares += (v - s.mean) * (v - s.mean);
+  s.sd = std::sqrt(squares / (s.n - 1));
+  s.ciHalfWidth = studentTQuantile(0.5 + kConfidenceLevel / 2, s.n - 1) * *s.sd / std::sqrt(double(s.n));
+  return s;
+}
+
+const ScalarStatistics* PointAggregate::find(const std::string& name) const {
+  for (const auto& [n, s] : scalars) {
+    if (n == name) return &s;
+  }
+  return nullptr;
+}
+
+const std::vector<double>* PointAggregate::valuesOf(const std::string& name) const {
+  for (std::size_t i = 0; i < scalars.size(); ++i) {
+    if (scalars[i].first == name) return &values[i];
+  }
+  return nullptr;
+}
+
+std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table) {
+  std::vector<PointAggregate> points;
+  std::map<std::string, std::size_t> byKey;
+  std::vector<std::vector<std::vector<double>>> samples;  // point -> scalar -> values
+  std::vector<std::vector<bool>> nonNumeric;              // point -> scalar -> reported, not as a number
+  for (const SummaryRow& row : table.rows) {
+    const std::string key = row.swept.dump();
+    auto [it, inserted] = byKey.emplace(key, points.size());
+    if (inserted) {
+      PointAggregate p;
+      p.swept = row.swept;
+      points.push_back(std::move(p));
+      samples.emplace_back(table.scalarNames.size());
+      nonNumeric.emplace_back(table.scalarNames.size(), false);
+    }
+    PointAggregate& p = points[it->second];
+    p.runs.push_back(row.run);
+    if (row.status != Status::Successful) {
+      p.excluded.push_back({{"run", row.run}, {"status", toString(row.status)}});
+      continue;
+    }
+    p.successfulRuns.push_back(row.run);
+    for (std::size_t s = 0; s < table.scalarNames.size(); ++s) {
+      const Json v = table.value(row, table.scalarNames[s]);
+      if (v.is_number() && !v.is_boolean() && std::isfinite(v.get<double>())) {
+        samples[it->second][s].push_back(v.get<double>());
+      } else if (!v.is_null() && !v.is_number()) {
+        nonNumeric[it->second][s] = true;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t s = 0; s < table.scalarNames.size(); ++s) {
+      // Scalars that are never numbers at this point (text, lists) have no statistics.
+      if (samples[i][s].empty() && nonNumeric[i][s]) continue;
+      points[i].scalars.emplace_back(table.scalarNames[s], describeSample(samples[i][s]));
+      points[i].values.push_back(samples[i][s]);
+    }
+  }
+  return points;
+}
+
+Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>& points, const UnitLookup& unitOf) {
+  Json doc = Json::object();
+  doc["jobID"] = std::to_string(table.jobId);
+  doc["aggregate"] = "replicates";
+  doc["confidence_level"] = kConfidenceLevel;
+  Json columns = Json::array();
+  for (const auto& p : table.sweptPaths) columns.push_back({{"name", p}, {"kind", "swept"}, {"unit", unitOf ? unitOf(p) : ""}});
+  columns.push_back({{"name", "n_runs"}, {"kind", "count"}, {"unit", ""}});
+  columns.push_back({{"name", "n_successful"}, {"kind", "count"}, {"unit", ""}});
+  // A scalar is a column when some point has statistics for it.
+  std::vector<std::string> numeric;
+  for (const auto& s : table.scalarNames) {
+    for (const PointAggregate& p : points) {
+      if (p.find(s)) {
+        numeric.push_back(s);
+        break;
+      }
+    }
+  }
+  for (const auto& s : numeric) {
+    columns.push_back({{"name", s},
+                       {"kind", "statistics"},
+                       {"unit", unitOf ? unitOf(s) : knownScalarUnit(s)},
+                       {"members", Json::array({"mean", "sd", "ci95_low", "ci95_high", "ci95_half_width", "n"})}});
+  }
+  doc["columns"] = columns;
+  Json rows = Json::array();
+  for (const PointAggregate& p : points) {
+    Json r = Json::object();
+    for (std::size_t i = 0; i < table.sweptPaths.size(); ++i) r[table.sweptPaths[i]] = i < p.swept.size() ? p.swept[i] : Json();
+    r["n_runs"] = p.runs.size();
+    r["n_successful"] = p.successfulRuns.size();
+    r["runs"] = p.runs;
+    r["excluded"] = p.excluded;
+    for (const auto& s : numeric) {
+      const ScalarStatistics* stats = p.find(s);
+      r[s] = statisticsJson(stats ? *stats : ScalarStatistics{});
+    }
+    rows.push_back(std::move(r));
+  }
+  doc["rows"] = rows;
+  return doc;
+}
+
+std::string aggregateCsv(const SummaryTable& table, const std::vector<PointAggregate>& points) {
+  std::vector<std::string> numeric;
+  for (const auto& s : table.scalarNames) {
+    for (const PointAggregate& p : points) {
+      if (p.find(s)) {
+        numeric.push_back(s);
+        break;
+      }
+    }
+  }
+  std::ostringstream out;
+  bool first = true;
+  auto sep = [&] { if (!first) out << ','; first = false; };
+  for (const auto& p : table.sweptPaths) { sep(); out << csvTextCell(p); }
+  sep(); out << "n_runs,n_successful";
+  for (const auto& s : numeric) {
+    for (const char* member : {".mean", ".sd", ".ci95_low", ".ci95_high", ".ci95_half_width", ".n"}) out << ',' << csvTextCell(s + member);
+  }
+  out << "\r\n";
+  for (const PointAggregate& p : points) {
+    first = true;
+    for (std::size_t i = 0; i < table.sweptPaths.size(); ++i) { sep(); out << csvCell(i < p.swept.size() ? p.swept[i] : Json()); }
+    sep(); out << p.runs.size() << ',' << p.successfulRuns.size();
+    for (const auto& s : numeric) {
+      const ScalarStatistics* st = p.find(s);
+      const ScalarStatistics none;
+      const ScalarStatistics& v = st ? *st : none;
+      out << ',' << (v.n > 0 ? formatNumber(v.mean) : std::string()) << ',' << csvNumber(v.sd) << ','
+          << (v.ciHalfWidth ? formatNumber(v.mean - *v.ciHalfWidth) : std::string()) << ','
+          << (v.ciHalfWidth ? formatNumber(v.mean + *v.ciHalfWidth) : std::string()) << ',' << csvNumber(v.ciHalfWidth)
+          << ',' << v.n;
+    }
+    out << "\r\n";
+  }
+  return out.str();
+}
+
+SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggregate>& points, const std::string& y,
+                        std::vector<std::pair<double, double>>& yIntervals) {
+  SummaryTable means;
+  means.jobId = table.jobId;
+  means.sweptPaths = table.sweptPaths;
+  means.scalarNames = table.scalarNames;
+  yIntervals.clear();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const PointAggregate& p : points) {
+    SummaryRow row;
+    row.run = p.runs.empty() ? 0 : p.runs.front();
+    row.status = p.successfulRuns.empty() ? Status::Failed : Status::Successful;
+    row.swept = p.swept;
+    row.scalars = Json::object();
+    for (const auto& [name, stats] : p.scalars) {
+      if (stats.n > 0) row.scalars[name] = stats.mean;
+    }
+    const ScalarStatistics* s = p.find(y);
+    if (s && s->ciHalfWidth) yIntervals.emplace_back(s->mean - *s->ciHalfWidth, s->mean + *s->ciHalfWidth);
+    else yIntervals.emplace_back(nan, nan);
+    means.rows.push_back(std::move(row));
+  }
+  return means;
+}
+
+}  // namespace rupture::server
