@@ -66,7 +66,7 @@ with tempfile.TemporaryDirectory() as tmp:
         runs = []
         for r in doc["runs"]:
             s = r.get("summary") or {}
-            runs.append({"parameters": r.get("parameters"), "status": r.get("status"),
+            runs.append({"swept": r.get("swept"), "status": r.get("status"),
                          "wall_time_s": s.get("wall_time_s"), "peak_stress": s.get("peak_stress"),
                          "crack_onset_strain": s.get("crack_onset_strain"),
                          "sample_from_cache": s.get("sample_from_cache")})
