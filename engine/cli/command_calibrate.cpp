@@ -1,20 +1,25 @@
-// rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]
+// rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--target-tensile-strength S]
+//                             [--threads N]
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 #include "cli/cli.hpp"
 #include "cli/spec_file.hpp"
 #include "dem/calibration.hpp"
+#include "dem/strength_test.hpp"
 #include "io/bonded_spec.hpp"
 
 namespace rupture::cli {
 
 int calibrateCommand(const Args& args) {
-  if (args.empty()) return usageError("calibrate: usage: rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]");
-  double targetYoung = 0, targetPoisson = 0;
-  bool haveYoung = false, havePoisson = false;
+  if (args.empty())
+    return usageError("calibrate: usage: rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] "
+                      "[--target-tensile-strength S] [--threads N]");
+  double targetYoung = 0, targetPoisson = 0, targetStrength = 0;
+  bool haveYoung = false, havePoisson = false, haveStrength = false;
   long long threads = 1;
   for (std::size_t k = 1; k < args.size(); k += 2) {
     if (k + 1 >= args.size()) return usageError("calibrate: option " + args[k] + " needs a value");
@@ -27,11 +32,16 @@ int calibrateCommand(const Args& args) {
       if (!(targetPoisson > -1 && targetPoisson < 0.5))
         return usageError("calibrate: --target-poisson-ratio = " + args[k + 1] + "; allowed: a number in (-1, 0.5)");
       havePoisson = true;
+    } else if (args[k] == "--target-tensile-strength") {
+      if (!parseDoubleOption(args[k], args[k + 1], targetStrength)) return 2;
+      if (!(targetStrength > 0) || !std::isfinite(targetStrength))
+        return usageError("calibrate: --target-tensile-strength = " + args[k + 1] + "; allowed: a number > 0 (Pa)");
+      haveStrength = true;
     } else if (args[k] == "--threads") {
       if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
     } else {
       return usageError("calibrate: unknown option '" + args[k] +
-                        "'; allowed: --target-young-modulus, --target-poisson-ratio, --threads");
+                        "'; allowed: --target-young-modulus, --target-poisson-ratio, --target-tensile-strength, --threads");
     }
   }
   if (haveYoung != havePoisson)
@@ -58,26 +68,57 @@ int calibrateCommand(const Args& args) {
                    {"bonds", report.bonds},
                    {"mean_coordination", report.meanCoordination},
                    {"porosity", report.porosity}};
-  if (haveYoung) {
-    try {
+  if (material.model != "beam" && (haveYoung || haveStrength))
+    return usageError("calibrate: material.model = \"" + material.model + "\"; allowed: \"beam\" (the calibration fits beams)");
+  try {
+    if (haveYoung) {
       const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson);
+      sample.beam = fit.beam;  // the strength below is that of the fitted beams
       out["beam"] = {{"young_modulus", fit.beam.youngModulus},
                      {"poisson_ratio", fit.beam.poissonRatio},
-                     {"radius_ratio", fit.beam.radiusRatio}};
+                     {"radius_ratio", fit.beam.radiusRatio},
+                     {"failure_stress", fit.beam.failureStress}};
       out["achieved"] = {{"young_modulus", fit.achieved.youngModulus},
                          {"poisson_ratio", fit.achieved.poissonRatio},
                          {"converged", fit.achieved.converged}};
       out["target"] = {{"young_modulus", targetYoung}, {"poisson_ratio", targetPoisson}};
       out["evaluations"] = fit.evaluations;
-    } catch (const CalibrationError& e) {
-      return usageError(std::string("calibrate: ") + e.what());
     }
-  } else {
-    const ElasticProperties measured = measureElasticProperties(sample, sampleSpec);
-    out["young_modulus"] = measured.youngModulus;
-    out["poisson_ratio"] = measured.poissonRatio;
-    out["converged"] = measured.converged;
-    out["relaxation_steps"] = measured.steps;
+    if (haveStrength) {
+      const StrengthFit fit = fitFailureStress(sample, sampleSpec, targetStrength);
+      out["beam"]["young_modulus"] = sample.beam.youngModulus;
+      out["beam"]["poisson_ratio"] = sample.beam.poissonRatio;
+      out["beam"]["radius_ratio"] = sample.beam.radiusRatio;
+      out["beam"]["failure_stress"] = fit.failureStress;
+      if (!haveYoung)
+        out["achieved"] = {{"young_modulus", fit.achieved.elastic.youngModulus},
+                           {"poisson_ratio", fit.achieved.elastic.poissonRatio},
+                           {"converged", fit.achieved.elastic.converged}};
+      out["achieved"]["tensile_strength"] = fit.achieved.tensileStrength;
+      out["achieved"]["crack_onset_strain"] = fit.achieved.crackOnsetStrain;
+      out["achieved"]["strain_at_peak"] = fit.achieved.strainAtPeak;
+      out["target"]["tensile_strength"] = targetStrength;
+      out["strength_evaluations"] = fit.evaluations;
+    }
+    if (!haveYoung && !haveStrength && material.model != "beam") {
+      // Lattice and peridynamic laws: elastic properties only (their strength has its own criteria).
+      const ElasticProperties measured = measureElasticProperties(sample, sampleSpec);
+      out["young_modulus"] = measured.youngModulus;
+      out["poisson_ratio"] = measured.poissonRatio;
+      out["converged"] = measured.converged;
+      out["relaxation_steps"] = measured.steps;
+    } else if (!haveYoung && !haveStrength) {
+      const StrengthResult measured = measureTensileStrength(sample, sampleSpec);
+      out["young_modulus"] = measured.elastic.youngModulus;
+      out["poisson_ratio"] = measured.elastic.poissonRatio;
+      out["converged"] = measured.elastic.converged;
+      out["tensile_strength"] = measured.tensileStrength;
+      out["crack_onset_strain"] = measured.crackOnsetStrain;
+      out["strain_at_peak"] = measured.strainAtPeak;
+      out["relaxation_steps"] = measured.steps;
+    }
+  } catch (const CalibrationError& e) {
+    return usageError(std::string("calibrate: ") + e.what());
   }
   out["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << out.dump() << std::endl;

@@ -30,6 +30,10 @@ struct BeamParameters {
   double poissonRatio = 0.3; ///< ν_μ (1); enters only through G_μ = E_μ / (2(1 + ν_μ))
   double radiusRatio = 0.3;  ///< r_μ / R_DE (1), R_DE = mean radius of the two elements
   double failureStress = 0;  ///< σ_f (Pa), Rankine threshold; <= 0 or infinity: unbreakable
+  /// Bending moment in σ_Nmax of eq. (1): false = the larger clamped–clamped end moment (chord
+  /// rotation included); true = the pure-bending moment of the two ends' relative rotation,
+  /// E I |φ_j − φ_i| / L0 (André et al. 2012's σ = E r |θ_2 − θ_1| / L; see engine/dem/README.md).
+  bool bendingFromRelativeRotation = false;
 
   double shearModulus() const { return youngModulus / (2.0 * (1.0 + poissonRatio)); }
 };
@@ -137,7 +141,12 @@ struct BeamResponse {
                biz = r.tiz - twistMoment * nz;
   const double momentI2 = bix * bix + biy * biy + biz * biz;
   const double momentJ2 = bjx * bjx + bjy * bjy + bjz * bjz;
-  const double bendingMoment = std::sqrt(momentI2 > momentJ2 ? momentI2 : momentJ2);
+  const double endMoment = std::sqrt(momentI2 > momentJ2 ? momentI2 : momentJ2);
+  // ½ |M_j − M_i| = (E I / L0) |φ_j − φ_i|: the chord's rotation cancels, only the disks' relative
+  // rotation bends the beam.
+  const double hx = bjx - bix, hy = bjy - biy, hz = bjz - biz;
+  const double relativeMoment = 0.5 * std::sqrt(hx * hx + hy * hy + hz * hz);
+  const double bendingMoment = p.bendingFromRelativeRotation ? relativeMoment : endMoment;
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   const double shearStress = std::fabs(twistMoment) * sec.radius / sec.polarMoment;
   r.equivalentStress = rankineEquivalentStress(normalStress, shearStress);

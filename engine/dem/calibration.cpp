@@ -10,27 +10,6 @@ namespace {
 
 constexpr double kInitialPoissonGuess = 0.25;
 
-struct FaceGroups {
-  std::vector<std::size_t> xmin, xmax;
-};
-
-// Elements whose surface lies within half a mean radius of the extreme x faces.
-FaceGroups faceGroups(const ParticleStore& p) {
-  double lo = 1e300, hi = -1e300, mean = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    lo = std::min(lo, p.x[k] - p.radius[k]);
-    hi = std::max(hi, p.x[k] + p.radius[k]);
-    mean += p.radius[k];
-  }
-  mean /= static_cast<double>(p.size());
-  FaceGroups g;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    if (p.x[k] - p.radius[k] <= lo + 0.5 * mean) g.xmin.push_back(k);
-    else if (p.x[k] + p.radius[k] >= hi - 0.5 * mean) g.xmax.push_back(k);
-  }
-  return g;
-}
-
 // Least-squares slope of u(c) over all elements.
 double slope(const std::vector<double>& c, const std::vector<double>& u) {
   double mc = 0, mu = 0;
@@ -47,8 +26,37 @@ double slope(const std::vector<double>& c, const std::vector<double>& u) {
 
 }  // namespace
 
+TensionFaces tensionFaces(const ParticleStore& p) {
+  double lo = 1e300, hi = -1e300, mean = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    lo = std::min(lo, p.x[k] - p.radius[k]);
+    hi = std::max(hi, p.x[k] + p.radius[k]);
+    mean += p.radius[k];
+  }
+  mean /= static_cast<double>(p.size());
+  TensionFaces g;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.x[k] - p.radius[k] <= lo + 0.5 * mean) g.xmin.push_back(k);
+    else if (p.x[k] + p.radius[k] >= hi - 0.5 * mean) g.xmax.push_back(k);
+  }
+  return g;
+}
+
+double tensionSection(const SampleSpec& spec) {
+  const double thickness =
+      spec.dimension == 2 ? (spec.thickness > 0 ? spec.thickness : spec.elementRadius) : spec.size[2];
+  return spec.size[1] * thickness;
+}
+
+double meanFaceStress(const ParticleStore& p, const TensionFaces& faces, double section) {
+  double fMin = 0, fMax = 0;
+  for (std::size_t k : faces.xmin) fMin += p.fx[k];
+  for (std::size_t k : faces.xmax) fMax -= p.fx[k];
+  return 0.5 * (fMin + fMax) / section;
+}
+
 ElasticProperties measureElasticProperties(const BondedSystem& sample, const SampleSpec& spec,
-                                           const CalibrationOptions& options) {
+                                           const CalibrationOptions& options, BondedSystem* relaxed) {
   BondedSystem s = sample;
   ParticleStore& p = s.particles;
   const std::size_t n = p.size();
@@ -60,7 +68,7 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
   s.localDamping = options.damping;
   s.prescribe = nullptr;
 
-  const FaceGroups faces = faceGroups(p);
+  const TensionFaces faces = tensionFaces(p);
   if (faces.xmin.empty() || faces.xmax.empty()) throw CalibrationError("calibration: sample has no X faces");
   const std::vector<double> x0 = p.x, y0 = p.y, z0 = p.z;
   double xc = 0, yc = 0, zc = 0;
@@ -80,14 +88,10 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
   s.initialize();
   const double dt = options.timeStepSafety * s.criticalTimeStep();
 
-  const double thickness = spec.dimension == 2 ? (spec.thickness > 0 ? spec.thickness : spec.elementRadius) : spec.size[2];
-  const double section = spec.size[1] * thickness;
+  const double section = tensionSection(spec);
 
   auto measure = [&]() {
-    double fMin = 0, fMax = 0;
-    for (std::size_t k : faces.xmin) fMin += p.fx[k];
-    for (std::size_t k : faces.xmax) fMax -= p.fx[k];
-    const double stress = 0.5 * (fMin + fMax) / section;
+    const double stress = meanFaceStress(p, faces, section);
     std::vector<double> uy(n), uz(n);
     for (std::size_t k = 0; k < n; ++k) { uy[k] = p.y[k] - y0[k]; uz[k] = p.z[k] - z0[k]; }
     double lateral = slope(y0, uy);
@@ -125,6 +129,7 @@ ElasticProperties measureElasticProperties(const BondedSystem& sample, const Sam
     previous = current;
   }
   current.steps = s.steps;
+  if (relaxed) *relaxed = std::move(s);
   return current;
 }
 

@@ -13,6 +13,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "dem/bonded_system.hpp"
 #include "dem/sample_builder.hpp"
@@ -47,9 +48,23 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// Measures E and ν of a built sample (the system is copied; the original is untouched).
+/// Measures E and ν of a built sample (the system is copied; the original is untouched). When
+/// `relaxed` is given it receives the relaxed system (faces held in x, failure and contact off).
 ElasticProperties measureElasticProperties(const BondedSystem& sample, const SampleSpec& spec,
-                                           const CalibrationOptions& options = {});
+                                           const CalibrationOptions& options = {}, BondedSystem* relaxed = nullptr);
+
+/// The elements of the X_min and X_max faces of a tension test: those whose surface lies within half
+/// a mean radius of the extreme x.
+struct TensionFaces {
+  std::vector<std::size_t> xmin, xmax;
+};
+TensionFaces tensionFaces(const ParticleStore& p);
+
+/// The section S of the seed's eq. 4: L_y × t in 2D (t = spec.thickness, else R_DE), L_y × L_z in 3D (m²).
+double tensionSection(const SampleSpec& spec);
+
+/// σ̄ = ½ (F_Xmin + F_Xmax) / S from the bond and contact forces on the face elements (Pa).
+double meanFaceStress(const ParticleStore& p, const TensionFaces& faces, double section);
 
 struct BeamFit {
   BeamParameters beam;          ///< fitted E_μ and radius ratio (ν_μ and σ_f kept)

@@ -108,6 +108,13 @@ void dropUnbondedElements(BondedSystem& system) {
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                          const Cancellation& cancel) {
   if (s.lattice != "random") return buildLatticeSample(s, m, system, cancel);  // lattice/lattice_builder.hpp
+  SampleReport report = packRandomSample(s, m, system, cancel);
+  finishRandomSample(s, m, system, report, cancel);
+  return report;
+}
+
+SampleReport packRandomSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
+                              const Cancellation& cancel) {
   system = BondedSystem{};
   ParticleStore& p = system.particles;
   p.dimension = s.dimension;
@@ -155,7 +162,12 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   // Drop the pore elements, then any element the pores left with no bond.
   system.bonds.remap(p.compact(keep));
   dropUnbondedElements(system);
+  return report;
+}
 
+void finishRandomSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system, SampleReport& report,
+                        const Cancellation& cancel) {
+  ParticleStore& p = system.particles;
   cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
   assignMaterial(system, s, m);            // law, criterion, per-bond constants (dem/bond_model.hpp)
   system.beam = m.beam;
@@ -165,7 +177,6 @@ SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSyste
   report.elements = p.size();
   report.bonds = system.bonds.size();
   report.meanCoordination = p.size() ? 2.0 * static_cast<double>(report.bonds) / static_cast<double>(p.size()) : 0.0;
-  return report;
 }
 
 }  // namespace rupture

@@ -300,6 +300,8 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
     m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
     m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
+    m.beam.bendingFromRelativeRotation =
+        beam.choice("bending_stress", {"end_moment", "relative_rotation"}, "end_moment") == "relative_rotation";
     beam.finish();
     // Default contact modulus ~ the macroscopic modulus the beams give (E_M ∝ E_μ r_μ², see
     // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
@@ -419,7 +421,8 @@ nlohmann::json toJson(const MaterialSpec& m) {
     j["beam"] = {{"young_modulus", m.beam.youngModulus},
                  {"poisson_ratio", m.beam.poissonRatio},
                  {"radius_ratio", m.beam.radiusRatio},
-                 {"failure_stress", m.beam.failureStress}};
+                 {"failure_stress", m.beam.failureStress},
+                 {"bending_stress", m.beam.bendingFromRelativeRotation ? "relative_rotation" : "end_moment"}};
   } else if (m.model == "hookean" || m.model == "born") {
     const LatticeSpringSpec& sp = m.springs;
     nlohmann::json b = {{"young_modulus", sp.youngModulus}, {"poisson_ratio", sp.poissonRatio}, {"criterion", sp.criterion}};

@@ -13,6 +13,7 @@
 #include "scenarios/bond_network.hpp"
 #include "scenarios/dynamic_tension_spec.hpp"
 #include "scenarios/preliminary_cache.hpp"
+#include "scenarios/sample_cache.hpp"
 #include "scenarios/tension_loading.hpp"
 #include "scenarios/tension_observables.hpp"
 #include "scenarios/tension_recorder.hpp"
@@ -194,7 +195,7 @@ const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
       {"bonds", "1"},                 {"mean_coordination", "1"},     {"porosity", "1"},
       {"strain_rate", "1/s"},         {"max_velocity", "m/s"},        {"ramp_time", "s"},
       {"wave_speed", "m/s"},          {"gauge_length", "m"},          {"section", "m^2"},
-      {"modulus", "Pa"}};
+      {"modulus", "Pa"},              {"sample_from_cache", "1"}};
   return units;
 }
 
@@ -207,11 +208,15 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   logStage(control, "building the sample");
   BondedSystem system;
   SampleReport report;
+  SampleCacheUse sampleCache;
   try {
-    report = buildSample(spec.sample, spec.material, system, &control.cancel);
+    const std::string cacheDirectory =
+        spec.output.cacheSample ? preliminaryCacheDirectory(control.cacheDirectory, resultPath) : "";
+    report = buildSampleCached(spec.sample, spec.material, system, cacheDirectory, control.cancel, sampleCache);
   } catch (const RunCancelled&) {
     return cancelledDuringBuild(spec, json, resultPath, control, wallStart);
   }
+  if (sampleCache.fromCache) logStage(control, "sample read from the cache " + sampleCache.file);
   const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
   const double criticalStep = system.criticalTimeStep();
   if (!std::isfinite(criticalStep) || !(criticalStep > 0))
@@ -323,6 +328,7 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
       {"modulus", preliminary ? nlohmann::json(preliminary->modulus) : nlohmann::json(nullptr)},
       {"gauge_length", geometry.gaugeLength},
       {"section", geometry.section},
+      {"sample_from_cache", sampleCache.fromCache ? 1 : 0},
   });
   if (field == InitialVelocityField::V0 && onsetTime < rampTime)
     logStage(control, "note: the first bond broke during the V0 ramp, at " +

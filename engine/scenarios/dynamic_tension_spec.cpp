@@ -57,6 +57,7 @@ TensionOutputSpec parseOutput(const SpecReader& root) {
   TensionOutputSpec o;
   if (const auto output = root.optionalObject("output")) {
     o.cachePreliminary = output->boolean("cache_preliminary", o.cachePreliminary);
+    o.cacheSample = output->boolean("cache_sample", o.cacheSample);
     output->finish();
   }
   return o;
@@ -109,7 +110,7 @@ nlohmann::json toJson(const DynamicTensionSpec& s) {
               {"snapshot_strains", s.run.snapshotStrains},
               {"time_step_safety", s.run.timeStepSafety},
               {"max_steps", s.run.maxSteps}};
-  j["output"] = {{"cache_preliminary", s.output.cachePreliminary}};
+  j["output"] = {{"cache_preliminary", s.output.cachePreliminary}, {"cache_sample", s.output.cacheSample}};
   return j;
 }
 

@@ -42,6 +42,7 @@ struct TensionRunSpec {
 
 struct TensionOutputSpec {
   bool cachePreliminary = true;  ///< reuse / store the preliminary run in the cache directory
+  bool cacheSample = true;       ///< reuse / store the packed sample in the cache directory (sample_cache.hpp)
 };
 
 struct DynamicTensionSpec {

@@ -44,11 +44,22 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
     if (s.material.model != "beam")
       throw SpecError("target", "(present)", "absent unless material.model is \"beam\" (the " + s.material.model +
                                                   " model takes its E and nu in material." + s.material.model + ")");
-    ElasticTarget t;
-    t.youngModulus = target->number("young_modulus", Range::positive(), "Pa");
-    t.poissonRatio = target->number("poisson_ratio", {-1.0, 0.5, true, true}, "1");
+    const bool young = target->has("young_modulus"), poisson = target->has("poisson_ratio");
+    if (young != poisson)
+      throw SpecError(young ? "target.poisson_ratio" : "target.young_modulus", "(absent)",
+                      "present with target." + std::string(young ? "young_modulus" : "poisson_ratio") +
+                          " (both or neither)");
+    if (young) {
+      ElasticTarget t;
+      t.youngModulus = target->number("young_modulus", Range::positive(), "Pa");
+      t.poissonRatio = target->number("poisson_ratio", {-1.0, 0.5, true, true}, "1");
+      s.target = t;
+    }
+    if (target->has("tensile_strength"))
+      s.targetStrength = target->number("tensile_strength", Range::positive(), "Pa");
+    else if (!young)
+      throw SpecError("target", "{}", "at least target.tensile_strength, or target.young_modulus with target.poisson_ratio");
     target->finish();
-    s.target = t;
   }
   if (const auto calibration = root.optionalObject("calibration")) {
     CalibrationOptions& o = s.calibration;
@@ -65,6 +76,7 @@ nlohmann::json toJson(const ElasticPropertiesSpec& s) {
   nlohmann::json j = io::bondedSpecJson(kScenarioName, s.description, s.sample, s.material);
   if (s.target)
     j["target"] = {{"young_modulus", s.target->youngModulus}, {"poisson_ratio", s.target->poissonRatio}};
+  if (s.targetStrength) j["target"]["tensile_strength"] = *s.targetStrength;
   j["calibration"] = {{"strain", s.calibration.strain},
                       {"damping", s.calibration.damping},
                       {"tolerance", s.calibration.tolerance}};
@@ -77,7 +89,9 @@ const std::map<std::string, std::string>& elasticPropertiesSummaryUnits() {
       {"relaxation_steps", "1"},      {"elements", "1"},              {"bonds", "1"},
       {"mean_coordination", "1"},     {"porosity", "1"},              {"wall_time_s", "s"},
       {"completed", "1"},             {"beam_young_modulus", "Pa"},   {"beam_radius_ratio", "1"},
-      {"target_young_modulus", "Pa"}, {"target_poisson_ratio", "1"},  {"evaluations", "1"}};
+      {"target_young_modulus", "Pa"}, {"target_poisson_ratio", "1"},  {"evaluations", "1"},
+      {"tensile_strength", "Pa"},     {"crack_onset_strain", "1"},    {"strain_at_peak", "1"},
+      {"beam_failure_stress", "Pa"},  {"target_tensile_strength", "Pa"}, {"strength_evaluations", "1"}};
   return units;
 }
 
@@ -120,13 +134,40 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
       fitted = !fit.cancelled;  // a cancelled fit's last test is not of the fitted beams: not reported
       measured = fitted;
       result = fit.achieved;
+      if (fitted) system.beam = fit.beam;  // the strength below is that of the fitted beams
+    } else if (spec.material.model == "beam") {
+      measured = true;  // the strength test below measures E and ν on its way
     } else {
       logStage(control, "quasi-static tension test at strain " + formatNumber(options.strain));
       result = measureElasticProperties(system, spec.sample, options);
       measured = true;
     }
   }
+  // Strength (beams): the quasi-static test, or the fit of σ_f to target.tensile_strength.
+  bool strengthMeasured = false;
+  StrengthResult strength;
+  StrengthFit strengthFit;
+  if (!cancelled() && spec.material.model == "beam") {
+    StrengthOptions strengthOptions;
+    strengthOptions.elastic = options;
+    if (spec.targetStrength) {
+      logStage(control, "fitting the failure stress to a tensile strength of " + formatNumber(*spec.targetStrength) + " Pa");
+      try {
+        strengthFit = fitFailureStress(system, spec.sample, *spec.targetStrength, strengthOptions);
+      } catch (const CalibrationError& e) {
+        throw SpecError("target.tensile_strength", formatNumber(*spec.targetStrength),
+                        std::string("a strength the beams can reach on this sample (") + e.what() + ")");
+      }
+      strength = strengthFit.achieved;
+    } else {
+      logStage(control, "quasi-static tension to failure");
+      strength = measureTensileStrength(system, spec.sample, strengthOptions);
+    }
+    strengthMeasured = !cancelled();
+    if (!spec.target) result = strength.elastic;
+  }
   const bool completed = !cancelled();
+  measured = measured && completed;
 
   nlohmann::json summary = {
       {"young_modulus", orNull(measured, result.youngModulus)},
@@ -139,6 +180,14 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
       {"porosity", report.porosity},
       {"completed", completed ? 1 : 0},
   };
+  summary["tensile_strength"] = orNull(strengthMeasured, strength.tensileStrength);
+  summary["crack_onset_strain"] = orNull(strengthMeasured, strength.crackOnsetStrain);
+  summary["strain_at_peak"] = orNull(strengthMeasured, strength.strainAtPeak);
+  if (spec.targetStrength) {
+    summary["beam_failure_stress"] = orNull(strengthMeasured, strengthFit.failureStress);
+    summary["target_tensile_strength"] = *spec.targetStrength;
+    summary["strength_evaluations"] = strengthFit.evaluations;
+  }
   if (spec.target) {
     summary["beam_young_modulus"] = orNull(fitted, fit.beam.youngModulus);
     summary["beam_radius_ratio"] = orNull(fitted, fit.beam.radiusRatio);
@@ -163,9 +212,11 @@ Scenario elasticPropertiesScenario() {
       "A bonded discrete-element sample is stretched quasi-statically along x: every element starts on an affine "
       "field at a small strain, the X_min and X_max faces are held in x (free laterally), and damped dynamics "
       "relaxes the interior to equilibrium without failure or contact. Outputs the macroscopic Young's modulus "
-      "(mean face stress over strain) and Poisson ratio (lateral contraction). With a target E and nu, the beams' "
-      "Young's modulus and radius ratio are fitted to reach them (André et al. 2012), up to about 20 tension "
-      "tests, and the fitted beams are reported with the values they achieve.";
+      "(mean face stress over strain) and Poisson ratio (lateral contraction); for beams also the quasi-static "
+      "tensile strength (peak mean face stress of a damped strain-step test to failure) and crack-onset strain. "
+      "With a target E and nu, the beams' Young's modulus and radius ratio are fitted to reach them (André et al. "
+      "2012), up to about 20 tension tests; with a target tensile strength, the beams' failure stress is fitted; "
+      "the fitted beams are reported with the values they achieve.";
   s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseElasticPropertiesSpec(spec).sample); };
   s.run = runElasticProperties;

@@ -4,7 +4,9 @@
 // modulus and Poisson ratio of a bonded sample, e.g. over a porosity sweep.
 //
 // One run: build the sample → either one quasi-static tension test (measureElasticProperties) or,
-// with a "target", the beam fit (fitBeamParameters: up to kMaxFitEvaluations tension tests) → one
+// with a "target", the beam fit (fitBeamParameters: up to kMaxFitEvaluations tension tests) → for
+// beams, the quasi-static strength test (dem/strength_test.hpp: tensile strength and crack-onset
+// strain), or with target.tensile_strength the fit of the failure stress (fitFailureStress) → one
 // HDF5 file: root attributes scenario, rupture_version, completed; /spec (json, input); /snapshots
 // (empty: no particle field is written, but `rupture run` writes an XDMF sidecar over it);
 // /summary with the scalars below and their "<name>_unit" attributes. Written as RESULT.part and
@@ -17,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dem/calibration.hpp"
+#include "dem/strength_test.hpp"
 #include "dem/sample_spec.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/scenario.hpp"
@@ -33,6 +36,7 @@ struct ElasticPropertiesSpec {
   SampleSpec sample;
   MaterialSpec material;
   std::optional<ElasticTarget> target;  ///< present: fit the beams to it
+  std::optional<double> targetStrength; ///< target.tensile_strength (Pa): fit the beams' failure stress
   CalibrationOptions calibration;       ///< strain, damping and tolerance from the spec
 };
 

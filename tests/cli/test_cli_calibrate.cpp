@@ -28,6 +28,53 @@ TEST(CliCalibrate, MeasuresYoungModulusAndPoissonRatio) {
   EXPECT_GT(out.at("sample").at("elements").get<int>(), 100);
 }
 
+TEST(CliCalibrate, WithoutTargetsAlsoPrintsStrengthAndOnset) {
+  const auto r = runCli("calibrate " + writeSpec(smallSpec(), "strength.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  const double strength = out.at("tensile_strength").get<double>();
+  const double onset = out.at("crack_onset_strain").get<double>();
+  // Before the first break the sample is linear: the peak lies at or above E × onset strain, below
+  // the stress the beams would carry with no pore at all (σ_f × section fraction is far above it).
+  EXPECT_GT(onset, 0.0);
+  EXPECT_LT(onset, 0.01);
+  EXPECT_GE(strength, 0.97 * out.at("young_modulus").get<double>() * onset);
+  EXPECT_GE(out.at("strain_at_peak").get<double>(), onset * 0.97);
+}
+
+// Round trip (issue 13): fit σ_f to a strength S, then the plain test with the fitted σ_f gives S
+// within 5 %, on two sample seeds and two targets below and above the Table 3 beams' strength.
+TEST(CliCalibrate, TensileStrengthRoundTrip) {
+  const std::pair<int, double> cases[] = {{3, 60e6}, {8, 150e6}};
+  for (const auto& [seed, target] : cases) {
+    nlohmann::json spec = smallSpec();
+    spec["sample"]["size"] = {0.1e-6, 0.1e-6};
+    spec["sample"]["seed"] = seed;
+    const auto fit = runCli("calibrate " + writeSpec(spec, "fit" + std::to_string(seed) + ".json") +
+                            " --target-tensile-strength " + std::to_string(target));
+    ASSERT_EQ(fit.exitCode, 0) << fit.err;
+    const auto fitted = nlohmann::json::parse(fit.out);
+    const double sigmaF = fitted.at("beam").at("failure_stress").get<double>();
+    EXPECT_NEAR(fitted.at("achieved").at("tensile_strength").get<double>(), target, 0.05 * target);
+    EXPECT_EQ(fitted.at("target").at("tensile_strength").get<double>(), target);
+    spec["material"]["beam"]["failure_stress"] = sigmaF;
+    const auto check = runCli("calibrate " + writeSpec(spec, "check" + std::to_string(seed) + ".json"));
+    ASSERT_EQ(check.exitCode, 0) << check.err;
+    EXPECT_NEAR(nlohmann::json::parse(check.out).at("tensile_strength").get<double>(), target, 0.05 * target)
+        << "seed " << seed << ", fitted failure stress " << sigmaF;
+  }
+}
+
+TEST(CliCalibrate, BadStrengthTargetExitsTwoNamingTheOption) {
+  const std::string spec = writeSpec(smallSpec(), "badtarget.json");
+  for (const char* value : {"-5e6", "0", "abc", "inf"}) {
+    const auto r = runCli("calibrate " + spec + " --target-tensile-strength " + value);
+    EXPECT_EQ(r.exitCode, 2) << value;
+    EXPECT_NE(r.err.find("--target-tensile-strength"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
 struct BadSpec {
   const char* name;
   nlohmann::json::json_pointer pointer;

@@ -99,6 +99,31 @@ TEST_P(BeamBondInDimension, EndRotationBendingMatchesClampedBeam) {
   EXPECT_LT(relativeError(forceJ(r), {0, 6 * kE * kI * theta / (kL0 * kL0), 0}), 1e-9);
 }
 
+// material.beam.bending_stress: the moment of eq. (1). An end rotation θ of j alone gives the end
+// moments 2EIθ/L and 4EIθ/L: "end_moment" takes the larger, "relative_rotation" EIθ/L (σ = E r θ / L).
+// A sideways end displacement turns the chord without turning the disks: "end_moment" sees the
+// clamped moment 6EIδ/L², "relative_rotation" no bending at all (only the δ²/2L stretch).
+TEST_P(BeamBondInDimension, BendingStressFollowsTheChosenMoment) {
+  const double r = kRatio * kRadius;
+  for (const bool relative : {false, true}) {
+    SCOPED_TRACE(relative);
+    Pair rotated(GetParam());
+    rotated.beam.bendingFromRelativeRotation = relative;
+    const double theta = 1e-4;
+    rotated.rotate(1, Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ())));
+    const double moment = (relative ? 1.0 : 4.0) * kE * kI * theta / kL0;
+    EXPECT_NEAR(rotated.response().equivalentStress, moment * r / kI, 1e-9 * moment * r / kI);
+
+    Pair moved(GetParam());
+    moved.beam.bendingFromRelativeRotation = relative;
+    const double delta = 1e-9;
+    moved.move(1, {0, delta, 0});
+    const double clamped = 6 * kE * kI * delta / (kL0 * kL0) * r / kI;
+    const double stretch = kE * (std::hypot(kL0, delta) - kL0) / kL0;
+    EXPECT_NEAR(moved.response().equivalentStress, relative ? stretch : clamped + stretch, 1e-6 * clamped);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(TwoAndThreeD, BeamBondInDimension, ::testing::Values(2, 3));
 
 TEST(BeamBond3D, TorsionGivesGJOverL) {

@@ -267,9 +267,13 @@ TEST(DynamicTensionOutput, PreliminaryRunIsCached) {
   EXPECT_TRUE(fs::exists(a.readAttributeString("/preliminary", "cache_file")));
   EXPECT_EQ(first.summary["peak_stress"], second.summary["peak_stress"]);  // bit-identical field
   EXPECT_EQ(first.summary["steps"], second.summary["steps"]);
+  // The packed sample is cached too (scenarios/sample_cache.hpp), and gives the same run.
+  EXPECT_EQ(first.summary["sample_from_cache"], 0);
+  EXPECT_EQ(second.summary["sample_from_cache"], 1);
+  EXPECT_EQ(first.summary["bonds"], second.summary["bonds"]);
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(dir / "cache")) entries += e.path().extension() == ".h5";
-  EXPECT_EQ(entries, 1u);  // no temporary left behind
+  EXPECT_EQ(entries, 2u);  // the preliminary run and the sample; no temporary left behind
 }
 
 TEST(DynamicTensionOutput, CancelledRunLeavesAValidIncompleteFile) {

@@ -39,7 +39,8 @@ nlohmann::json smallSpec() {
 
 const std::vector<std::string> kAlways = {"young_modulus", "poisson_ratio", "converged", "relaxation_steps",
                                           "elements",      "bonds",         "mean_coordination", "porosity",
-                                          "wall_time_s",   "completed"};
+                                          "wall_time_s",   "completed",     "tensile_strength",
+                                          "crack_onset_strain", "strain_at_peak"};
 const std::vector<std::string> kWithTarget = {"beam_young_modulus", "beam_radius_ratio", "target_young_modulus",
                                               "target_poisson_ratio", "evaluations"};
 
@@ -99,6 +100,10 @@ TEST(ElasticPropertiesScenario, InvalidSpecsNameTheField) {
   s["target"] = {{"young_modulus", 150e9}};
   EXPECT_EQ(rejectedField(s), "target.poisson_ratio");
   s = smallSpec();
+  s["target"] = {{"tensile_strength", -1.0}};
+  EXPECT_EQ(rejectedField(s), "target.tensile_strength");
+  s["target"] = nlohmann::json::object();
+  EXPECT_EQ(rejectedField(s), "target");
   s["target"] = {{"young_modulus", 150e9}, {"poisson_ratio", 0.4}, {"extra", 1}};
   EXPECT_EQ(rejectedField(s), "target.extra");
   s = smallSpec();
@@ -157,6 +162,11 @@ TEST(ElasticPropertiesScenario, MeasuresLikeTheCalibrationAndWritesEveryAttribut
   EXPECT_EQ(r.summary["relaxation_steps"].get<std::int64_t>(), static_cast<std::int64_t>(direct.steps));
   EXPECT_EQ(r.summary["elements"].get<std::int64_t>(), static_cast<std::int64_t>(report.elements));
   EXPECT_EQ(r.summary["bonds"].get<std::int64_t>(), static_cast<std::int64_t>(report.bonds));
+  // The strength figures are those of the quasi-static strength test on the same sample.
+  const StrengthResult strength = measureTensileStrength(sample, sampleSpec);
+  EXPECT_NEAR(r.summary["tensile_strength"].get<double>(), strength.tensileStrength, 1e-9 * strength.tensileStrength);
+  EXPECT_NEAR(r.summary["crack_onset_strain"].get<double>(), strength.crackOnsetStrain, 1e-9 * strength.crackOnsetStrain);
+  EXPECT_GT(strength.tensileStrength, 0.9 * E * strength.crackOnsetStrain);
 
   ASSERT_TRUE(fs::exists(out));
   EXPECT_FALSE(fs::exists(out.string() + ".part"));

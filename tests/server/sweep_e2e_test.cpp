@@ -76,11 +76,19 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
     EXPECT_GT(run["summary"]["peak_stress"].get<double>(), 0);
   }
   // The V0 runs needed the sample's preliminary run (its wave speed sets the ramp): computed once
-  // for both, and cached inside the data directory.
-  std::size_t cached = 0;
-  for (const auto& entry : fs::directory_iterator(live.dataDir() / "cache"))
-    cached += entry.path().extension() == ".h5";
+  // for both, and cached inside the data directory; so is the packed sample, shared by all four.
+  std::size_t cached = 0, samples = 0;
+  for (const auto& entry : fs::directory_iterator(live.dataDir() / "cache")) {
+    if (entry.path().extension() != ".h5") continue;
+    const bool sample = entry.path().filename().string().rfind("bonded-sample-", 0) == 0;
+    samples += sample;
+    cached += !sample;
+  }
   EXPECT_EQ(cached, 1u);
+  EXPECT_EQ(samples, 1u);
+  int fromCache = 0;
+  for (const auto& run : done["runs"]) fromCache += run["summary"]["sample_from_cache"].get<int>();
+  EXPECT_EQ(fromCache, 3);  // the first run packs it, the three others read it
 
   // Summary as JSON: 4 rows, swept values, positive peak stress.
   Json summary = getJson(*client, "/jobs/" + id + "/summary");
