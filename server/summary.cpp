@@ -14,7 +14,9 @@ namespace {
 const std::vector<std::pair<std::string, std::string>>& knownScalars() {
   static const std::vector<std::pair<std::string, std::string>> list = {
       {"peak_stress", "Pa"},        {"strain_at_peak", ""}, {"crack_onset_strain", ""},
-      {"broken_bond_fraction", ""}, {"fragments", ""},      {"equilibrium_ratio", ""},
+      {"broken_bond_fraction", ""}, {"fragments", ""},      {"debris", ""},
+      {"largest_fragment_fraction", ""}, {"cracks_crossing", ""}, {"separated", ""},
+      {"separation_strain", ""},    {"equilibrium_ratio", ""}, {"equilibrium_ratio_at_peak", ""},
       {"steps", ""},                {"wall_time_s", "s"},
   };
   return list;

@@ -189,7 +189,10 @@ const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
       {"stress_xmin_at_peak", "Pa"},  {"stress_xmax_at_peak", "Pa"},  {"max_stress_xmin", "Pa"},
       {"max_stress_xmax", "Pa"},      {"equilibrium_ratio", "1"},     {"crack_onset_strain", "1"},
       {"crack_onset_time", "s"},      {"strain_rate_at_onset", "1/s"}, {"broken_bond_fraction", "1"},  {"broken_bonds", "1"},
-      {"fragments", "1"},             {"final_strain", "1"},          {"final_time", "s"},
+      {"fragments", "1"},             {"debris", "1"},                {"largest_fragment_fraction", "1"},
+      {"cracks_crossing", "1"},       {"separated", "1"},             {"separation_strain", "1"},
+      {"separation_time", "s"},       {"equilibrium_ratio_at_peak", "1"},
+      {"final_strain", "1"},          {"final_time", "s"},
       {"steps", "1"},                 {"time_step", "s"},             {"critical_time_step", "s"},
       {"wall_time_s", "s"},           {"completed", "1"},             {"elements", "1"},
       {"bonds", "1"},                 {"mean_coordination", "1"},     {"porosity", "1"},
@@ -247,8 +250,18 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   if (!pre.cancelled) applyInitialField(system, field, geometry, maxVelocity, preliminary);
   loading.install(system);
 
-  // Main run: one step, the face stresses, the observables, rows and snapshots when due, the stop rule.
+  // Main run: one step, the face stresses, the observables, rows and snapshots when due, the stop rules.
   TensionObservables observed(system.bonds.size());
+  // Separation: no path of intact bonds from X_min to X_max. It can only change when bonds break,
+  // so it is checked after breaks, at most every kSeparationCheckSteps steps (one union–find,
+  // about a tenth of a step). Then the run goes on until no bond broke for settle_round_trips
+  // wave round trips, so that cracks already running finish (C0 measured, else the affine bound).
+  constexpr std::uint64_t kSeparationCheckSteps = 4;
+  std::size_t brokenAtLastCheck = 0;
+  std::uint64_t lastCheckStep = 0;
+  const double settleWaveSpeed = std::isfinite(waveSpeed) ? waveSpeed : affineWaveSpeed(system, geometry);
+  const double settleTime = spec.run.settleRoundTrips * 2.0 * geometry.gaugeLength / settleWaveSpeed;
+  observed.setAveragingTime(settleTime);
   const double outputInterval = spec.outputInterval();
   const std::vector<double>& snapshotStrains = spec.run.snapshotStrains;
   std::size_t nextSnapshot = 0, lastRowStep = 0;
@@ -286,12 +299,32 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
         while (nextOutput <= system.time) nextOutput += outputInterval;
       }
       snapshotsDue();
-      if (observed.postPeakDrop(spec.run.stopFraction)) { stopReason = "post_peak_drop"; break; }
+      if (!observed.separated() && observed.broken() != brokenAtLastCheck &&
+          system.steps - lastCheckStep >= kSeparationCheckSteps) {
+        brokenAtLastCheck = observed.broken();
+        lastCheckStep = system.steps;
+        if (!groupsConnected(system.bonds, system.particles.size(), geometry.xmin, geometry.xmax)) {
+          observed.markSeparated(system.time, strain);
+          logStage(control, "faces separated at strain " + formatNumber(strain));
+        }
+      }
+      if (observed.settledAfterSeparation(system.time, settleTime)) { stopReason = "separated"; break; }
+      // A stalled crack can restart when the ligament is stretched further: at a low rate the quiet
+      // spell is as long as it took to reach the peak (ε_peak / ε̇), at a high rate a round trip.
+      const double unloadedQuietTime =
+          observed.broken() > 0 ? std::max(settleTime, observed.strainAtPeak() / spec.loading.strainRate) : settleTime;
+      if (observed.unloadedAndQuiet(system.time, unloadedQuietTime, spec.run.unloadedFraction)) {
+        stopReason = "unloaded";
+        break;
+      }
+      if (spec.run.stopFraction && observed.postPeakDrop(*spec.run.stopFraction)) {
+        stopReason = "post_peak_drop";
+        break;
+      }
       if (strain >= spec.run.maxStrain) { stopReason = "max_strain"; break; }
       if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
         lastReport = Clock::now();
         const double main = observed.progress(system.time, loading.ramp(), geometry.gaugeLength, spec.run.maxStrain,
-                                              spec.run.stopFraction,
                                               system.maxFailureRatio());
         reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
       }
@@ -300,6 +333,21 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
   }
   recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
   const bool completed = stopReason != "cancelled";
+
+  // The pieces of the final state: macroscopic fragments apart from debris, cracks across the section.
+  const std::size_t elementCount = system.particles.size();
+  const std::size_t minFragment = std::max<std::size_t>(
+      2, static_cast<std::size_t>(std::ceil(spec.output.fragmentMinFraction * static_cast<double>(elementCount))));
+  const FragmentAnalysis pieces = analyseFragments(system.bonds, elementCount, minFragment);
+  const double crackLineSpacing = 2.0 * spec.sample.elementRadius;
+  // A loaded face peeled off as debris is still a piece on its side of the crack (the grip).
+  std::vector<std::int32_t> piece = pieces.elementFragment;
+  const auto fragmentCount = static_cast<std::int32_t>(pieces.fragmentSizes.size());
+  for (std::int32_t k : geometry.xmin) if (piece[k] < 0) piece[k] = fragmentCount;
+  for (std::int32_t k : geometry.xmax) if (piece[k] < 0) piece[k] = fragmentCount + 1;
+  const std::size_t cracks =
+      cracksCrossing(system.particles, spec.sample.dimension, piece, crackLineSpacing, crackLineSpacing);
+  recorder.writeFragments(pieces, minFragment, spec.output.fragmentMinFraction, cracks);
 
   // Summary (SI units; see dynamicTensionSummaryUnits).
   const double onsetTime = observed.onsetTime();
@@ -310,7 +358,12 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
       // The imposed rate when the first bond broke: below strain_rate when a V0 ramp was not over (eq. 7).
       {"strain_rate_at_onset", std::isnan(onsetTime) ? nlohmann::json(nullptr)
                                                      : nlohmann::json(loading.ramp().velocity(onsetTime) / geometry.gaugeLength)},
-      {"fragments", static_cast<std::int64_t>(countFragments(system.bonds, system.particles.size()))},
+      {"fragments", static_cast<std::int64_t>(pieces.fragmentSizes.size())},
+      {"debris", static_cast<std::int64_t>(pieces.debris)},
+      {"largest_fragment_fraction",
+       pieces.fragmentSizes.empty() ? 0.0
+                                    : static_cast<double>(pieces.fragmentSizes.front()) / static_cast<double>(elementCount)},
+      {"cracks_crossing", static_cast<std::int64_t>(cracks)},
       {"final_strain", strain},
       {"final_time", system.time},
       {"steps", static_cast<std::int64_t>(system.steps)},
@@ -350,10 +403,10 @@ Scenario dynamicTensionScenario() {
       "A bonded discrete-element sample is pulled along x: zero x-velocity on the X_min face, an imposed "
       "x-velocity V(t) on the X_max face (sinusoidal rise to V_max = strain_rate x L0 over a ramp time), lateral "
       "faces free. Initial velocity field at rest (V0), linear (VL) or heterogeneous (VH, from a cached "
-      "low-rate preliminary run). Stops after the peak once the mean boundary stress falls below a fraction of "
-      "it. Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
-      "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, fragments and "
-      "equilibrium ratio.";
+      "low-rate preliminary run). Runs until no path of intact bonds joins the two loaded faces and the cracks have "
+      "stopped (or a strain limit). Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
+      "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, macroscopic fragments, debris, cracks "
+      "crossing the section and the equilibrium ratio of the loading branch.";
   s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseDynamicTensionSpec(spec).sample); };
   s.run = runDynamicTension;

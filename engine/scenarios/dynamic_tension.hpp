@@ -6,8 +6,10 @@
 // CSMA 2024, hal-04610894, section 3 (eqs. 3–9).
 //
 // One run: build the sample → (VH, or V0 without a ramp time: the cached preliminary run) →
-// initial velocity field → velocity-Verlet steps with the X_max face velocity imposed → stop after
-// the peak once σ̄ < stop_fraction × peak, or at run.max_strain / run.max_steps / on cancel.
+// initial velocity field → velocity-Verlet steps with the X_max face velocity imposed → stop once
+// no path of intact bonds joins X_min to X_max and no bond broke for run.settle_round_trips wave
+// round trips, or at run.max_strain / run.max_steps / on cancel (or, if run.stop_fraction is set,
+// once σ̄ < stop_fraction × peak) → macroscopic fragments, debris, cracks across the section.
 // Output: one HDF5 file (tension_recorder.hpp), summary scalars in RunOutcome::summary.
 // Documentation: docs/dynamic-tension.md; spec: api/schemas/dynamic-tension.schema.json.
 #include <map>

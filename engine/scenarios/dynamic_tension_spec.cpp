@@ -39,7 +39,9 @@ TensionRunSpec parseRun(const SpecReader& root) {
   const auto run = root.optionalObject("run");
   if (!run) return r;
   r.maxStrain = run->number("max_strain", {0.0, 1.0, true, false}, "1", r.maxStrain);
-  r.stopFraction = run->number("stop_fraction", {0.0, 1.0, false, true}, "1", r.stopFraction);
+  r.settleRoundTrips = run->number("settle_round_trips", Range::closed(0.0, 1e3), "1", r.settleRoundTrips);
+  r.unloadedFraction = run->number("unloaded_fraction", {0.0, 1.0, false, true}, "1", r.unloadedFraction);
+  if (run->has("stop_fraction")) r.stopFraction = run->number("stop_fraction", {0.0, 1.0, false, true}, "1");
   if (run->has("output_interval")) r.outputInterval = run->number("output_interval", Range::positive(), "s");
   if (run->has("snapshot_strains")) {
     r.snapshotStrains = run->numbers("snapshot_strains", 0, 1000, Range::closed(0.0, 1.0), "1");
@@ -58,6 +60,8 @@ TensionOutputSpec parseOutput(const SpecReader& root) {
   if (const auto output = root.optionalObject("output")) {
     o.cachePreliminary = output->boolean("cache_preliminary", o.cachePreliminary);
     o.cacheSample = output->boolean("cache_sample", o.cacheSample);
+    o.fragmentMinFraction =
+        output->number("fragment_min_fraction", {0.0, 1.0, true, false}, "1", o.fragmentMinFraction);
     output->finish();
   }
   return o;
@@ -105,12 +109,16 @@ nlohmann::json toJson(const DynamicTensionSpec& s) {
   if (s.loading.waveSpeed) j["loading"]["wave_speed"] = *s.loading.waveSpeed;
   if (s.loading.vhCaptureStrain) j["loading"]["vh_capture_strain"] = *s.loading.vhCaptureStrain;
   j["run"] = {{"max_strain", s.run.maxStrain},
-              {"stop_fraction", s.run.stopFraction},
+              {"settle_round_trips", s.run.settleRoundTrips},
+              {"unloaded_fraction", s.run.unloadedFraction},
               {"output_interval", s.outputInterval()},
               {"snapshot_strains", s.run.snapshotStrains},
               {"time_step_safety", s.run.timeStepSafety},
               {"max_steps", s.run.maxSteps}};
-  j["output"] = {{"cache_preliminary", s.output.cachePreliminary}, {"cache_sample", s.output.cacheSample}};
+  if (s.run.stopFraction) j["run"]["stop_fraction"] = *s.run.stopFraction;
+  j["output"] = {{"cache_preliminary", s.output.cachePreliminary},
+                 {"cache_sample", s.output.cacheSample},
+                 {"fragment_min_fraction", s.output.fragmentMinFraction}};
   return j;
 }
 

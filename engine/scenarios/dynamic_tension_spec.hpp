@@ -32,8 +32,12 @@ struct TensionLoadingSpec {
 };
 
 struct TensionRunSpec {
-  double maxStrain = 0.01;                   ///< stop at this strain (1)
-  double stopFraction = 0.1;                 ///< stop once σ̄ < stopFraction × peak after damage (1)
+  double maxStrain = 0.01;                   ///< strain limit: stop here if not separated before (1)
+  double settleRoundTrips = 1;               ///< after separation, stop once no bond broke for this many
+                                             ///< wave round trips 2 L0 / C0 (1)
+  double unloadedFraction = 0.1;             ///< stop a broken, quiet sample whose averaged σ̄ is below
+                                             ///< this fraction of the peak, even if still joined (1)
+  std::optional<double> stopFraction;        ///< if set, also stop once σ̄ < stopFraction × peak after damage (1)
   std::optional<double> outputInterval;      ///< time between series rows (s); default 5e-6 / ε̇
   std::vector<double> snapshotStrains;       ///< strains at which snapshots are written (1), sorted
   double timeStepSafety = 0.15;              ///< dt = safety × critical step (1)
@@ -43,6 +47,7 @@ struct TensionRunSpec {
 struct TensionOutputSpec {
   bool cachePreliminary = true;  ///< reuse / store the preliminary run in the cache directory
   bool cacheSample = true;       ///< reuse / store the packed sample in the cache directory (sample_cache.hpp)
+  double fragmentMinFraction = 0.01;  ///< macroscopic fragment: at least this fraction of the elements (1)
 };
 
 struct DynamicTensionSpec {

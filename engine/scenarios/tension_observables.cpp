@@ -7,6 +7,7 @@ namespace rupture {
 
 namespace {
 nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+constexpr std::size_t kMaxCheckpoints = 4096;
 }  // namespace
 
 void TensionObservables::observe(double time, double strain, const FaceStresses& stress, std::size_t brokenThisStep) {
@@ -18,24 +19,62 @@ void TensionObservables::observe(double time, double strain, const FaceStresses&
       m_onsetTime = time;
     }
     m_broken += brokenThisStep;
+    m_lastBreakTime = time;
   }
+  const double dt = time - m_lastTime;
+  m_lastTime = time;
+  m_averageMean = m_averagingTime > 0 ? m_averageMean + std::min(1.0, dt / m_averagingTime) * (stress.mean - m_averageMean)
+                                      : stress.mean;
+  m_sumDifference += std::abs(stress.xmax - stress.xmin);
+  m_sumMean += stress.mean;
   if (stress.mean > m_peak) {
     m_peak = stress.mean;
     m_strainAtPeak = strain;
     m_timeAtPeak = time;
     m_xminAtPeak = stress.xmin;
     m_xmaxAtPeak = stress.xmax;
+    m_sumDifferenceAtPeak = m_sumDifference;
+    m_sumMeanAtPeak = m_sumMean;
   }
   m_maxXmin = std::max(m_maxXmin, stress.xmin);
   m_maxXmax = std::max(m_maxXmax, stress.xmax);
+  if (++m_steps % m_stride == 0) {
+    if (m_checkpoints.size() == kMaxCheckpoints) {  // keep every other one, twice the stride
+      for (std::size_t k = 0; k < kMaxCheckpoints / 2; ++k) m_checkpoints[k] = m_checkpoints[2 * k + 1];
+      m_checkpoints.resize(kMaxCheckpoints / 2);
+      m_stride *= 2;
+    }
+    if (m_steps % m_stride == 0) m_checkpoints.push_back({strain, m_sumDifference, m_sumMean});
+  }
 }
 
 bool TensionObservables::postPeakDrop(double stopFraction) const {
   return m_broken > 0 && m_peak > 0 && m_last.mean < stopFraction * m_peak;
 }
 
+void TensionObservables::markSeparated(double time, double strain) {
+  if (m_separated) return;
+  m_separated = true;
+  m_separationTime = time;
+  m_separationStrain = strain;
+}
+
+double TensionObservables::loadingEquilibriumRatio() const {
+  if (!(m_peak > 0)) return kNaN;
+  // Sums before the window: the last checkpoint below ¼ ε_peak (none: the window starts at step 1).
+  const double start = 0.25 * m_strainAtPeak;
+  double difference = 0, mean = 0;
+  for (const Checkpoint& c : m_checkpoints) {
+    if (c.strain >= start) break;
+    difference = c.sumDifference;
+    mean = c.sumMean;
+  }
+  const double windowMean = m_sumMeanAtPeak - mean;
+  return windowMean > 0 ? (m_sumDifferenceAtPeak - difference) / windowMean : kNaN;
+}
+
 double TensionObservables::progress(double time, const VelocityRamp& ramp, double gaugeLength, double maxStrain,
-                                    double stopFraction, double worstBondStressRatio) const {
+                                    double worstBondStressRatio) const {
   double p = 0;
   if (m_broken == 0) {
     if (worstBondStressRatio > 1e-3) {
@@ -43,14 +82,14 @@ double TensionObservables::progress(double time, const VelocityRamp& ramp, doubl
       p = onset > 0 ? 0.5 * std::min(1.0, time / onset) : 0.0;
     }
   } else {
-    p = 0.5 + 0.5 * std::clamp((m_peak - m_last.mean) / (m_peak * (1.0 - stopFraction)), 0.0, 1.0);
+    p = 0.5 + 0.5 * std::clamp((m_peak - m_last.mean) / m_peak, 0.0, 1.0);
   }
   return std::clamp(std::max(p, m_strain / maxStrain), 0.0, 1.0);
 }
 
 nlohmann::json TensionObservables::summary() const {
   const bool peakFound = std::isfinite(m_peak);
-  const double ratio = peakFound && m_peak != 0 ? std::abs(m_xminAtPeak - m_xmaxAtPeak) / std::abs(m_peak) : kNaN;
+  const double atPeak = peakFound && m_peak != 0 ? std::abs(m_xminAtPeak - m_xmaxAtPeak) / std::abs(m_peak) : kNaN;
   return {{"peak_stress", nullIfNaN(peakFound ? m_peak : kNaN)},
           {"strain_at_peak", nullIfNaN(m_strainAtPeak)},
           {"time_at_peak", nullIfNaN(m_timeAtPeak)},
@@ -58,11 +97,15 @@ nlohmann::json TensionObservables::summary() const {
           {"stress_xmax_at_peak", nullIfNaN(m_xmaxAtPeak)},
           {"max_stress_xmin", m_maxXmin},
           {"max_stress_xmax", m_maxXmax},
-          {"equilibrium_ratio", nullIfNaN(ratio)},
+          {"equilibrium_ratio", nullIfNaN(loadingEquilibriumRatio())},
+          {"equilibrium_ratio_at_peak", nullIfNaN(atPeak)},
           {"crack_onset_strain", nullIfNaN(m_onsetStrain)},
           {"crack_onset_time", nullIfNaN(m_onsetTime)},
           {"broken_bond_fraction", brokenFraction()},
-          {"broken_bonds", static_cast<std::int64_t>(m_broken)}};
+          {"broken_bonds", static_cast<std::int64_t>(m_broken)},
+          {"separated", m_separated ? 1 : 0},
+          {"separation_strain", nullIfNaN(m_separationStrain)},
+          {"separation_time", nullIfNaN(m_separationTime)}};
 }
 
 }  // namespace rupture

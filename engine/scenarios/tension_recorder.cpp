@@ -107,6 +107,23 @@ void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFr
   ++m_snapshots;
 }
 
+void TensionRecorder::writeFragments(const FragmentAnalysis& fragments, std::size_t minElements, double minFraction,
+                                     std::size_t cracksCrossing) {
+  m_file.createGroup("/fragments");
+  writeAttributes("/fragments",
+                  {{"min_elements", static_cast<std::int64_t>(minElements)},
+                   {"min_fraction", minFraction},
+                   {"count", static_cast<std::int64_t>(fragments.fragmentSizes.size())},
+                   {"debris", static_cast<std::int64_t>(fragments.debris)},
+                   {"debris_elements", static_cast<std::int64_t>(fragments.debrisElements)},
+                   {"cracks_crossing", static_cast<std::int64_t>(cracksCrossing)}},
+                  {});
+  const std::vector<std::int32_t> sizes(fragments.fragmentSizes.begin(), fragments.fragmentSizes.end());
+  m_file.writeDataset("/fragments/sizes", sizes, {sizes.size()}, "1");
+  m_file.writeDataset("/fragments/element_fragment", fragments.elementFragment, {fragments.elementFragment.size()},
+                      "1");
+}
+
 void TensionRecorder::finish(bool completed) {
   const auto& names = seriesNamesAndUnits();
   const std::size_t rows = m_rows.size();

@@ -9,6 +9,9 @@
 //   /series/<name>     1-D float64 datasets with a "unit" attribute, one row per output interval
 //   /snapshots/<k>     position {n,3}, velocity {n,3}, stress {n,3,3}, damage {n}, radius {n},
 //                      bond_intact {m} (uint8; rows of /sample/bonds); attributes time, strain, step, trigger
+//   /fragments   attributes min_elements, min_fraction, count, debris, debris_elements,
+//                cracks_crossing; datasets sizes {k} (int32, elements per macroscopic fragment, largest
+//                first), element_fragment {n} (int32: index in sizes, −1 for debris); at the end
 //   /summary     attributes (SI), each with a companion "<name>_unit"
 // The file's life cycle (RESULT.part renamed by finish(), deleted if unfinished), /, /spec and the
 // scalar groups are io::ResultFile's.
@@ -22,6 +25,7 @@
 #include "dem/bonded_system.hpp"
 #include "dem/sample_builder.hpp"
 #include "io/result_file.hpp"
+#include "scenarios/bond_network.hpp"
 #include "scenarios/tension_loading.hpp"
 
 namespace rupture {
@@ -52,6 +56,10 @@ public:
   void writeSnapshot(const BondedSystem& system, double packingFraction, double thickness2d, double strain,
                      const std::string& trigger);
   std::size_t snapshotCount() const { return m_snapshots; }
+
+  /// Writes /fragments: the pieces of the final state (minElements = the size threshold used).
+  void writeFragments(const FragmentAnalysis& fragments, std::size_t minElements, double minFraction,
+                      std::size_t cracksCrossing);
 
   /// Writes /series, marks "/" completed, closes and renames the partial file onto the result.
   void finish(bool completed);

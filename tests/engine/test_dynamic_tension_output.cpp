@@ -98,7 +98,9 @@ const char* const kSeries[] = {"time", "strain", "stress_xmin", "stress_xmax", "
                                "broken_bond_fraction", "kinetic_energy", "elastic_energy"};
 const char* const kSummary[] = {"peak_stress", "strain_at_peak", "crack_onset_strain", "broken_bond_fraction",
                                 "fragments", "equilibrium_ratio", "steps", "wall_time_s", "completed",
-                                "elements", "bonds", "mean_coordination", "porosity", "time_step"};
+                                "elements", "bonds", "mean_coordination", "porosity", "time_step",
+                                "equilibrium_ratio_at_peak", "debris", "largest_fragment_fraction",
+                                "cracks_crossing", "separated", "separation_strain", "separation_time"};
 
 TEST(DynamicTensionOutput, FileHasTheDocumentedLayout) {
   ScratchDir dir;
@@ -147,9 +149,19 @@ TEST(DynamicTensionOutput, FileHasTheDocumentedLayout) {
   }
   EXPECT_EQ(f.attributeString("/summary", "peak_stress_unit"), "Pa");
   EXPECT_EQ(f.attributeString("/summary", "wall_time_s_unit"), "s");
-  EXPECT_EQ(f.attributeString("/summary", "stop_reason"), "post_peak_drop");
+  // At 1e7 /s the faces separate and cracks keep running until the example's strain limit.
+  EXPECT_EQ(f.attributeString("/summary", "stop_reason"), "max_strain");
+  EXPECT_EQ(summary["separated"], 1);
+  EXPECT_GT(summary["separation_strain"].get<double>(), summary["strain_at_peak"].get<double>());
   EXPECT_GT(summary["peak_stress"].get<double>(), 1e7);
-  EXPECT_GE(summary["fragments"].get<std::int64_t>(), 1);
+  EXPECT_GE(summary["fragments"].get<std::int64_t>(), 2);
+
+  // /fragments: sizes (largest first, as many as the summary's fragments) and the element map.
+  const auto k = static_cast<hsize_t>(summary["fragments"].get<std::int64_t>());
+  EXPECT_EQ(f.dims("/fragments/sizes"), (std::vector<hsize_t>{k}));
+  EXPECT_EQ(f.attributeDouble("/fragments", "count"), static_cast<double>(k));
+  EXPECT_EQ(f.attributeDouble("/fragments", "debris"), summary["debris"].get<double>());
+  EXPECT_EQ(f.attributeDouble("/fragments", "cracks_crossing"), summary["cracks_crossing"].get<double>());
 
   // /sample and /preliminary.
   const auto n = static_cast<hsize_t>(summary["elements"].get<std::int64_t>());
@@ -157,6 +169,7 @@ TEST(DynamicTensionOutput, FileHasTheDocumentedLayout) {
   EXPECT_EQ(f.dims("/sample/bonds"), (std::vector<hsize_t>{m, 2}));
   EXPECT_EQ(f.dims("/sample/radius"), (std::vector<hsize_t>{n}));
   EXPECT_EQ(f.dims("/sample/face_group"), (std::vector<hsize_t>{n}));
+  EXPECT_EQ(f.dims("/fragments/element_fragment"), (std::vector<hsize_t>{n}));
   EXPECT_EQ(f.attributeDouble("/preliminary", "used"), 1.0);
   for (const char* name : {"strain_rate", "capture_strain", "capture_time", "steps", "modulus", "wave_speed"})
     EXPECT_TRUE(f.hasAttribute("/preliminary", name)) << name;

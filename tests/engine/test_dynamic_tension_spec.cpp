@@ -39,6 +39,9 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
   EXPECT_EQ(with([](auto& s) { s["loading"]["vh_capture_strain"] = 0.5; }), "loading.vh_capture_strain");
   EXPECT_EQ(with([](auto& s) { s["loading"]["speed"] = 1; }), "loading.speed");
   EXPECT_EQ(with([](auto& s) { s["run"] = {{"stop_fraction", 1.0}}; }), "run.stop_fraction");
+  EXPECT_EQ(with([](auto& s) { s["run"] = {{"settle_round_trips", -1}}; }), "run.settle_round_trips");
+  EXPECT_EQ(with([](auto& s) { s["run"] = {{"unloaded_fraction", 1}}; }), "run.unloaded_fraction");
+  EXPECT_EQ(with([](auto& s) { s["output"] = {{"fragment_min_fraction", 0}}; }), "output.fragment_min_fraction");
   EXPECT_EQ(with([](auto& s) { s["run"] = {{"max_steps", 0}}; }), "run.max_steps");
   EXPECT_EQ(with([](auto& s) { s["run"] = {{"snapshot_strains", {0.001, -1}}}; }), "run.snapshot_strains");
   EXPECT_EQ(with([](auto& s) { s["run"] = {{"every", 3}}; }), "run.every");
@@ -92,7 +95,10 @@ TEST(DynamicTensionSpec, DefaultsAndResolvedRoundTrip) {
   EXPECT_FALSE(s.loading.waveSpeed);
   EXPECT_FALSE(s.loading.vhCaptureStrain);
   EXPECT_DOUBLE_EQ(s.run.maxStrain, 0.01);
-  EXPECT_DOUBLE_EQ(s.run.stopFraction, 0.1);
+  EXPECT_DOUBLE_EQ(s.run.settleRoundTrips, 1.0);
+  EXPECT_DOUBLE_EQ(s.run.unloadedFraction, 0.1);
+  EXPECT_FALSE(s.run.stopFraction);  // the stop rule is separation unless a post-peak drop is asked for
+  EXPECT_DOUBLE_EQ(s.output.fragmentMinFraction, 0.01);
   EXPECT_DOUBLE_EQ(s.run.timeStepSafety, 0.15);
   EXPECT_DOUBLE_EQ(s.outputInterval(), 5e-6 / 1e6);
   EXPECT_TRUE(s.run.snapshotStrains.empty());
@@ -108,10 +114,12 @@ TEST(DynamicTensionSpec, DefaultsAndResolvedRoundTrip) {
   full["loading"]["wave_speed"] = 5000.0;
   full["loading"]["vh_capture_strain"] = 1e-4;
   full["run"]["snapshot_strains"] = {4e-4, 0.0, 4e-4};
+  full["run"]["stop_fraction"] = 0.2;
   const DynamicTensionSpec f = parseDynamicTensionSpec(full);
   EXPECT_EQ(f.run.snapshotStrains, (std::vector<double>{0.0, 4e-4}));  // sorted, duplicates dropped
   const nlohmann::json fr = toJson(f);
   EXPECT_EQ(fr["loading"]["ramp_time"], 2e-9);
+  EXPECT_EQ(fr["run"]["stop_fraction"], 0.2);
   EXPECT_EQ(toJson(parseDynamicTensionSpec(fr)), fr);
 }
 
@@ -123,7 +131,7 @@ TEST(DynamicTensionSpec, SchemaAgreesWithTheParser) {
   EXPECT_FALSE(schema["additionalProperties"].get<bool>());
   const nlohmann::json& props = schema["properties"];
   const nlohmann::json valid = {{"ramp_time", 1e-9},  {"wave_speed", 5000.0}, {"vh_capture_strain", 1e-4},
-                                {"output_interval", 1e-12}, {"snapshot_strains", {1e-4}}};
+                                {"output_interval", 1e-12}, {"snapshot_strains", {1e-4}}, {"stop_fraction", 0.1}};
   for (const char* section : {"loading", "run", "output"}) {
     const nlohmann::json& sectionProps = props[section]["properties"];
     EXPECT_FALSE(props[section]["additionalProperties"].get<bool>()) << section;

@@ -66,10 +66,12 @@ inline nlohmann::json runToFile(const nlohmann::json& spec, const fs::path& file
   return outcome.summary;
 }
 
-inline nlohmann::json runSmall(double strainRate, const std::string& field, const nlohmann::json& loadingExtra = {}) {
+inline nlohmann::json runSmall(double strainRate, const std::string& field, const nlohmann::json& loadingExtra = {},
+                               const nlohmann::json& runExtra = {}) {
   ScratchDir dir;
   nlohmann::json spec = smallSpec(strainRate, field);
   for (const auto& [k, v] : loadingExtra.items()) spec["loading"][k] = v;
+  for (const auto& [k, v] : runExtra.items()) spec["run"][k] = v;
   return runToFile(spec, dir / "run.h5");
 }
 
