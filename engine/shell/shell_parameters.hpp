@@ -21,7 +21,7 @@ struct ShellParameters {
   double hourglassCoefficient = 0.05;    ///< α of the pair-wise hourglass control, [0, 1]
   double rotaryInertiaScale = 1.0;       ///< s_I >= 1: I = s_I ρ t³/12 per unit area
   double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
-  double courantFactor = 0.5;            ///< fraction of the estimated critical step, (0, 1]
+  double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
 };
 
 /// Throws SpecError naming `<prefix>.<field>`.
