@@ -10,7 +10,7 @@ namespace rupture {
 
 struct ShellParameters {
   double thickness = 2.0e-3;             ///< t (m)
-  double density = 2780.0;               ///< ρ (kg/m³), AU4G 2024-T351
+  double density = 2770.0;               ///< ρ (kg/m³), AU4G 2024-T351
   ElasticPlasticMaterial material;       ///< E, ν, isotropic hardening (defaults: 2024-T351)
   bool plasticity = true;                ///< false: linear elastic (no return mapping)
   bool damage = false;                   ///< Lemaitre–Chaboche with delay at every layer

@@ -161,3 +161,30 @@ TEST(Plasticity, BadParametersNameTheField) {
 
 }  // namespace
 }  // namespace rupture
+
+#include "plasticity/material_presets.hpp"
+
+namespace rupture {
+namespace {
+
+TEST(MaterialPresets, PresetsAreValidAndNamed) {
+  for (const char* name : {"au4g_2024_t351", "steel_4340"}) {
+    const MaterialPreset p = materialPreset(name, "material");
+    EXPECT_STREQ(p.name, name);
+    EXPECT_NO_THROW(validateElasticPlastic(p.material, "material"));
+    EXPECT_NO_THROW(validateDamage(p.damage, "damage"));
+    EXPECT_EQ(p.damage.poissonRatio, p.material.poissonRatio);
+  }
+  // Johnson & Cook (1983): 2024-T351 flows at A = 265 MPa and hardens to A + B at p = 1.
+  const MaterialPreset al = au4g2024T351();
+  EXPECT_DOUBLE_EQ(al.material.hardening.yieldStress(1.0), 691.0e6);
+  try {
+    materialPreset("au4g", "shell.material.preset");
+    FAIL();
+  } catch (const SpecError& e) {
+    EXPECT_EQ(e.field(), "shell.material.preset");
+  }
+}
+
+}  // namespace
+}  // namespace rupture
