@@ -75,8 +75,7 @@ public:
   /// Sets the damage of every layer of node i to D_c and applies the fracture rule (tests, and
   /// pre-cracks given as a set of failed stress points).
   void fractureNode(std::size_t i);
-  /// Kinetic energy (translation + rotation) and stored internal energy rate are not tracked
-  /// separately; this is the kinetic energy (J).
+  /// Kinetic energy of translation and of the director rotation (J).
   double kineticEnergy() const;
 
 private:
