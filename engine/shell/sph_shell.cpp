@@ -410,6 +410,15 @@ void SphShell::step(double dt) {
   m_time += dt;
 }
 
+void SphShell::setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal,
+                            const ShellVec3& velocity) {
+  const double len = std::sqrt(dot(normal, normal));
+  if (i >= m_position.size() || !(len > 0.0)) throw std::invalid_argument("SphShell::setNodeState: bad node or normal");
+  m_position[i] = position;
+  m_normal[i] = {normal[0] / len, normal[1] / len, normal[2] / len};
+  m_velocity[i] = velocity;
+}
+
 void SphShell::advance(int steps, double dt, const Cancellation& cancel) {
   for (int s = 0; s < steps; ++s) {
     cancel.throwIfRequested();

@@ -54,6 +54,10 @@ public:
   /// rotary inertia) over the node spacing (see docs/shell-and-damage.md, "Time step").
   double stableTimeStep() const { return m_stableStep; }
 
+  /// Sets the state of node i (initial conditions, prescribed motion of clamped nodes): position
+  /// (m), pseudo-normal (normalised here) and velocity (m/s).
+  void setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal, const ShellVec3& velocity);
+
   /// One explicit central-difference step of size dt.
   void step(double dt);
   /// `steps` steps of size dt; polls `cancel` every step (throws RunCancelled).
