@@ -71,6 +71,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   m_spin.assign(n, {0.0, 0.0, 0.0});
   m_force.assign(n, {0.0, 0.0, 0.0});
   m_directorForce.assign(n, {0.0, 0.0, 0.0});
+  m_external.assign(n, {0.0, 0.0, 0.0});
   m_gradX.assign(n, {1.0, 0.0, 0.0, 0.0, 1.0, 0.0});
   m_gradN.assign(n, {});
   m_stressP.assign(n, {});
@@ -366,6 +367,7 @@ void SphShell::computeForces(double dt) {
       const ShellVec3 areaNormal = m_hasGradient[i] ? cross(column(Ai, 0), column(Ai, 1)) : m_normal[i];
       for (int a = 0; a < 3; ++a) f[a] += pressure * m_area[i] * areaNormal[a];
     }
+    for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
     m_force[i] = f;
     m_directorForce[i] = g;
   }

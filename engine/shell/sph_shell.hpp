@@ -49,6 +49,12 @@ public:
   /// A_1 × A_2 (+z in the reference). The force follows the deformed area (a follower load).
   void setPressure(double p) { m_pressure = p; }
 
+  /// External force on node i (N), added to the internal forces at every step until changed:
+  /// the hook for fluid–structure contact and other loads given per node.
+  void setExternalForce(std::size_t i, const ShellVec3& force) { m_external.at(i) = force; }
+  /// Integration area ω_i of node i (m²): the mid-surface area it represents.
+  double integrationArea(std::size_t i) const { return m_area[i]; }
+
   /// Estimated critical time step (s) times the Courant factor: the largest frequency of the
   /// membrane/shear translation and of the rotation (bending + transverse shear against the
   /// rotary inertia) over the node spacing (see docs/shell-and-damage.md, "Time step").
@@ -99,7 +105,7 @@ private:
   std::vector<std::array<double, 2>> m_reference;
   std::vector<double> m_volume, m_area, m_mass, m_inertia;
   std::vector<std::uint8_t> m_clamped, m_fractured, m_hasGradient;
-  std::vector<ShellVec3> m_position, m_velocity, m_normal, m_spin, m_force, m_directorForce;
+  std::vector<ShellVec3> m_position, m_velocity, m_normal, m_spin, m_force, m_directorForce, m_external;
   std::vector<std::array<double, 6>> m_gradX, m_gradN;  ///< A_α, G_α (α-major: a0,a1,a2, b0,b1,b2)
   std::vector<std::array<double, 6>> m_stressP, m_stressR;  ///< conjugates of A_α and G_α
   std::vector<std::array<double, 2>> m_shearQ;              ///< ω_i Q_i (transverse shear)
