@@ -462,6 +462,10 @@ void SphShell::fractureNode(std::size_t i) {
   }
   m_fractured[i] = 1;
   cutLinksOf(i);
+  rebuildAfterCuts();
+}
+
+void SphShell::rebuildAfterCuts() {
   // Nodes left without a first-order gradient become fragments: their links go too.
   for (bool changed = true; changed;) {
     buildCorrections();
@@ -476,6 +480,36 @@ void SphShell::fractureNode(std::size_t i) {
         }
     }
   }
+}
+
+namespace {
+/// True when the segments [p, q] and [a, b] cross at a point interior to both.
+bool segmentsCross(const std::array<double, 2>& p, const std::array<double, 2>& q, const std::array<double, 2>& a,
+                   const std::array<double, 2>& b) {
+  auto orient = [](const std::array<double, 2>& o, const std::array<double, 2>& u, const std::array<double, 2>& v) {
+    return (u[0] - o[0]) * (v[1] - o[1]) - (u[1] - o[1]) * (v[0] - o[0]);
+  };
+  return orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+}
+}  // namespace
+
+void SphShell::cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b) {
+  for (std::size_t i = 0; i < m_reference.size(); ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
+      if (m_active[p] && segmentsCross(m_reference[i], m_reference[m_neighbour[p]], a, b)) {
+        m_active[p] = 0;
+        m_active[m_reverse[p]] = 0;
+      }
+  rebuildAfterCuts();
+}
+
+std::size_t SphShell::linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < m_reference.size(); ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
+      if (m_active[p] && m_neighbour[p] > i && segmentsCross(m_reference[i], m_reference[m_neighbour[p]], a, b))
+        ++count;
+  return count;
 }
 
 void SphShell::cutLinksOf(std::size_t i) {

@@ -85,6 +85,12 @@ public:
   /// Sets the damage of every layer of node i to D_c and applies the fracture rule (tests, and
   /// pre-cracks given as a set of failed stress points).
   void fractureNode(std::size_t i);
+  /// Pre-crack: cuts every link whose reference segment strictly crosses the segment [a, b] of
+  /// the reference plane (m), then rebuilds the corrected gradients (free crack lips follow). Place
+  /// a crack between node rows: a link that only touches the segment at a node is kept.
+  void cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b);
+  /// Number of active links whose reference segment strictly crosses [a, b] (each pair once).
+  std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
   /// Kinetic energy of translation and of the director rotation (J).
   double kineticEnergy() const;
 
@@ -93,6 +99,7 @@ private:
   void buildCorrections();
   void computeForces(double dt);
   void cutLinksOf(std::size_t i);
+  void rebuildAfterCuts();
 
   ShellParameters m_params;
   ThroughThicknessRule m_rule;

@@ -240,6 +240,30 @@ TEST(SphShell, ExternalForcesActLikeTheEquivalentPressure) {
   EXPECT_NEAR(byForces.deflection(0) / byPressure.deflection(0), 1.0, 1e-3);
 }
 
+// A pre-crack along a whole diameter (between node rows) leaves two half-disc plates clamped on
+// their arcs and free along the cut: no link crosses the cut, and the plate becomes much softer.
+TEST(SphShell, PrecrackCutsEveryCrossingLink) {
+  const ShellNodes nodes = clampedDiskNodes(kRadius, 4.0e-3, 0);
+  ShellParameters p = elasticPlate();
+  const PlateTheory theory(p);
+  p.dampingRate = 2.0 * theory.omega1;
+  const double y = 0.3 * nodes.spacing;  // between node rows: no node lies on the cut
+  const std::array<double, 2> a{-1.1 * kRadius, y}, b{1.1 * kRadius, y};
+  SphShell intact(nodes, p), cracked(nodes, p);
+  ASSERT_GT(cracked.linksCrossing(a, b), 50u);
+  cracked.cutAlongSegment(a, b);
+  EXPECT_EQ(cracked.linksCrossing(a, b), 0u);
+  EXPECT_EQ(cracked.fracturedCount(), 0u);
+  const double pressure = 1.0e4;
+  intact.setPressure(pressure);
+  cracked.setPressure(pressure);
+  const double dt = intact.stableTimeStep();
+  const int steps = static_cast<int>(9.0 / theory.omega1 / dt);
+  intact.advance(steps, dt, {});
+  cracked.advance(steps, dt, {});
+  EXPECT_GT(cracked.deflection(0), 1.5 * intact.deflection(0));
+}
+
 TEST(SphShell, BadParametersNameTheField) {
   const ShellNodes nodes = clampedDiskNodes(kRadius, 4.0e-3, 0);
   ShellParameters p;
