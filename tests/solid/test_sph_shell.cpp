@@ -2,6 +2,8 @@
 // deflection after yielding, loss of stiffness at fractured stress points.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <atomic>
 #include <cmath>
 #include <numbers>
@@ -262,6 +264,25 @@ TEST(SphShell, PrecrackCutsEveryCrossingLink) {
   intact.advance(steps, dt, {});
   cracked.advance(steps, dt, {});
   EXPECT_GT(cracked.deflection(0), 1.5 * intact.deflection(0));
+}
+
+// Forces are gathered per node (no scatter, no atomics): the result does not depend on the
+// number of threads, to the last bit.
+TEST(SphShell, ResultIsIndependentOfTheThreadCount) {
+  const ShellNodes nodes = clampedDiskNodes(kRadius, 4.0e-3, 0);
+  ShellParameters p;
+  p.thickness = kThickness;
+  p.damage = true;
+  auto run = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    SphShell shell(nodes, p);
+    shell.setPressure(5.0e6);
+    shell.advance(300, shell.stableTimeStep(), {});
+    omp_set_num_threads(before);
+    return shell.positions();
+  };
+  EXPECT_EQ(run(1), run(3));
 }
 
 TEST(SphShell, BadParametersNameTheField) {
