@@ -1,0 +1,13 @@
+#include "plasticity/material_presets.hpp"
+
+#include "rupture/spec_error.hpp"
+
+namespace rupture {
+
+MaterialPreset materialPreset(const std::string& name, const std::string& field) {
+  if (name == "au4g_2024_t351") return au4g2024T351();
+  if (name == "steel_4340") return steel4340();
+  throw SpecError(field, "\"" + name + "\"", "\"au4g_2024_t351\" or \"steel_4340\"");
+}
+
+}  // namespace rupture

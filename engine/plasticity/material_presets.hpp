@@ -1,0 +1,49 @@
+#pragma once
+// Named material presets of the tank-impact campaign (seed 002): the AU4G (2024-T351) bottom plate
+// and the steel of the cylinder. Every value and its source: docs/shell-and-damage.md, "Materials".
+#include <string>
+
+#include "damage/lemaitre_chaboche.hpp"
+#include "plasticity/von_mises.hpp"
+
+namespace rupture {
+
+struct MaterialPreset {
+  const char* name;
+  double density;                   ///< kg/m³
+  ElasticPlasticMaterial material;  ///< E, ν, Johnson–Cook hardening without rate term
+  LemaitreChabocheDamage damage;    ///< delayed Lemaitre–Chaboche parameters
+};
+
+/// AU4G = 2024-T351: E, ν (ASM handbook values), Johnson & Cook (1983) A, B, n and density; ε_p^c
+/// from the Johnson & Cook (1985) fracture fit at η = 1/3; see the doc for D_c, ε_p^s, τ_c, a.
+inline MaterialPreset au4g2024T351() {
+  MaterialPreset p{"au4g_2024_t351", 2770.0, {}, {}};
+  p.material.youngModulus = 73.1e9;
+  p.material.poissonRatio = 0.33;
+  p.material.hardening = {HardeningKind::johnsonCook, 265.0e6, 426.0e6, 0.34};
+  p.damage = LemaitreChabocheDamage{};
+  p.damage.poissonRatio = 0.33;
+  return p;
+}
+
+/// Cylinder steel: the seed's grade table is lost; 4340 steel of Johnson & Cook (1983)
+/// (A, B, n, density, G = 77.5 GPa → E = 200 GPa with ν = 0.29) stands in.
+inline MaterialPreset steel4340() {
+  MaterialPreset p{"steel_4340", 7830.0, {}, {}};
+  p.material.youngModulus = 200.0e9;
+  p.material.poissonRatio = 0.29;
+  p.material.hardening = {HardeningKind::johnsonCook, 792.0e6, 510.0e6, 0.26};
+  p.damage = LemaitreChabocheDamage{};
+  p.damage.poissonRatio = 0.29;
+  // ε_p^c at η = 1/3 from the Johnson & Cook (1985) 4340 fit (D1 = 0.05, D2 = 3.44, D3 = −2.12):
+  // 0.05 + 3.44 exp(−2.12/3) = 1.75 is far beyond what the impact reaches: the cylinder does not fail.
+  p.damage.criticalPlasticStrain = 1.75;
+  p.damage.thresholdPlasticStrain = 0.5;
+  return p;
+}
+
+/// "au4g_2024_t351" or "steel_4340"; throws SpecError(field) otherwise.
+MaterialPreset materialPreset(const std::string& name, const std::string& field);
+
+}  // namespace rupture

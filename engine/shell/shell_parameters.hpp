@@ -1,0 +1,30 @@
+#pragma once
+// Parameters of the SPH (meshless) Mindlin–Reissner shell, SI units. One struct, validated once
+// (validateShellParameters), so that a spec reader, the server and the tests share the checks.
+#include <string>
+
+#include "damage/lemaitre_chaboche.hpp"
+#include "plasticity/von_mises.hpp"
+
+namespace rupture {
+
+struct ShellParameters {
+  double thickness = 2.0e-3;             ///< t (m)
+  double density = 2770.0;               ///< ρ (kg/m³), AU4G 2024-T351
+  ElasticPlasticMaterial material;       ///< E, ν, isotropic hardening (defaults: 2024-T351)
+  bool plasticity = true;                ///< false: linear elastic (no return mapping)
+  bool damage = false;                   ///< Lemaitre–Chaboche with delay at every layer
+  LemaitreChabocheDamage damageLaw;      ///< its ν is taken from `material`
+  int thicknessPoints = 5;               ///< Gauss points through the thickness, [2, 7]
+  double shearCorrection = 5.0 / 6.0;    ///< κ_s of the transverse shear resultant
+  double smoothingRatio = 1.3;           ///< h / Δ (support radius 2h)
+  double hourglassCoefficient = 0.05;    ///< α of the pair-wise hourglass control, [0, 1]
+  double rotaryInertiaScale = 1.0;       ///< s_I >= 1: I = s_I ρ t³/12 per unit area
+  double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
+  double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
+};
+
+/// Throws SpecError naming `<prefix>.<field>`.
+void validateShellParameters(const ShellParameters& p, const std::string& prefix);
+
+}  // namespace rupture

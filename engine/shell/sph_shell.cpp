@@ -1,0 +1,536 @@
+#include "shell/sph_shell.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "shell/wendland_kernel.hpp"
+
+namespace rupture {
+namespace {
+
+inline ShellVec3 cross(const ShellVec3& a, const ShellVec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dot(const ShellVec3& a, const ShellVec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline ShellVec3 column(const std::array<double, 6>& m, int alpha) {
+  return {m[3 * alpha], m[3 * alpha + 1], m[3 * alpha + 2]};
+}
+
+/// Distance from point q to the segment [a, b] in the plane.
+double segmentDistance(const std::array<double, 2>& a, const std::array<double, 2>& b,
+                       const std::array<double, 2>& q) {
+  const double ex = b[0] - a[0], ey = b[1] - a[1];
+  const double len2 = ex * ex + ey * ey;
+  double s = len2 > 0.0 ? ((q[0] - a[0]) * ex + (q[1] - a[1]) * ey) / len2 : 0.0;
+  s = std::clamp(s, 0.0, 1.0);
+  const double dx = a[0] + s * ex - q[0], dy = a[1] + s * ey - q[1];
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+/// s_ij = (x_j − x_i)·n̄, n̄ = (n_i + n_j)/|n_i + n_j|: the pair's transverse-shear separation.
+inline double pairShear(const ShellVec3& xi, const ShellVec3& xj, const ShellVec3& ni, const ShellVec3& nj) {
+  const ShellVec3 m = {ni[0] + nj[0], ni[1] + nj[1], ni[2] + nj[2]};
+  const ShellVec3 d = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+  return dot(d, m) / std::sqrt(dot(m, m));
+}
+
+}  // namespace
+
+SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_params(params) {
+  validateShellParameters(m_params, "shell");
+  m_params.damageLaw.poissonRatio = m_params.material.poissonRatio;
+  const std::size_t n = nodes.size();
+  if (n == 0 || nodes.y.size() != n || nodes.kernelVolume.size() != n || nodes.integrationArea.size() != n ||
+      nodes.clamped.size() != n)
+    throw std::invalid_argument("SphShell: the node arrays must be non-empty and of equal length");
+  if (!(nodes.spacing > 0.0)) throw std::invalid_argument("SphShell: the node spacing must be > 0");
+  m_spacing = nodes.spacing;
+  m_rule = gaussLegendreThickness(m_params.thicknessPoints, m_params.thickness);
+  const double t = m_params.thickness, rho = m_params.density;
+
+  m_reference.resize(n);
+  m_volume = nodes.kernelVolume;
+  m_area = nodes.integrationArea;
+  m_clamped = nodes.clamped;
+  m_mass.resize(n);
+  m_inertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    m_reference[i] = {nodes.x[i], nodes.y[i]};
+    if (!(m_volume[i] > 0.0) || !(m_area[i] >= 0.0))
+      throw std::invalid_argument("SphShell: node volumes must be > 0 and areas >= 0");
+    if (!m_clamped[i] && !(m_area[i] > 0.0))
+      throw std::invalid_argument("SphShell: a free node needs an integration area > 0");
+    m_mass[i] = rho * t * m_area[i];
+    m_inertia[i] = m_params.rotaryInertiaScale * rho * t * t * t / 12.0 * m_area[i];
+  }
+  m_position.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m_position[i] = {nodes.x[i], nodes.y[i], 0.0};
+  m_velocity.assign(n, {0.0, 0.0, 0.0});
+  m_normal.assign(n, {0.0, 0.0, 1.0});
+  m_spin.assign(n, {0.0, 0.0, 0.0});
+  m_force.assign(n, {0.0, 0.0, 0.0});
+  m_directorForce.assign(n, {0.0, 0.0, 0.0});
+  m_external.assign(n, {0.0, 0.0, 0.0});
+  m_gradX.assign(n, {1.0, 0.0, 0.0, 0.0, 1.0, 0.0});
+  m_gradN.assign(n, {});
+  m_stressP.assign(n, {});
+  m_stressR.assign(n, {});
+  m_shearQ.assign(n, {0.0, 0.0});
+  m_fractured.assign(n, 0);
+  m_hasGradient.assign(n, 0);
+  const std::size_t layers = m_rule.xi.size();
+  m_plasticStrainTensor.assign(n * layers, {0.0, 0.0, 0.0});
+  m_plasticStrain.assign(n * layers, 0.0);
+  m_damage.assign(n * layers, DamageState{});
+
+  buildNeighbours();
+  buildCorrections();
+
+  // Time step: the central-difference limit 2/ω_max with ω_max from the stiffest translation
+  // (membrane P-wave, wave number k = 2.5/Δ, which bounds the corrected-kernel gradient operator
+  // with its hourglass term) and the stiffest rotation (transverse shear κGt and bending D k²
+  // against the rotary inertia s_I ρ t³/12).
+  const ElasticPlasticMaterial& m = m_params.material;
+  const double nu = m.poissonRatio;
+  const double cp2 = m.youngModulus / (rho * (1.0 - nu * nu));
+  const double k = 2.5 / m_spacing;
+  const double omegaTranslation = std::sqrt(cp2) * k * (1.0 + m_params.hourglassCoefficient);
+  const double omegaRotation = std::sqrt((12.0 * m_params.shearCorrection * m.shearModulus() / (rho * t * t) +
+                                          cp2 * k * k) / m_params.rotaryInertiaScale);
+  m_stableStep = m_params.courantFactor * 2.0 / std::max(omegaTranslation, omegaRotation);
+}
+
+void SphShell::buildNeighbours() {
+  const std::size_t n = m_reference.size();
+  const double radius = 2.0 * m_params.smoothingRatio * m_spacing;
+  // Bucket grid on the reference plane (built once: total Lagrangian).
+  double xmin = m_reference[0][0], ymin = m_reference[0][1], xmax = xmin, ymax = ymin;
+  for (const auto& p : m_reference) {
+    xmin = std::min(xmin, p[0]); xmax = std::max(xmax, p[0]);
+    ymin = std::min(ymin, p[1]); ymax = std::max(ymax, p[1]);
+  }
+  const long nx = static_cast<long>((xmax - xmin) / radius) + 1, ny = static_cast<long>((ymax - ymin) / radius) + 1;
+  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx * ny));
+  auto cellOf = [&](const std::array<double, 2>& p) {
+    return std::array<long, 2>{std::min(nx - 1, static_cast<long>((p[0] - xmin) / radius)),
+                               std::min(ny - 1, static_cast<long>((p[1] - ymin) / radius))};
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = cellOf(m_reference[i]);
+    cells[static_cast<std::size_t>(c[1] * nx + c[0])].push_back(i);
+  }
+  m_offset.assign(n + 1, 0);
+  m_neighbour.clear();
+  std::vector<std::size_t> found;
+  for (std::size_t i = 0; i < n; ++i) {
+    found.clear();
+    const auto c = cellOf(m_reference[i]);
+    for (long cy = std::max(0L, c[1] - 1); cy <= std::min(ny - 1, c[1] + 1); ++cy)
+      for (long cx = std::max(0L, c[0] - 1); cx <= std::min(nx - 1, c[0] + 1); ++cx)
+        for (std::size_t j : cells[static_cast<std::size_t>(cy * nx + cx)]) {
+          if (j == i) continue;
+          const double dx = m_reference[j][0] - m_reference[i][0], dy = m_reference[j][1] - m_reference[i][1];
+          if (dx * dx + dy * dy < radius * radius) found.push_back(j);
+        }
+    std::sort(found.begin(), found.end());
+    m_neighbour.insert(m_neighbour.end(), found.begin(), found.end());
+    m_offset[i + 1] = m_neighbour.size();
+  }
+  const std::size_t pairs = m_neighbour.size();
+  m_reverse.resize(pairs);
+  m_separation.resize(pairs);
+  m_kernel.resize(pairs);
+  m_active.assign(pairs, 1);
+  m_coeff.assign(pairs, {0.0, 0.0});
+  m_coeffBack.assign(pairs, {0.0, 0.0});
+  m_shearCoeff.assign(pairs, {0.0, 0.0});
+  m_shearBack.assign(pairs, {0.0, 0.0});
+  const WendlandC2Kernel2D kernel{m_params.smoothingRatio * m_spacing};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t j = m_neighbour[p];
+      const auto first = m_neighbour.begin() + static_cast<long>(m_offset[j]);
+      const auto last = m_neighbour.begin() + static_cast<long>(m_offset[j + 1]);
+      m_reverse[p] = static_cast<std::size_t>(std::lower_bound(first, last, i) - m_neighbour.begin());
+      m_separation[p] = {m_reference[j][0] - m_reference[i][0], m_reference[j][1] - m_reference[i][1]};
+      m_kernel[p] = kernel.value(std::hypot(m_separation[p][0], m_separation[p][1]));
+    }
+}
+
+void SphShell::buildCorrections() {
+  const std::size_t n = m_reference.size();
+  const WendlandC2Kernel2D kernel{m_params.smoothingRatio * m_spacing};
+  for (std::size_t i = 0; i < n; ++i) {
+    // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
+    double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    int count = 0;
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) continue;
+      const auto& d = m_separation[p];
+      const double r = std::hypot(d[0], d[1]);
+      const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
+      const double g0 = -w * d[0], g1 = -w * d[1];
+      const double v = m_volume[m_neighbour[p]];
+      M[0][0] += v * d[0] * g0; M[0][1] += v * d[0] * g1;
+      M[1][0] += v * d[1] * g0; M[1][1] += v * d[1] * g1;
+      ++count;
+    }
+    // T_i = Σ_j V_j W_ij X_ij ⊗ X_ij for the pair-averaged transverse shear.
+    double T[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) continue;
+      const auto& d = m_separation[p];
+      const double vw = m_volume[m_neighbour[p]] * m_kernel[p];
+      T[0][0] += vw * d[0] * d[0]; T[0][1] += vw * d[0] * d[1]; T[1][1] += vw * d[1] * d[1];
+    }
+    T[1][0] = T[0][1];
+    const double detT = T[0][0] * T[1][1] - T[0][1] * T[1][0];
+    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    const double trace = M[0][0] + M[1][1];
+    // A one-sided or collinear neighbourhood (a fragment, a node cut off by a crack) has no
+    // first-order gradient.
+    const double traceT = T[0][0] + T[1][1];
+    const bool valid = count >= 3 && trace > 0.0 && det > 1e-3 * 0.25 * trace * trace &&
+                       detT > 1e-3 * 0.25 * traceT * traceT;
+    m_hasGradient[i] = valid ? 1 : 0;
+    if (!valid) continue;
+    // M⁻ᵀ: inverse of the transpose.
+    const double inv[2][2] = {{M[1][1] / det, -M[1][0] / det}, {-M[0][1] / det, M[0][0] / det}};
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
+      const auto& d = m_separation[p];
+      const double r = std::hypot(d[0], d[1]);
+      const double w = kernel.derivative(r) / r;
+      const double g0 = -w * d[0], g1 = -w * d[1];
+      const double v = m_volume[m_neighbour[p]];
+      m_coeff[p] = {v * (inv[0][0] * g0 + inv[0][1] * g1), v * (inv[1][0] * g0 + inv[1][1] * g1)};
+      const double vw = v * m_kernel[p];
+      m_shearCoeff[p] = {vw * (T[1][1] * d[0] - T[0][1] * d[1]) / detT, vw * (T[0][0] * d[1] - T[1][0] * d[0]) / detT};
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t j = m_neighbour[p];
+      m_coeffBack[p] = (m_active[p] && m_hasGradient[j]) ? m_coeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+      m_shearBack[p] = (m_active[p] && m_hasGradient[j]) ? m_shearCoeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+      if (!m_hasGradient[i]) m_coeff[p] = m_shearCoeff[p] = {0.0, 0.0};
+    }
+}
+
+void SphShell::computeForces(double dt) {
+  const std::size_t n = m_position.size();
+  const std::size_t layers = m_rule.xi.size();
+  const ElasticPlasticMaterial& mat = m_params.material;
+  const double t = m_params.thickness;
+  const double shearStiffness = m_params.shearCorrection * mat.shearModulus() * t;
+  const bool plastic = m_params.plasticity, damaging = m_params.damage && m_params.plasticity;
+  std::vector<std::uint8_t> newlyFractured(n, 0);
+
+  // Pass 1: gradients, strains, layer stresses, resultants at every stress point.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<double, 6> A{}, G{};
+    if (m_hasGradient[i]) {
+      const ShellVec3 xi = m_position[i], ni = m_normal[i];
+      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+        if (!m_active[p]) continue;
+        const std::size_t j = m_neighbour[p];
+        const auto& c = m_coeff[p];
+        for (int a = 0; a < 3; ++a) {
+          const double dx = m_position[j][a] - xi[a], dn = m_normal[j][a] - ni[a];
+          A[a] += dx * c[0]; A[3 + a] += dx * c[1];
+          G[a] += dn * c[0]; G[3 + a] += dn * c[1];
+        }
+      }
+    } else {
+      A = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    }
+    m_gradX[i] = A;
+    m_gradN[i] = G;
+    std::array<double, 6> P{}, R{};
+    std::array<double, 2> Qout{0.0, 0.0};
+    const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
+    if (stressPoint) {
+      const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
+      const ShellVec3& nrm = m_normal[i];
+      const PlaneTensor eps = {0.5 * (dot(a0, a0) - 1.0), 0.5 * (dot(a1, a1) - 1.0), 0.5 * dot(a0, a1)};
+      const PlaneTensor kap = {dot(a0, g0), dot(a1, g1), 0.5 * (dot(a0, g1) + dot(a1, g0))};
+      // Pair-averaged transverse shear γ_i = T_i⁻¹ Σ_j V_j W_ij s_ij X_ij, s_ij = (x_j − x_i)·n̄_ij:
+      // exact for a uniform shear, and zero for any quadratic deflection with matching directors
+      // (trapezoidal rule), so it does not lock where the node gradient of w is one-sided.
+      double gam0 = 0.0, gam1 = 0.0;
+      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+        if (!m_active[p]) continue;
+        const std::size_t j = m_neighbour[p];
+        const double sp = pairShear(m_position[i], m_position[j], nrm, m_normal[j]);
+        gam0 += sp * m_shearCoeff[p][0];
+        gam1 += sp * m_shearCoeff[p][1];
+      }
+      PlaneTensor N{0.0, 0.0, 0.0}, M{0.0, 0.0, 0.0};
+      double intact = 0.0;
+      int broken = 0;
+      for (std::size_t k = 0; k < layers; ++k) {
+        const double z = m_rule.xi[k], w = m_rule.weight[k];
+        const PlaneTensor E = {eps[0] + z * kap[0], eps[1] + z * kap[1], eps[2] + z * kap[2]};
+        const std::size_t idx = i * layers + k;
+        PlaneTensor sig;
+        if (plastic) {
+          const double pBefore = m_plasticStrain[idx];
+          const ReturnMapping r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
+          if (damaging) {
+            const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig));
+            advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, dt);
+          }
+        } else {
+          sig = planeStressElastic(mat, E);
+        }
+        const double f = stressFactor(m_damage[idx]);
+        if (m_damage[idx].fractured) ++broken;
+        intact += w * f;
+        for (int c = 0; c < 3; ++c) {
+          N[c] += w * f * sig[c];
+          M[c] += w * z * f * sig[c];
+        }
+      }
+      if (broken == static_cast<int>(layers)) newlyFractured[i] = 1;
+      const double om = m_area[i];
+      const double Q0 = om * shearStiffness * gam0 * intact / t, Q1 = om * shearStiffness * gam1 * intact / t;
+      Qout = {Q0, Q1};
+      // P_α = Σ_β (N_αβ A_β + M_αβ G_β);  R_α = Σ_β M_αβ A_β (× ω_i); Q = ω_i κ_s G t γ.
+      for (int c = 0; c < 3; ++c) {
+        P[c] = om * (N[0] * a0[c] + N[2] * a1[c] + M[0] * g0[c] + M[2] * g1[c]);
+        P[3 + c] = om * (N[2] * a0[c] + N[1] * a1[c] + M[2] * g0[c] + M[1] * g1[c]);
+        R[c] = om * (M[0] * a0[c] + M[2] * a1[c]);
+        R[3 + c] = om * (M[2] * a0[c] + M[1] * a1[c]);
+      }
+    }
+    m_stressP[i] = P;
+    m_stressR[i] = R;
+    m_shearQ[i] = Qout;
+  }
+
+  // Pass 2: gather the forces on the free nodes (no scatter, no atomics).
+  const double nu = mat.poissonRatio;
+  const double kx = m_params.hourglassCoefficient * mat.youngModulus * t;
+  const double kn = m_params.hourglassCoefficient * mat.youngModulus * t * t * t / (12.0 * (1.0 - nu * nu));
+  const double ks = m_params.hourglassCoefficient * shearStiffness;
+  const double pressure = m_pressure;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    ShellVec3 f{0.0, 0.0, 0.0}, g{0.0, 0.0, 0.0};
+    if (m_clamped[i]) { m_force[i] = f; m_directorForce[i] = g; continue; }
+    const auto& Pi = m_stressP[i];
+    const auto& Ri = m_stressR[i];
+    const auto& Ai = m_gradX[i];
+    const auto& Gi = m_gradN[i];
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) continue;
+      const std::size_t j = m_neighbour[p];
+      const auto& c = m_coeff[p];
+      const auto& b = m_coeffBack[p];
+      const auto& Pj = m_stressP[j];
+      const auto& Rj = m_stressR[j];
+      const auto& Aj = m_gradX[j];
+      const auto& Gj = m_gradN[j];
+      const auto& X = m_separation[p];
+      const double hw = m_kernel[p] * m_volume[i] * m_volume[j] / (X[0] * X[0] + X[1] * X[1]);
+      // Hourglass control. Tangential: error of the separation predicted by the mean gradient
+      // (exact for quadratic fields). Normal: the separation along the mean director, a pair
+      // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even
+      // where the field is only C¹ (at a clamp), unlike a gradient prediction of w.
+      ShellVec3 dx, ex, mean;
+      for (int a = 0; a < 3; ++a) {
+        dx[a] = m_position[j][a] - m_position[i][a];
+        ex[a] = 0.5 * ((Ai[a] + Aj[a]) * X[0] + (Ai[3 + a] + Aj[3 + a]) * X[1]) - dx[a];
+        mean[a] = m_normal[i][a] + m_normal[j][a];
+      }
+      const double meanLength = std::sqrt(dot(mean, mean));
+      for (int a = 0; a < 3; ++a) mean[a] /= meanLength;
+      const double exNormal = dot(ex, mean), dxNormal = dot(dx, mean);
+      // Transverse shear: E = Σ_i ½ Q_i·γ_i with γ_i linear in s_ij = Δx·n̄.
+      const double q = m_shearQ[i][0] * m_shearCoeff[p][0] + m_shearQ[i][1] * m_shearCoeff[p][1] -
+                       m_shearQ[j][0] * m_shearBack[p][0] - m_shearQ[j][1] * m_shearBack[p][1];
+      for (int a = 0; a < 3; ++a) {
+        f[a] += Pi[a] * c[0] + Pi[3 + a] * c[1] - Pj[a] * b[0] - Pj[3 + a] * b[1];
+        g[a] += Ri[a] * c[0] + Ri[3 + a] * c[1] - Rj[a] * b[0] - Rj[3 + a] * b[1];
+        const double en = 0.5 * ((Gi[a] + Gj[a]) * X[0] + (Gi[3 + a] + Gj[3 + a]) * X[1]) -
+                          (m_normal[j][a] - m_normal[i][a]);
+        f[a] -= kx * hw * (ex[a] - exNormal * mean[a]);
+        // E = ½ k_s hw (Δx·n̄)², n̄ = (n_i + n_j)/|n_i + n_j|: −∂E/∂x_i and −∂E/∂n_i.
+        f[a] += (ks * hw * dxNormal + q) * mean[a];
+        g[a] -= (ks * hw * dxNormal + q) * (dx[a] - dxNormal * mean[a]) / meanLength;
+        g[a] -= kn * hw * en;
+      }
+    }
+    if (pressure != 0.0 && !m_fractured[i]) {
+      const ShellVec3 areaNormal = m_hasGradient[i] ? cross(column(Ai, 0), column(Ai, 1)) : m_normal[i];
+      for (int a = 0; a < 3; ++a) f[a] += pressure * m_area[i] * areaNormal[a];
+    }
+    for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
+    m_force[i] = f;
+    m_directorForce[i] = g;
+  }
+
+  for (std::size_t i = 0; i < n; ++i)
+    if (newlyFractured[i] && !m_fractured[i]) fractureNode(i);
+}
+
+void SphShell::step(double dt) {
+  computeForces(dt);
+  const std::size_t n = m_position.size();
+  const double c = m_params.dampingRate;
+  const double keep = (1.0 - 0.5 * c * dt) / (1.0 + 0.5 * c * dt), push = dt / (1.0 + 0.5 * c * dt);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (m_clamped[i]) continue;
+    // Central difference (leapfrog) with mass-proportional damping, semi-implicit in c.
+    for (int a = 0; a < 3; ++a) {
+      m_velocity[i][a] = keep * m_velocity[i][a] + push * m_force[i][a] / m_mass[i];
+      m_position[i][a] += dt * m_velocity[i][a];
+    }
+    // Director: torque n × g on the rotary inertia; no drilling (spin kept perpendicular to n).
+    ShellVec3& n0 = m_normal[i];
+    const ShellVec3 torque = cross(n0, m_directorForce[i]);
+    ShellVec3& w = m_spin[i];
+    for (int a = 0; a < 3; ++a) w[a] = keep * w[a] + push * torque[a] / m_inertia[i];
+    const double along = dot(w, n0);
+    for (int a = 0; a < 3; ++a) w[a] -= along * n0[a];
+    const double angle = std::sqrt(dot(w, w)) * dt;
+    if (angle > 0.0) {
+      // Rodrigues rotation of n about w by |w| dt (w ⟂ n).
+      const double wn = std::sqrt(dot(w, w));
+      const ShellVec3 axis = {w[0] / wn, w[1] / wn, w[2] / wn};
+      const ShellVec3 k = cross(axis, n0);
+      const double cs = std::cos(angle), sn = std::sin(angle);
+      ShellVec3 rotated;
+      for (int a = 0; a < 3; ++a) rotated[a] = n0[a] * cs + k[a] * sn;
+      const double len = std::sqrt(dot(rotated, rotated));
+      for (int a = 0; a < 3; ++a) n0[a] = rotated[a] / len;
+    }
+  }
+  m_time += dt;
+}
+
+void SphShell::setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal,
+                            const ShellVec3& velocity) {
+  const double len = std::sqrt(dot(normal, normal));
+  if (i >= m_position.size() || !(len > 0.0)) throw std::invalid_argument("SphShell::setNodeState: bad node or normal");
+  m_position[i] = position;
+  m_normal[i] = {normal[0] / len, normal[1] / len, normal[2] / len};
+  m_velocity[i] = velocity;
+}
+
+void SphShell::advance(int steps, double dt, const Cancellation& cancel) {
+  for (int s = 0; s < steps; ++s) {
+    cancel.throwIfRequested();
+    step(dt);
+  }
+}
+
+double SphShell::maxPlasticStrain(std::size_t i) const {
+  const std::size_t layers = m_rule.xi.size();
+  double v = 0.0;
+  for (std::size_t k = 0; k < layers; ++k) v = std::max(v, m_plasticStrain[i * layers + k]);
+  return v;
+}
+
+double SphShell::maxDamage(std::size_t i) const {
+  const std::size_t layers = m_rule.xi.size();
+  double v = 0.0;
+  for (std::size_t k = 0; k < layers; ++k) v = std::max(v, m_damage[i * layers + k].damage);
+  return v;
+}
+
+std::size_t SphShell::fracturedCount() const {
+  return static_cast<std::size_t>(std::count(m_fractured.begin(), m_fractured.end(), std::uint8_t{1}));
+}
+
+double SphShell::kineticEnergy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < m_position.size(); ++i)
+    e += 0.5 * m_mass[i] * dot(m_velocity[i], m_velocity[i]) + 0.5 * m_inertia[i] * dot(m_spin[i], m_spin[i]);
+  return e;
+}
+
+void SphShell::fractureNode(std::size_t i) {
+  const std::size_t layers = m_rule.xi.size();
+  for (std::size_t k = 0; k < layers; ++k) {
+    DamageState& s = m_damage[i * layers + k];
+    s.damage = std::max(s.damage, m_params.damageLaw.criticalDamage);
+    s.fractured = true;
+  }
+  m_fractured[i] = 1;
+  cutLinksOf(i);
+  rebuildAfterCuts();
+}
+
+void SphShell::rebuildAfterCuts() {
+  // Nodes left without a first-order gradient become fragments: their links go too.
+  for (bool changed = true; changed;) {
+    buildCorrections();
+    changed = false;
+    for (std::size_t j = 0; j < m_position.size(); ++j) {
+      if (m_hasGradient[j]) continue;
+      for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p)
+        if (m_active[p]) {
+          m_active[p] = 0;
+          m_active[m_reverse[p]] = 0;
+          changed = true;
+        }
+    }
+  }
+}
+
+namespace {
+/// True when the segments [p, q] and [a, b] cross at a point interior to both.
+bool segmentsCross(const std::array<double, 2>& p, const std::array<double, 2>& q, const std::array<double, 2>& a,
+                   const std::array<double, 2>& b) {
+  auto orient = [](const std::array<double, 2>& o, const std::array<double, 2>& u, const std::array<double, 2>& v) {
+    return (u[0] - o[0]) * (v[1] - o[1]) - (u[1] - o[1]) * (v[0] - o[0]);
+  };
+  return orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+}
+}  // namespace
+
+void SphShell::cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b) {
+  for (std::size_t i = 0; i < m_reference.size(); ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
+      if (m_active[p] && segmentsCross(m_reference[i], m_reference[m_neighbour[p]], a, b)) {
+        m_active[p] = 0;
+        m_active[m_reverse[p]] = 0;
+      }
+  rebuildAfterCuts();
+}
+
+std::size_t SphShell::linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < m_reference.size(); ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
+      if (m_active[p] && m_neighbour[p] > i && segmentsCross(m_reference[i], m_reference[m_neighbour[p]], a, b))
+        ++count;
+  return count;
+}
+
+void SphShell::cutLinksOf(std::size_t i) {
+  // The cracked cell is an opaque disc of radius √V/2 (visibility criterion, Belytschko et al.
+  // 1994): its own links go, and so does every link whose segment crosses the disc.
+  const double rc = 0.5 * std::sqrt(m_volume[i]);
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    m_active[p] = 0;
+    m_active[m_reverse[p]] = 0;
+  }
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    const std::size_t j = m_neighbour[p];
+    for (std::size_t q = m_offset[j]; q < m_offset[j + 1]; ++q) {
+      if (!m_active[q]) continue;
+      const std::size_t k = m_neighbour[q];
+      if (segmentDistance(m_reference[j], m_reference[k], m_reference[i]) < rc) {
+        m_active[q] = 0;
+        m_active[m_reverse[q]] = 0;
+      }
+    }
+  }
+}
+
+}  // namespace rupture

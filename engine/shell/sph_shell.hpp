@@ -1,0 +1,136 @@
+#pragma once
+// Meshless (SPH) Mindlin–Reissner shell after Maurel & Combescure (2008) and Caleyron et al. (2011,
+// 2013 = seed 002, §5.4.1): one layer of nodes in the mid-surface, each with a position x and a
+// pseudo-normal (director) n (5 degrees of freedom: no drilling rotation), a total-Lagrangian
+// corrected kernel, plane-stress plasticity and damage integrated through the thickness.
+//
+// Kinematics (seed eq. 15): x(X, ξ) = x_m(X) + ξ n(X). With the corrected gradients on the flat
+// reference (first-order consistent, equivalent to linear-basis MLS derivatives):
+//   A_α = ∂x_m/∂X_α = Σ_j V_j (x_j − x_i) B_ijα,   G_α = ∂n/∂X_α = Σ_j V_j (n_j − n_i) B_ijα,
+//   B_ij = M_i⁻ᵀ ∇W(X_i − X_j),   M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j)
+// Green–Lagrange strains of a Reissner–Mindlin shell (large rotations, small strains):
+//   membrane ε_αβ = ½ (A_α·A_β − δ_αβ),  curvature κ_αβ = ½ (A_α·G_β + A_β·G_α),
+//   transverse shear γ (continuum: A_α·n) from the pairs: γ_i = T_i⁻¹ Σ_j V_j W_ij s_ij X_ij,
+//   s_ij = (x_j − x_i)·(n_i + n_j)/|n_i + n_j|, T_i = Σ_j V_j W_ij X_ij ⊗ X_ij (locking-free)
+// Layer k at ξ_k: E = ε + ξ_k κ → plane-stress return mapping → S_k (2nd Piola–Kirchhoff), times
+// (1 − D_k); resultants N = Σ w_k S_k, M = Σ w_k ξ_k S_k, Q = κ_s G t γ (elastic, scaled by the
+// mean (1 − D) of the layers).
+// Forces are the exact derivatives of the discrete energy Σ_i ω_i (N:ε + M:κ + Q·γ)-increments
+// (stress points at the nodes, quadrature weights ω_i), so the scheme conserves energy and momentum.
+// Nodal integration leaves zero-energy (checkerboard) modes: they are held by a pair-wise
+// hourglass control after Ganzenmüller (2015), which penalises the difference between the actual
+// separation of a pair and the one predicted by the mean gradient of its two nodes (exact for
+// quadratic fields, so it does not stiffen smooth bending).
+//
+// Fracture (Caleyron et al. 2011): when every layer of a stress point has reached D_c, the stress
+// point is dropped, its node's links are cut, the links between other nodes whose segment crosses
+// its cell (disc of radius √V/2) are cut (visibility criterion), and the corrected gradients are
+// rebuilt (free edges follow: the correction only uses the neighbours that remain). A node left
+// without a valid gradient becomes a fragment (moves freely, carries no stress).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/cancellation.hpp"
+#include "damage/lemaitre_chaboche.hpp"
+#include "shell/shell_nodes.hpp"
+#include "shell/shell_parameters.hpp"
+#include "shell/through_thickness.hpp"
+
+namespace rupture {
+
+using ShellVec3 = std::array<double, 3>;
+
+class SphShell {
+public:
+  SphShell(const ShellNodes& nodes, const ShellParameters& params);
+
+  /// Uniform pressure (Pa) on the free part of the shell; positive along the current normal
+  /// A_1 × A_2 (+z in the reference). The force follows the deformed area (a follower load).
+  void setPressure(double p) { m_pressure = p; }
+
+  /// External force on node i (N), added to the internal forces at every step until changed:
+  /// the hook for fluid–structure contact and other loads given per node.
+  void setExternalForce(std::size_t i, const ShellVec3& force) { m_external.at(i) = force; }
+  /// Integration area ω_i of node i (m²): the mid-surface area it represents.
+  double integrationArea(std::size_t i) const { return m_area[i]; }
+
+  /// Estimated critical time step (s) times the Courant factor: the largest frequency of the
+  /// membrane/shear translation and of the rotation (bending + transverse shear against the
+  /// rotary inertia) over the node spacing (see docs/shell-and-damage.md, "Time step").
+  double stableTimeStep() const { return m_stableStep; }
+
+  /// Sets the state of node i (initial conditions, prescribed motion of clamped nodes): position
+  /// (m), pseudo-normal (normalised here) and velocity (m/s).
+  void setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal, const ShellVec3& velocity);
+
+  /// One explicit central-difference step of size dt.
+  void step(double dt);
+  /// `steps` steps of size dt; polls `cancel` every step (throws RunCancelled).
+  void advance(int steps, double dt, const Cancellation& cancel);
+
+  std::size_t size() const { return m_position.size(); }
+  double time() const { return m_time; }
+  const std::vector<ShellVec3>& positions() const { return m_position; }
+  const std::vector<ShellVec3>& velocities() const { return m_velocity; }
+  const std::vector<ShellVec3>& normals() const { return m_normal; }
+  /// Transverse displacement (z) of a node (m).
+  double deflection(std::size_t i) const { return m_position[i][2]; }
+  /// Largest accumulated plastic strain over the layers of a node.
+  double maxPlasticStrain(std::size_t i) const;
+  /// Largest damage over the layers of a node.
+  double maxDamage(std::size_t i) const;
+  bool fractured(std::size_t i) const { return m_fractured[i] != 0; }
+  std::size_t fracturedCount() const;
+  /// Sets the damage of every layer of node i to D_c and applies the fracture rule (tests, and
+  /// pre-cracks given as a set of failed stress points).
+  void fractureNode(std::size_t i);
+  /// Pre-crack: cuts every link whose reference segment strictly crosses the segment [a, b] of
+  /// the reference plane (m), then rebuilds the corrected gradients (free crack lips follow). Place
+  /// a crack between node rows: a link that only touches the segment at a node is kept.
+  void cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b);
+  /// Number of active links whose reference segment strictly crosses [a, b] (each pair once).
+  std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
+  /// Kinetic energy of translation and of the director rotation (J).
+  double kineticEnergy() const;
+
+private:
+  void buildNeighbours();
+  void buildCorrections();
+  void computeForces(double dt);
+  void cutLinksOf(std::size_t i);
+  void rebuildAfterCuts();
+
+  ShellParameters m_params;
+  ThroughThicknessRule m_rule;
+  double m_spacing = 0.0;
+  double m_pressure = 0.0;
+  double m_time = 0.0;
+  double m_stableStep = 0.0;
+
+  // Per node (structure of arrays).
+  std::vector<std::array<double, 2>> m_reference;
+  std::vector<double> m_volume, m_area, m_mass, m_inertia;
+  std::vector<std::uint8_t> m_clamped, m_fractured, m_hasGradient;
+  std::vector<ShellVec3> m_position, m_velocity, m_normal, m_spin, m_force, m_directorForce, m_external;
+  std::vector<std::array<double, 6>> m_gradX, m_gradN;  ///< A_α, G_α (α-major: a0,a1,a2, b0,b1,b2)
+  std::vector<std::array<double, 6>> m_stressP, m_stressR;  ///< conjugates of A_α and G_α
+  std::vector<std::array<double, 2>> m_shearQ;              ///< ω_i Q_i (transverse shear)
+
+  // Per node and layer (node-major, m_rule.xi.size() layers).
+  std::vector<std::array<double, 3>> m_plasticStrainTensor;
+  std::vector<double> m_plasticStrain;
+  std::vector<DamageState> m_damage;
+
+  // Pairs in CSR order (i's neighbours j), both directions stored.
+  std::vector<std::size_t> m_offset, m_neighbour, m_reverse;
+  std::vector<std::uint8_t> m_active;
+  std::vector<std::array<double, 2>> m_separation;  ///< X_j − X_i
+  std::vector<std::array<double, 2>> m_coeff;       ///< V_j B_ij
+  std::vector<std::array<double, 2>> m_coeffBack;   ///< V_i B_ji
+  std::vector<std::array<double, 2>> m_shearCoeff;  ///< T_i⁻¹ V_j W_ij X_ij
+  std::vector<std::array<double, 2>> m_shearBack;   ///< T_j⁻¹ V_i W_ij X_ji
+  std::vector<double> m_kernel;                     ///< W(|X_ij|)
+};
+
+}  // namespace rupture
