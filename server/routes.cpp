@@ -20,6 +20,8 @@
 #include "rupture/run.hpp"
 #include "summary.hpp"
 #include "svg_plot.hpp"
+#include "tar_archive.hpp"
+#include "io/xdmf_writer.hpp"
 #include "sweep.hpp"
 #include "utf8.hpp"
 
@@ -272,6 +274,8 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (run.status == Status::Successful) {
     links.push_back(link(base + "/results", "enclosure", kHdf5Type, "this run's HDF5 file"));
     links.push_back(link(base + "/series", "related", kJsonType, "time series (JSON or CSV)"));
+    links.push_back(link(base + "/results.xdmf", "describedby", "application/xml", "ParaView sidecar (XDMF 2)"));
+    links.push_back(link(base + "/bundle", "enclosure", "application/x-tar", "HDF5 file and ParaView sidecar (tar)"));
   }
   doc["links"] = links;
   return doc;
@@ -649,6 +653,56 @@ public:
              "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index) + ".h5");
   }
 
+  // -- ParaView: the sidecar names the HDF5 file by its download name, so the two work side by side.
+
+  static std::string runFileStem(const JobRecord& job, const RunRecord& run) {
+    return "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index);
+  }
+
+  std::string runSidecar(const JobRecord& job, const RunRecord& run) {
+    const std::string file = (m_ctx.resultsDir / run.resultPath).string();
+    if (rupture::io::runGroupsWithSnapshots(file) != std::vector<std::string>{""}) {
+      throw ApiError(404, problem::kNoResults, "No results",
+                     "run " + std::to_string(run.key.index) + " of job " + std::to_string(job.id) +
+                         " has no snapshots for ParaView (" + job.processId + " writes none)");
+    }
+    return rupture::io::xdmfDocument(file, runFileStem(job, run) + ".h5");
+  }
+
+  void runXdmf(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    const std::string xml = runSidecar(job, run);
+    // .xdmf2: ParaView 5.11 opens *.xdmf with its broken Xdmf3 readers (docs/paraview.md).
+    res.set_header("Content-Disposition", "attachment; filename=\"" + runFileStem(job, run) + ".xdmf2\"");
+    res.set_content(xml, "application/xml");
+  }
+
+  void runBundle(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    const std::string stem = runFileStem(job, run);
+    const fs::path h5 = m_ctx.resultsDir / run.resultPath;
+    const std::string xml = runSidecar(job, run);
+    std::error_code ec;
+    const auto written = fs::last_write_time(h5, ec);
+    const std::int64_t mtime =
+        ec ? 0
+           : std::chrono::duration_cast<std::chrono::seconds>(
+                 std::chrono::file_clock::to_sys(written).time_since_epoch()).count();
+    auto tar = std::make_shared<TarArchive>();
+    tar->addFile(stem + "/" + stem + ".h5", h5, mtime);
+    tar->addText(stem + "/" + stem + ".xdmf2", xml, mtime);
+    res.set_header("Content-Disposition", "attachment; filename=\"" + stem + ".tar\"");
+    res.set_content_provider(static_cast<std::size_t>(tar->size()), "application/x-tar",
+                             [tar](std::size_t offset, std::size_t want, httplib::DataSink& sink) {
+                               std::vector<char> buffer(std::min<std::size_t>(want, 64 * 1024));
+                               const std::size_t n = tar->read(offset, buffer.data(), buffer.size());
+                               if (n == 0) return false;
+                               return sink.write(buffer.data(), n);
+                             });
+  }
+
   void series(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     const RunRecord run = finishedRun(req, job);
@@ -888,6 +942,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
   http.Get("/jobs/" + id + "/runs/" + id, wrap(&Api::run));
   http.Get("/jobs/" + id + "/runs/" + id + "/results", wrap(&Api::runResults));
   http.Get("/jobs/" + id + "/runs/" + id + "/series", wrap(&Api::series));
+  http.Get(R"(/jobs/([^/]+)/runs/([^/]+)/results\.xdmf)", wrap(&Api::runXdmf));
+  http.Get("/jobs/" + id + "/runs/" + id + "/bundle", wrap(&Api::runBundle));
   http.Get("/jobs/" + id + "/summary", wrap(&Api::summary));
   http.Get(R"(/jobs/([^/]+)/summary\.svg)", wrap(&Api::summarySvg));
 
@@ -909,6 +965,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
       {"/jobs/" + id + "/runs/" + id, {"GET"}},
       {"/jobs/" + id + "/runs/" + id + "/results", {"GET"}},
       {"/jobs/" + id + "/runs/" + id + "/series", {"GET"}},
+      {R"(/jobs/([^/]+)/runs/([^/]+)/results\.xdmf)", {"GET"}},
+      {"/jobs/" + id + "/runs/" + id + "/bundle", {"GET"}},
       {"/jobs/" + id + "/summary", {"GET"}},
       {R"(/jobs/([^/]+)/summary\.svg)", {"GET"}},
   };
