@@ -5,8 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
-bash deploy/setup.sh
-bash deploy/build.sh
+bash deploy/build.sh   # installs the dependencies first (deploy/setup.sh)
 slurm_dir="$PWD/build/slurm-test-cluster"
 if bash "$root/deploy/slurm/test-cluster.sh" start "$slurm_dir"; then
   export SLURM_CONF="$slurm_dir/slurm.conf"

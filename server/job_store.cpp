@@ -132,7 +132,7 @@ constexpr const char* kJobColumns =
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts";
+    "attempts, stage";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -172,6 +172,7 @@ RunRecord readRun(const Stmt& q) {
   r.finished = q.text(10);
   r.updated = q.text(11);
   r.attempts = static_cast<int>(q.i64(12));
+  r.stage = q.text(13);
   return r;
 }
 
@@ -189,10 +190,13 @@ void addCounts(sqlite3* db, JobRecord& j) {
       case Status::Running: j.runsRunning = n; done += q.dbl(2); break;
       case Status::Successful: j.runsSuccessful = n; done += n; break;
       case Status::Failed: j.runsFailed = n; done += n; break;
-      case Status::Dismissed: j.runsDismissed = n; done += n; break;
+      case Status::Dismissed: j.runsDismissed = n; done += q.dbl(2); break;  // what actually ran
     }
   }
   j.progress = j.runsTotal ? std::clamp(done / j.runsTotal, 0.0, 1.0) : 0.0;
+  Stmt u(db, "SELECT MAX(updated) FROM runs WHERE job_id = ?");
+  u.bind(1, j.id);
+  if (u.step() && !u.isNull(0)) j.runsUpdated = u.text(0);
 }
 
 }  // namespace
@@ -240,9 +244,17 @@ JobStore::JobStore(const std::string& path) {
   exec("PRAGMA synchronous=FULL");  // a committed status survives power loss, not only a crash
   exec("PRAGMA foreign_keys=ON");
   exec(kSchema);
+  // Added after schema version 1: the run's stage message (older databases gain the column).
+  if (!hasColumn("runs", "stage")) exec("ALTER TABLE runs ADD COLUMN stage TEXT NOT NULL DEFAULT ''");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
+
+bool JobStore::hasColumn(const std::string& table, const std::string& column) {
+  Stmt q(m_db, "SELECT 1 FROM pragma_table_info(?) WHERE name = ?");
+  q.bind(1, table).bind(2, column);
+  return q.step();
+}
 
 void JobStore::exec(const std::string& sql) {
   char* err = nullptr;
@@ -437,14 +449,19 @@ bool JobStore::startRun(RunKey key) {
   return true;
 }
 
-void JobStore::setProgress(const std::vector<std::pair<RunKey, double>>& progress) {
+void JobStore::setProgress(const std::vector<RunProgress>& progress) {
   if (progress.empty()) return;
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);
-  for (const auto& [key, value] : progress) {
-    Stmt u(m_db, "UPDATE runs SET progress = ?, updated = ? WHERE job_id = ? AND idx = ? AND status = 'running'");
-    u.bind(1, std::clamp(value, 0.0, 1.0)).bind(2, now).bind(3, key.job).bind(4, key.index).run();
+  for (const RunProgress& p : progress) {
+    // `updated` moves only when something did, so a client can tell a stalled run from a live one.
+    Stmt u(m_db,
+           "UPDATE runs SET progress = ?, stage = CASE WHEN ? = '' THEN stage ELSE ? END, updated = ? "
+           "WHERE job_id = ? AND idx = ? AND status = 'running' AND (progress != ? OR (? != '' AND stage != ?))");
+    const double value = std::clamp(p.fraction, 0.0, 1.0);
+    u.bind(1, value).bind(2, p.stage).bind(3, p.stage).bind(4, now).bind(5, p.key.job).bind(6, p.key.index);
+    u.bind(7, value).bind(8, p.stage).bind(9, p.stage).run();
   }
   tx.commit();
 }

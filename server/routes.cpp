@@ -14,6 +14,7 @@
 #include "json_body.hpp"
 #include "log.hpp"
 #include "problem.hpp"
+#include "progress_info.hpp"
 #include "public_message.hpp"
 #include "request_guard.hpp"
 #include "results.hpp"
@@ -269,6 +270,7 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (run.attempts > 1) doc["attempts"] = run.attempts;
   if (run.summary.is_object()) doc["summary"] = run.summary;
   if (!run.error.empty()) doc["error"] = publicMessage(run.error);
+  addRunProgress(doc, run, utcNow());
   const std::string base = "/jobs/" + std::to_string(job.id) + "/runs/" + std::to_string(run.key.index);
   Json links = Json::array({link(base, "self")});
   if (run.status == Status::Successful) {
@@ -294,7 +296,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   doc["created"] = job.created;
   if (!job.started.empty()) doc["started"] = job.started;
   if (!job.finished.empty()) doc["finished"] = job.finished;
-  doc["updated"] = job.updated;
+  addJobProgress(doc, job, runs, utcNow());
   doc["sweep_mode"] = job.sweepMode;
   doc["swept"] = job.sweptPaths;
   doc["runs_total"] = job.runsTotal;
