@@ -333,10 +333,12 @@ std::vector<JobRecord> JobStore::listJobs(const JobFilter& filter, std::int64_t&
     where += ")";
   }
   if (!filter.processId.empty()) where += " AND process_id = ?";
+  if (!filter.nameContains.empty()) where += " AND instr(lower(name), lower(?)) > 0";
   auto bindFilter = [&](Stmt& q) {
     int i = 1;
     for (Status s : filter.statuses) q.bind(i++, std::string(toString(s)));
     if (!filter.processId.empty()) q.bind(i++, filter.processId);
+    if (!filter.nameContains.empty()) q.bind(i++, filter.nameContains);
     return i;
   };
   {

@@ -96,6 +96,7 @@ struct IdempotentJob {
 struct JobFilter {
   std::vector<Status> statuses;  ///< empty = any
   std::string processId;         ///< empty = any
+  std::string nameContains;      ///< empty = any; else jobs whose name contains it (case-insensitive for ASCII)
   int limit = 50;
   std::int64_t offset = 0;
 };

@@ -11,6 +11,7 @@
 
 #include "byte_range.hpp"
 #include "files.hpp"
+#include "html_views.hpp"
 #include "json_body.hpp"
 #include "log.hpp"
 #include "problem.hpp"
@@ -134,6 +135,24 @@ bool wantsCsv(const Request& req) {
   }
   const std::string accept = req.get_header_value("Accept");
   return accept.find("text/csv") != std::string::npos && accept.find("application/json") == std::string::npos;
+}
+
+/// OGC API style: ?f=html, or a browser's Accept (text/html) when ?f is absent; ?f=json is JSON.
+bool wantsHtml(const Request& req) {
+  if (req.has_param("f")) {
+    const std::string f = req.get_param_value("f");
+    if (f == "html") return true;
+    if (f == "json") return false;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter", "f must be 'html' or 'json', got '" + f + "'",
+                   "f", Json{{"in", "query"}, {"value", f}, {"allowed", Json::array({"html", "json"})}});
+  }
+  return req.get_header_value("Accept").find("text/html") != std::string::npos;
+}
+
+void sendHtml(Response& res, const HtmlPage& page) {
+  res.set_header("Content-Security-Policy", page.csp());
+  res.set_header("X-Frame-Options", "DENY");
+  res.set_content(page.body, "text/html; charset=utf-8");
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -341,7 +360,7 @@ class Api {
 public:
   explicit Api(ServerContext& ctx) : m_ctx(ctx) {}
 
-  void landing(const Request&, Response& res) {
+  void landing(const Request& req, Response& res) {
     Json doc = Json::object();
     doc["title"] = "Rupture";
     doc["description"] =
@@ -356,6 +375,7 @@ public:
         link("/jobs", std::string(kOgcRel) + "job-list", kJsonType, "jobs"),
         link("/health", "status", kJsonType, "server health"),
     });
+    if (wantsHtml(req)) return sendHtml(res, landingHtml(doc));
     sendJson(res, doc);
   }
 
@@ -388,10 +408,16 @@ public:
                                                    base + "oas30"})}});
   }
 
-  void processes(const Request&, Response& res) {
+  void processes(const Request& req, Response& res) {
     Json list = Json::array();
     for (const auto& s : rupture::listScenarios()) list.push_back(processSummary(s));
-    sendJson(res, Json{{"processes", list}, {"links", Json::array({link("/processes", "self")})}});
+    const Json doc{{"processes", list}, {"links", Json::array({link("/processes", "self")})}};
+    if (wantsHtml(req)) {
+      Json schemas = Json::object();
+      for (const auto& s : rupture::listScenarios()) schemas[s.name] = Json(rupture::scenarioSchema(s.name));
+      return sendHtml(res, processesHtml(doc, schemas));
+    }
+    sendJson(res, doc);
   }
 
   void process(const Request& req, Response& res) {
@@ -430,6 +456,7 @@ public:
         {"modes", Json::array({"grid", "zip"})},
         {"max_runs", m_ctx.config.maxRuns},
     };
+    if (wantsHtml(req)) return sendHtml(res, processHtml(doc));
     sendJson(res, doc);
   }
 
@@ -547,6 +574,7 @@ public:
     for (const char* key : {"processID", "process_id"}) {
       if (req.has_param(key)) filter.processId = req.get_param_value(key);
     }
+    if (req.has_param("name")) filter.nameContains = req.get_param_value("name");
     filter.limit = static_cast<int>(intParam(req, "limit", 50, 1, 1000));
     filter.offset = intParam(req, "offset", 0, 0, std::numeric_limits<std::int64_t>::max() / 2);
     std::int64_t total = 0;
@@ -566,6 +594,7 @@ public:
       }
     }
     if (!filter.processId.empty()) query += "&processID=" + httplib::detail::encode_query_param(filter.processId);
+    if (!filter.nameContains.empty()) query += "&name=" + httplib::detail::encode_query_param(filter.nameContains);
     auto page = [&](std::int64_t offset) {
       return "/jobs?limit=" + std::to_string(filter.limit) + "&offset=" + std::to_string(offset) + query;
     };
@@ -575,12 +604,34 @@ public:
     }
     if (filter.offset > 0) links.push_back(link(page(std::max<std::int64_t>(0, filter.offset - filter.limit)), "prev"));
     doc["links"] = links;
+    if (wantsHtml(req)) {
+      Json current = {{"name", filter.nameContains}, {"processID", filter.processId},
+                      {"status", filter.statuses.size() == 1 ? toString(filter.statuses[0]) : ""}};
+      Json scenarios = Json::array();
+      for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);
+      return sendHtml(res, jobsHtml(doc, current, scenarios));
+    }
     sendJson(res, doc);
   }
 
   void job(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     auto runs = m_ctx.store->runs(job.id);
+    if (wantsHtml(req)) {
+      Json summary;  // once every run has ended
+      std::string plot;
+      if (job.runsAccepted + job.runsRunning == 0 && job.runsSuccessful > 0) {
+        const SummaryTable table = buildSummary(job, runs);
+        summary = summaryJson(table, unitLookupFor(job.processId));
+        if (!table.sweptPaths.empty() && !table.scalarNames.empty()) {
+          const bool peak = std::find(table.scalarNames.begin(), table.scalarNames.end(), "peak_stress") != table.scalarNames.end();
+          plot = "/jobs/" + std::to_string(job.id) + "/summary.svg?x=" +
+                 httplib::detail::encode_query_param(table.sweptPaths.front()) +
+                 "&y=" + httplib::detail::encode_query_param(peak ? "peak_stress" : table.scalarNames.front());
+        }
+      }
+      return sendHtml(res, jobHtml(statusInfo(job, &runs), summary, plot));
+    }
     sendJson(res, statusInfo(job, &runs));
   }
 

@@ -8,6 +8,9 @@ rupture=$1 source_dir=$2
 for tool in pvbatch pvpython xvfb-run h5dump /usr/bin/python3; do
   command -v "$tool" > /dev/null || { echo "skipped: $tool is not installed"; exit 77; }
 done
+if ! xvfb-run -a pvpython -c "import paraview.simple" > /dev/null 2>&1; then
+  echo "skipped: ParaView's Python module is missing (apt-get install python3-paraview)"; exit 77
+fi
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 - "$source_dir/examples/dynamic-tension-small.json" "$work/spec.json" <<'PY'
 import json, sys

@@ -123,6 +123,27 @@ TEST_F(ParaviewExport, BundleHoldsTheFileAndItsSidecar) {
   EXPECT_EQ(test::readText(out / stem / (stem + ".xdmf2")), xml);
 }
 
+TEST_F(ParaviewExport, CliWritesASidecarPerRunOfAMergedJobFile) {
+  const fs::path merged = dir.path() / "job.h5";
+  writeFile(merged, get("/jobs/" + std::to_string(jobId) + "/results"));
+  const std::string cmd = std::string(RUPTURE_CLI) + " xdmf " + merged.string() + " > " + (dir.path() / "out.txt").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const fs::path sidecar = dir.path() / "job.run-0.xdmf2";
+  EXPECT_EQ(test::readText(dir.path() / "out.txt"), sidecar.string() + "\n");
+  const std::string xml = test::readText(sidecar);
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(merged.string());
+  static const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">job\.h5:([^<]+)</DataItem>)re");
+  std::size_t items = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), item); it != std::sregex_iterator(); ++it, ++items) {
+    const std::string path = (*it)[2];
+    EXPECT_EQ(path.rfind("/run-0/", 0), 0u) << path;
+    ASSERT_TRUE(file.exists(path)) << path;
+    EXPECT_EQ(file.datasetDims(path), parseDims((*it)[1])) << path;
+  }
+  EXPECT_GT(items, 8u);
+  EXPECT_NE(xml.find("/run-0/sample/bonds"), std::string::npos);
+}
+
 TEST_F(ParaviewExport, UnknownRunIs404AndNotReadyIsProblem) {
   auto res = client->Get(("/jobs/" + std::to_string(jobId) + "/runs/7/results.xdmf").c_str());
   test::expectProblem(res, 404, "run");
