@@ -46,6 +46,7 @@ cat <<MSG
    curl -s "$BASE/jobs/$job/summary?format=csv"                    # peak stress versus strain rate
    curl --fail -o plot.svg "$BASE/jobs/$job/summary.svg?x=loading.strain_rate&y=peak_stress"
    curl --fail -o results.h5 $BASE/jobs/$job/results              # every run in one HDF5 file, once finished
+   open $BASE/jobs/$job?f=html in a browser                        # the same as a page, live
    tail -f $LOG                                                    # what the server does
 Ctrl-C stops the server.
 MSG
