@@ -3,11 +3,12 @@
 broken bonds (the cracks) drawn as black lines, at one snapshot.
 
     rupture xdmf RUN.h5                     # or download RUN.xdmf2 / the bundle from the server
-    xvfb-run -a pvbatch examples/paraview_figure4.py RUN.xdmf2 figure4.png [SNAPSHOT] [WIDTH HEIGHT]
+    xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch examples/paraview_figure4.py RUN.xdmf2 figure4.png [SNAPSHOT] [WIDTH HEIGHT]
 
 SNAPSHOT is the index of the snapshot (default -1, the last). Headless machines need a display:
 Debian's pvbatch aborts with --force-offscreen-rendering when no X server runs, so use xvfb-run
-(package xvfb). Tested with ParaView 5.11 (Debian 12); see docs/paraview.md.
+(package xvfb) with a 24-bit screen: xvfb-run's default 8-bit screen has no OpenGL visual and
+pvbatch aborts with "bad X server connection". Tested with ParaView 5.11 (Debian 12); see docs/paraview.md.
 """
 import sys
 
@@ -44,7 +45,8 @@ except AttributeError:
 shown = Show(particles, view)
 shown.SetRepresentationType("Point Gaussian")
 shown.ScaleByArray = 1
-shown.ScaleArray = ["POINTS", "radius"]
+shown.SetScaleArray = ["POINTS", "radius"]
+shown.UseScaleFunction = 0  # the radius itself, not mapped through a transfer function
 shown.GaussianRadius = 1.0
 shown.ShaderPreset = "Plain circle"
 ColorBy(shown, ("POINTS", "stress", "0"))
@@ -68,7 +70,7 @@ try:  # ParaView 5.10+
 except AttributeError:  # older ParaView
     broken.ThresholdRange = [0, 0]
 cracks = Show(broken, view)
-ColorBy(cracks, None)
+cracks.ColorArrayName = ["POINTS", ""]  # a solid colour
 cracks.AmbientColor = cracks.DiffuseColor = [0, 0, 0]
 cracks.LineWidth = 2.0
 

@@ -4,11 +4,9 @@
 // Content-Security-Policy whose nonce admits only the page's own inline style and script.
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include "problem.hpp"
 
 namespace rupture::server {
-
-using Json = nlohmann::json;
 
 /// A page and the nonce its CSP header must carry.
 struct HtmlPage {
