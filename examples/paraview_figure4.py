@@ -21,11 +21,20 @@ sidecar, out = sys.argv[1], sys.argv[2]
 snapshot = int(sys.argv[3]) if len(sys.argv) > 3 else -1
 size = [int(sys.argv[4]), int(sys.argv[5])] if len(sys.argv) > 5 else [1200, 1000]
 
-# Two readers on the same sidecar, one per grid collection: the particles and the bond lines.
-particles = XDMFReader(registrationName="particles", FileNames=[sidecar])
-particles.GridStatus = ["particles"]
-bonds = XDMFReader(registrationName="bonds", FileNames=[sidecar])
-bonds.GridStatus = ["bonds"]
+
+
+def reader(name, prefix):
+    """The sidecar's grids whose names start with prefix ("snapshot_": the particles, "bonds_": the
+    bond lines); ParaView's XDMF reader lists the grids of every temporal collection by name."""
+    r = XDMFReader(registrationName=name, FileNames=[sidecar])
+    grids = list(r.GetProperty("GridInfo"))[0::2]
+    r.GridStatus = [g for g in grids if g.startswith(prefix)]
+    return r
+
+
+# Two readers on the same sidecar: the particles and the bond lines.
+particles = reader("particles", "snapshot_")
+bonds = reader("bonds", "bonds_")
 times = list(particles.TimestepValues) if particles.TimestepValues else [0.0]
 if isinstance(particles.TimestepValues, float):
     times = [particles.TimestepValues]

@@ -8,7 +8,7 @@ rupture=$1 source_dir=$2
 for tool in pvbatch pvpython xvfb-run h5dump /usr/bin/python3; do
   command -v "$tool" > /dev/null || { echo "skipped: $tool is not installed"; exit 77; }
 done
-if ! xvfb-run -a pvpython -c "import paraview.simple" > /dev/null 2>&1; then
+if ! xvfb-run -a -s "-screen 0 1280x1024x24" pvpython -c "import paraview.simple" > /dev/null 2>&1; then
   echo "skipped: ParaView's Python module is missing (apt-get install python3-paraview)"; exit 77
 fi
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -24,8 +24,8 @@ elements=$(h5ls "$work/run.h5/sample/radius" | sed -E 's/.*\{([0-9]+)\}.*/\1/')
 bonds=$(h5ls "$work/run.h5/sample/bonds" | sed -E 's/.*\{([0-9]+), 2\}.*/\1/')
 last=$(h5ls "$work/run.h5/snapshots" | awk '{print $1}' | sort | tail -1)
 broken=$(h5dump -d "/snapshots/$last/bond_intact" -y -w 0 "$work/run.h5" | sed -n '/DATA {/,/}/p' | tr -c '0-9\n' ' ' | tr ' ' '\n' | grep -cx '0' || true)
-xvfb-run -a pvpython "$source_dir/tests/paraview/check_sidecar.py" "$work/fig.xdmf2" "$elements" "$bonds" "$broken"
-xvfb-run -a pvbatch "$source_dir/examples/paraview_figure4.py" "$work/fig.xdmf2" "$work/figure4.png" -1 600 500
+xvfb-run -a -s "-screen 0 1280x1024x24" pvpython "$source_dir/tests/paraview/check_sidecar.py" "$work/fig.xdmf2" "$elements" "$bonds" "$broken"
+xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch "$source_dir/examples/paraview_figure4.py" "$work/fig.xdmf2" "$work/figure4.png" -1 600 500
 # A PNG of the asked size (IHDR width and height, big-endian at bytes 16..23).
 /usr/bin/python3 - "$work/figure4.png" <<'PY'
 import struct, sys
