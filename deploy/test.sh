@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# The README's test command: install dependencies, build, start a one-node Slurm cluster for the
+# The README's test command: install dependencies (with chromium for the browser tests), build, start a one-node Slurm cluster for the
 # Slurm executor's tests (deploy/slurm/test-cluster.sh; its tests skip if it cannot start), run
 # every test with ctest, stop the cluster.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
-bash deploy/setup.sh
+# The test-only packages too: chromium for the browser tests (label "browser"). ParaView (label
+# "paraview") is left out: too heavy; its test skips without it (docs/paraview.md).
+bash deploy/setup.sh chromium
 bash deploy/build.sh
 slurm_dir="$PWD/build/slurm-test-cluster"
 if bash "$root/deploy/slurm/test-cluster.sh" start "$slurm_dir"; then

@@ -132,7 +132,7 @@ constexpr const char* kJobColumns =
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts, replicate";
+    "attempts, replicate, stage";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -174,6 +174,7 @@ RunRecord readRun(const Stmt& q) {
   r.updated = q.text(11);
   r.attempts = static_cast<int>(q.i64(12));
   r.replicate = static_cast<int>(q.i64(13));
+  r.stage = q.text(14);
   return r;
 }
 
@@ -191,10 +192,13 @@ void addCounts(sqlite3* db, JobRecord& j) {
       case Status::Running: j.runsRunning = n; done += q.dbl(2); break;
       case Status::Successful: j.runsSuccessful = n; done += n; break;
       case Status::Failed: j.runsFailed = n; done += n; break;
-      case Status::Dismissed: j.runsDismissed = n; done += n; break;
+      case Status::Dismissed: j.runsDismissed = n; done += q.dbl(2); break;  // what actually ran
     }
   }
   j.progress = j.runsTotal ? std::clamp(done / j.runsTotal, 0.0, 1.0) : 0.0;
+  Stmt u(db, "SELECT MAX(updated) FROM runs WHERE job_id = ?");
+  u.bind(1, j.id);
+  if (u.step() && !u.isNull(0)) j.runsUpdated = u.text(0);
 }
 
 }  // namespace
@@ -246,20 +250,20 @@ JobStore::JobStore(const std::string& path) {
 }
 
 void JobStore::migrate() {
-  // Studies (replicates, refinement): a JSON column per job and a replicate index per run. A
-  // database from before gets them with their neutral values.
-  auto hasColumn = [this](const char* table, const char* column) {
-    Stmt q(m_db, (std::string("PRAGMA table_info(") + table + ")").c_str());
-    while (q.step()) {
-      if (q.text(1) == column) return true;
-    }
-    return false;
-  };
+  // Studies (replicates, refinement): a JSON column per job and a replicate index per run; live
+  // progress: the run's stage message. A database from before gets them with their neutral values.
   if (!hasColumn("jobs", "study")) exec("ALTER TABLE jobs ADD COLUMN study TEXT");
   if (!hasColumn("runs", "replicate")) exec("ALTER TABLE runs ADD COLUMN replicate INTEGER NOT NULL DEFAULT 0");
+  if (!hasColumn("runs", "stage")) exec("ALTER TABLE runs ADD COLUMN stage TEXT NOT NULL DEFAULT ''");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
+
+bool JobStore::hasColumn(const std::string& table, const std::string& column) {
+  Stmt q(m_db, "SELECT 1 FROM pragma_table_info(?) WHERE name = ?");
+  q.bind(1, table).bind(2, column);
+  return q.step();
+}
 
 void JobStore::exec(const std::string& sql) {
   char* err = nullptr;
@@ -341,10 +345,12 @@ std::vector<JobRecord> JobStore::listJobs(const JobFilter& filter, std::int64_t&
     where += ")";
   }
   if (!filter.processId.empty()) where += " AND process_id = ?";
+  if (!filter.nameContains.empty()) where += " AND instr(lower(name), lower(?)) > 0";
   auto bindFilter = [&](Stmt& q) {
     int i = 1;
     for (Status s : filter.statuses) q.bind(i++, std::string(toString(s)));
     if (!filter.processId.empty()) q.bind(i++, filter.processId);
+    if (!filter.nameContains.empty()) q.bind(i++, filter.nameContains);
     return i;
   };
   {
@@ -508,14 +514,19 @@ bool JobStore::startRun(RunKey key) {
   return true;
 }
 
-void JobStore::setProgress(const std::vector<std::pair<RunKey, double>>& progress) {
+void JobStore::setProgress(const std::vector<RunProgress>& progress) {
   if (progress.empty()) return;
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);
-  for (const auto& [key, value] : progress) {
-    Stmt u(m_db, "UPDATE runs SET progress = ?, updated = ? WHERE job_id = ? AND idx = ? AND status = 'running'");
-    u.bind(1, std::clamp(value, 0.0, 1.0)).bind(2, now).bind(3, key.job).bind(4, key.index).run();
+  for (const RunProgress& p : progress) {
+    // `updated` moves only when something did, so a client can tell a stalled run from a live one.
+    Stmt u(m_db,
+           "UPDATE runs SET progress = ?, stage = CASE WHEN ? = '' THEN stage ELSE ? END, updated = ? "
+           "WHERE job_id = ? AND idx = ? AND status = 'running' AND (progress != ? OR (? != '' AND stage != ?))");
+    const double value = std::clamp(p.fraction, 0.0, 1.0);
+    u.bind(1, value).bind(2, p.stage).bind(3, p.stage).bind(4, now).bind(5, p.key.job).bind(6, p.key.index);
+    u.bind(7, value).bind(8, p.stage).bind(9, p.stage).run();
   }
   tx.commit();
 }

@@ -40,6 +40,7 @@ struct RunRecord {
   std::string error;    ///< message once failed
   std::string resultPath;  ///< relative to the data directory, once successful
   std::string started, finished, updated;
+  std::string stage;    ///< the run's last stage message ("sample: 1625 elements, ..."), "" before any
   int attempts = 0;     ///< times the run was started (> 1 after a crash or restart)
   int replicate = 0;    ///< replicate index within its sweep point (0 without replicates)
 };
@@ -57,10 +58,18 @@ struct JobRecord {
   std::string created, started, finished, updated;
   int runsTotal = 0;
   int runsAccepted = 0, runsRunning = 0, runsSuccessful = 0, runsFailed = 0, runsDismissed = 0;
-  double progress = 0;  ///< [0, 1]: finished runs count fully, running runs by their progress
+  double progress = 0;  ///< [0, 1]: successful and failed runs count fully, running and dismissed runs by their progress
+  std::string runsUpdated;  ///< the latest `updated` of its runs (progress changes it), "" without runs
   /// The study plan and its record, null for a plain sweep: {"replicates": {count, vary},
   /// "refine": {...}, "refinement": {"state": "pending"|"done", "rounds", "runs_added", "points", "stopped"}}
   Json study;
+};
+
+/// A running run's progress as its watcher sees it.
+struct RunProgress {
+  RunKey key;
+  double fraction = 0;  ///< [0, 1]
+  std::string stage;    ///< last stage message; "" keeps the stored one
 };
 
 struct NewJob {
@@ -93,6 +102,7 @@ struct IdempotentJob {
 struct JobFilter {
   std::vector<Status> statuses;  ///< empty = any
   std::string processId;         ///< empty = any
+  std::string nameContains;      ///< empty = any; else jobs whose name contains it (case-insensitive for ASCII)
   int limit = 50;
   std::int64_t offset = 0;
 };
@@ -132,7 +142,7 @@ public:
   /// accepted -> running. False when the run is no longer accepted (dismissed meanwhile).
   bool startRun(RunKey key);
   /// Stores progress fractions of running runs, in one transaction.
-  void setProgress(const std::vector<std::pair<RunKey, double>>& progress);
+  void setProgress(const std::vector<RunProgress>& progress);
   void finishSuccessful(RunKey key, const Json& summary, const std::string& resultPath);
   void finishFailed(RunKey key, const std::string& message);
   /// A running run stopped by cancellation.
@@ -165,6 +175,7 @@ public:
 private:
   void exec(const std::string& sql);
   void migrate();  // columns added after schema version 1
+  bool hasColumn(const std::string& table, const std::string& column);
   void updateJobStatus(std::int64_t jobId, const std::string& now);  // caller holds m_mutex, in a transaction
   void finishRun(RunKey key, Status status, const Json* summary, const std::string* error,
                  const std::string* resultPath);

@@ -11,9 +11,11 @@
 
 #include "byte_range.hpp"
 #include "files.hpp"
+#include "html_views.hpp"
 #include "json_body.hpp"
 #include "log.hpp"
 #include "problem.hpp"
+#include "progress_info.hpp"
 #include "public_message.hpp"
 #include "request_guard.hpp"
 #include "results.hpp"
@@ -25,6 +27,8 @@
 #include "replicates.hpp"
 #include "summary.hpp"
 #include "svg_plot.hpp"
+#include "tar_archive.hpp"
+#include "io/xdmf_writer.hpp"
 #include "sweep.hpp"
 #include "utf8.hpp"
 
@@ -136,6 +140,24 @@ bool wantsCsv(const Request& req) {
   }
   const std::string accept = req.get_header_value("Accept");
   return accept.find("text/csv") != std::string::npos && accept.find("application/json") == std::string::npos;
+}
+
+/// OGC API style: ?f=html, or a browser's Accept (text/html) when ?f is absent; ?f=json is JSON.
+bool wantsHtml(const Request& req) {
+  if (req.has_param("f")) {
+    const std::string f = req.get_param_value("f");
+    if (f == "html") return true;
+    if (f == "json") return false;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter", "f must be 'html' or 'json', got '" + f + "'",
+                   "f", Json{{"in", "query"}, {"value", f}, {"allowed", Json::array({"html", "json"})}});
+  }
+  return req.get_header_value("Accept").find("text/html") != std::string::npos;
+}
+
+void sendHtml(Response& res, const HtmlPage& page) {
+  res.set_header("Content-Security-Policy", page.csp());
+  res.set_header("X-Frame-Options", "DENY");
+  res.set_content(page.body, "text/html; charset=utf-8");
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -273,11 +295,14 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (job.study.is_object() && job.study.contains("replicates")) doc["replicate"] = run.replicate;
   if (run.summary.is_object()) doc["summary"] = run.summary;
   if (!run.error.empty()) doc["error"] = publicMessage(run.error);
+  addRunProgress(doc, run, utcNow());
   const std::string base = "/jobs/" + std::to_string(job.id) + "/runs/" + std::to_string(run.key.index);
   Json links = Json::array({link(base, "self")});
   if (run.status == Status::Successful) {
     links.push_back(link(base + "/results", "enclosure", kHdf5Type, "this run's HDF5 file"));
     links.push_back(link(base + "/series", "related", kJsonType, "time series (JSON or CSV)"));
+    links.push_back(link(base + "/results.xdmf", "describedby", "application/xml", "ParaView sidecar (XDMF 2)"));
+    links.push_back(link(base + "/bundle", "enclosure", "application/x-tar", "HDF5 file and ParaView sidecar (tar)"));
   }
   doc["links"] = links;
   return doc;
@@ -296,7 +321,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   doc["created"] = job.created;
   if (!job.started.empty()) doc["started"] = job.started;
   if (!job.finished.empty()) doc["finished"] = job.finished;
-  doc["updated"] = job.updated;
+  addJobProgress(doc, job, runs, utcNow());
   doc["sweep_mode"] = job.sweepMode;
   doc["swept"] = job.sweptPaths;
   doc["runs_total"] = job.runsTotal;
@@ -350,7 +375,7 @@ class Api {
 public:
   explicit Api(ServerContext& ctx) : m_ctx(ctx) {}
 
-  void landing(const Request&, Response& res) {
+  void landing(const Request& req, Response& res) {
     Json doc = Json::object();
     doc["title"] = "Rupture";
     doc["description"] =
@@ -365,6 +390,7 @@ public:
         link("/jobs", std::string(kOgcRel) + "job-list", kJsonType, "jobs"),
         link("/health", "status", kJsonType, "server health"),
     });
+    if (wantsHtml(req)) return sendHtml(res, landingHtml(doc));
     sendJson(res, doc);
   }
 
@@ -397,10 +423,16 @@ public:
                                                    base + "oas30"})}});
   }
 
-  void processes(const Request&, Response& res) {
+  void processes(const Request& req, Response& res) {
     Json list = Json::array();
     for (const auto& s : rupture::listScenarios()) list.push_back(processSummary(s));
-    sendJson(res, Json{{"processes", list}, {"links", Json::array({link("/processes", "self")})}});
+    const Json doc{{"processes", list}, {"links", Json::array({link("/processes", "self")})}};
+    if (wantsHtml(req)) {
+      Json schemas = Json::object();
+      for (const auto& s : rupture::listScenarios()) schemas[s.name] = Json(rupture::scenarioSchema(s.name));
+      return sendHtml(res, processesHtml(doc, schemas));
+    }
+    sendJson(res, doc);
   }
 
   void process(const Request& req, Response& res) {
@@ -442,6 +474,7 @@ public:
         {"max_runs", m_ctx.config.maxRuns},
         {"max_replicates", kMaxReplicates},
     };
+    if (wantsHtml(req)) return sendHtml(res, processHtml(doc));
     sendJson(res, doc);
   }
 
@@ -585,6 +618,7 @@ public:
     for (const char* key : {"processID", "process_id"}) {
       if (req.has_param(key)) filter.processId = req.get_param_value(key);
     }
+    if (req.has_param("name")) filter.nameContains = req.get_param_value("name");
     filter.limit = static_cast<int>(intParam(req, "limit", 50, 1, 1000));
     filter.offset = intParam(req, "offset", 0, 0, std::numeric_limits<std::int64_t>::max() / 2);
     std::int64_t total = 0;
@@ -604,6 +638,7 @@ public:
       }
     }
     if (!filter.processId.empty()) query += "&processID=" + httplib::detail::encode_query_param(filter.processId);
+    if (!filter.nameContains.empty()) query += "&name=" + httplib::detail::encode_query_param(filter.nameContains);
     auto page = [&](std::int64_t offset) {
       return "/jobs?limit=" + std::to_string(filter.limit) + "&offset=" + std::to_string(offset) + query;
     };
@@ -613,12 +648,34 @@ public:
     }
     if (filter.offset > 0) links.push_back(link(page(std::max<std::int64_t>(0, filter.offset - filter.limit)), "prev"));
     doc["links"] = links;
+    if (wantsHtml(req)) {
+      Json current = {{"name", filter.nameContains}, {"processID", filter.processId},
+                      {"status", filter.statuses.size() == 1 ? toString(filter.statuses[0]) : ""}};
+      Json scenarios = Json::array();
+      for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);
+      return sendHtml(res, jobsHtml(doc, current, scenarios));
+    }
     sendJson(res, doc);
   }
 
   void job(const Request& req, Response& res) {
     const JobRecord job = loadJob(req);
     auto runs = m_ctx.store->runs(job.id);
+    if (wantsHtml(req)) {
+      Json summary;  // once every run has ended
+      std::string plot;
+      if (job.runsAccepted + job.runsRunning == 0 && job.runsSuccessful > 0) {
+        const SummaryTable table = buildSummary(job, runs);
+        summary = summaryJson(table, unitLookupFor(job.processId));
+        if (!table.sweptPaths.empty() && !table.scalarNames.empty()) {
+          const bool peak = std::find(table.scalarNames.begin(), table.scalarNames.end(), "peak_stress") != table.scalarNames.end();
+          plot = "/jobs/" + std::to_string(job.id) + "/summary.svg?x=" +
+                 httplib::detail::encode_query_param(table.sweptPaths.front()) +
+                 "&y=" + httplib::detail::encode_query_param(peak ? "peak_stress" : table.scalarNames.front());
+        }
+      }
+      return sendHtml(res, jobHtml(statusInfo(job, &runs), summary, plot));
+    }
     sendJson(res, statusInfo(job, &runs));
   }
 
@@ -695,6 +752,56 @@ public:
     const RunRecord run = finishedRun(req, job);
     sendFile(req, res, m_ctx.resultsDir / run.resultPath,
              "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index) + ".h5");
+  }
+
+  // -- ParaView: the sidecar names the HDF5 file by its download name, so the two work side by side.
+
+  static std::string runFileStem(const JobRecord& job, const RunRecord& run) {
+    return "rupture-job-" + std::to_string(job.id) + "-run-" + std::to_string(run.key.index);
+  }
+
+  std::string runSidecar(const JobRecord& job, const RunRecord& run) {
+    const std::string file = (m_ctx.resultsDir / run.resultPath).string();
+    if (rupture::io::runGroupsWithSnapshots(file) != std::vector<std::string>{""}) {
+      throw ApiError(404, problem::kNoResults, "No results",
+                     "run " + std::to_string(run.key.index) + " of job " + std::to_string(job.id) +
+                         " has no snapshots for ParaView (" + job.processId + " writes none)");
+    }
+    return rupture::io::xdmfDocument(file, runFileStem(job, run) + ".h5");
+  }
+
+  void runXdmf(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    const std::string xml = runSidecar(job, run);
+    // .xdmf2: ParaView 5.11 opens *.xdmf with its broken Xdmf3 readers (docs/paraview.md).
+    res.set_header("Content-Disposition", "attachment; filename=\"" + runFileStem(job, run) + ".xdmf2\"");
+    res.set_content(xml, "application/xml");
+  }
+
+  void runBundle(const Request& req, Response& res) {
+    const JobRecord job = loadJob(req);
+    const RunRecord run = finishedRun(req, job);
+    const std::string stem = runFileStem(job, run);
+    const fs::path h5 = m_ctx.resultsDir / run.resultPath;
+    const std::string xml = runSidecar(job, run);
+    std::error_code ec;
+    const auto written = fs::last_write_time(h5, ec);
+    const std::int64_t mtime =
+        ec ? 0
+           : std::chrono::duration_cast<std::chrono::seconds>(
+                 std::chrono::file_clock::to_sys(written).time_since_epoch()).count();
+    auto tar = std::make_shared<TarArchive>();
+    tar->addFile(stem + "/" + stem + ".h5", h5, mtime);
+    tar->addText(stem + "/" + stem + ".xdmf2", xml, mtime);
+    res.set_header("Content-Disposition", "attachment; filename=\"" + stem + ".tar\"");
+    res.set_content_provider(static_cast<std::size_t>(tar->size()), "application/x-tar",
+                             [tar](std::size_t offset, std::size_t want, httplib::DataSink& sink) {
+                               std::vector<char> buffer(std::min<std::size_t>(want, 64 * 1024));
+                               const std::size_t n = tar->read(offset, buffer.data(), buffer.size());
+                               if (n == 0) return false;
+                               return sink.write(buffer.data(), n);
+                             });
   }
 
   void series(const Request& req, Response& res) {
@@ -1029,6 +1136,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
   http.Get("/jobs/" + id + "/runs/" + id, wrap(&Api::run));
   http.Get("/jobs/" + id + "/runs/" + id + "/results", wrap(&Api::runResults));
   http.Get("/jobs/" + id + "/runs/" + id + "/series", wrap(&Api::series));
+  http.Get(R"(/jobs/([^/]+)/runs/([^/]+)/results\.xdmf)", wrap(&Api::runXdmf));
+  http.Get("/jobs/" + id + "/runs/" + id + "/bundle", wrap(&Api::runBundle));
   http.Get("/jobs/" + id + "/summary", wrap(&Api::summary));
   http.Get(R"(/jobs/([^/]+)/summary\.svg)", wrap(&Api::summarySvg));
   http.Get("/summary", wrap(&Api::compareSummary));
@@ -1052,6 +1161,8 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
       {"/jobs/" + id + "/runs/" + id, {"GET"}},
       {"/jobs/" + id + "/runs/" + id + "/results", {"GET"}},
       {"/jobs/" + id + "/runs/" + id + "/series", {"GET"}},
+      {R"(/jobs/([^/]+)/runs/([^/]+)/results\.xdmf)", {"GET"}},
+      {"/jobs/" + id + "/runs/" + id + "/bundle", {"GET"}},
       {"/jobs/" + id + "/summary", {"GET"}},
       {R"(/jobs/([^/]+)/summary\.svg)", {"GET"}},
       {"/summary", {"GET"}},

@@ -241,6 +241,7 @@ void Scheduler::workerLoop() {
     {
       std::lock_guard lock(m_mutex);
       m_active.erase(key);
+      m_stages.erase(key);
     }
   }
 }
@@ -269,7 +270,11 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     fs::create_directories(file.parent_path());
     removeLeftovers();  // anything here is left over from an interrupted attempt
     logLine(describe(key) + " started");
-    control->log = [key](const std::string& msg) { logLine(describe(key) + ": " + msg); };
+    control->log = [this, key](const std::string& msg) {
+      logLine(describe(key) + ": " + msg);
+      std::lock_guard lock(m_mutex);
+      m_stages[key] = msg;
+    };
     rupture::RunOutcome result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
     if (result.completed) {
       Json summary = result.summary.is_object() ? Json(result.summary) : Json::object();
@@ -322,8 +327,11 @@ void Scheduler::monitorLoop() {
   while (!m_stopping) {
     m_monitorWake.wait_for(lock, std::chrono::seconds(1), [this] { return m_stopping; });
     if (m_stopping) break;
-    std::vector<std::pair<RunKey, double>> progress;
-    for (const auto& [key, control] : m_active) progress.emplace_back(key, control->progress.load());
+    std::vector<RunProgress> progress;
+    for (const auto& [key, control] : m_active) {
+      auto stage = m_stages.find(key);
+      progress.push_back({key, control->progress.load(), stage == m_stages.end() ? std::string() : stage->second});
+    }
     const bool retry = !m_unrecorded.empty();
     lock.unlock();
     try {

@@ -111,6 +111,7 @@ private:
     }
   };
   std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
+  std::map<RunKey, std::string, RunKeyLess> m_stages;  ///< last stage message of each active run
   bool m_stopping = false;
   bool m_started = false;
   std::vector<Outcome> m_unrecorded;  // guarded by m_mutex

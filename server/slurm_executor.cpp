@@ -284,7 +284,7 @@ void SlurmExecutor::poll() {
       queued[trim(line.substr(0, bar))] = trim(line.substr(bar + 1, line.find('|', bar + 1) - bar - 1));
     }
   }
-  std::vector<std::pair<RunKey, double>> progress;
+  std::vector<RunProgress> progress;
   for (const auto& [task, key] : tasks) {
     if (auto status = readFile(runPath(key, ".status"))) {
       int code = -1;
@@ -309,7 +309,8 @@ void SlurmExecutor::poll() {
       if (auto run = m_store.run(key); run && run->status == Status::Accepted) m_store.startRun(key);
       if (auto text = readFile(runPath(key, ".progress.json"))) {
         try {
-          progress.emplace_back(key, Json::parse(*text).value("progress", 0.0));
+          const Json doc = Json::parse(*text);
+          progress.push_back({key, doc.value("progress", 0.0), doc.value("stage", std::string())});
         } catch (const std::exception&) {
         }
       }

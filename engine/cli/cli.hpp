@@ -14,6 +14,7 @@ int scenariosCommand(const Args& args);
 int schemaCommand(const Args& args);
 int calibrateCommand(const Args& args);
 int benchCommand(const Args& args);
+int xdmfCommand(const Args& args);
 
 /// Exit code 2 with a message on stderr.
 int usageError(const std::string& message);

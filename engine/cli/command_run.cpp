@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -25,6 +27,7 @@
 #include "cli/spec_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf_writer.hpp"
+#include "rupture/progress.hpp"
 #include "rupture/run.hpp"
 
 namespace rupture::cli {
@@ -77,7 +80,9 @@ public:
     if (m_path.empty()) return;
     std::lock_guard lock(m_mutex);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    const nlohmann::json doc = {{"progress", fraction}, {"stage", m_stage}, {"elapsed_s", elapsed}, {"finished", finished}};
+    const double eta = estimateRemainingSeconds(elapsed, fraction);
+    const nlohmann::json doc = {{"progress", fraction}, {"stage", m_stage}, {"elapsed_s", elapsed},
+                                {"eta_s", eta >= 0 ? nlohmann::json(eta) : nlohmann::json()}, {"finished", finished}};
     const std::string temporary = m_path + ".tmp";
     {
       std::ofstream out(temporary, std::ios::trunc);
@@ -125,7 +130,7 @@ public:
   void update(double fraction, bool force = false) {
     std::lock_guard lock(m_mutex);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    const double eta = fraction > 0.01 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+    const double eta = estimateRemainingSeconds(elapsed, fraction);
     if (m_terminal) {
       constexpr int width = 30;
       const int filled = static_cast<int>(fraction * width + 0.5);
@@ -196,10 +201,36 @@ int runCommand(const Args& args) {
     return reportSpecError(specPath, e);
   }
 
+  // The output location is checked before any work: a missing directory fails now, not after the
+  // sample is built.
+  {
+    const std::filesystem::path parent = std::filesystem::absolute(output).parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(parent, ec)) {
+      return usageError("run: cannot write '" + output + "': the directory '" + parent.string() +
+                        (std::filesystem::exists(parent, ec) ? "' is not a directory" : "' does not exist"));
+    }
+    if (::access(parent.c_str(), W_OK) != 0) {
+      return usageError("run: cannot write '" + output + "' in '" + parent.string() + "': " + std::strerror(errno));
+    }
+    if (std::filesystem::is_directory(output, ec)) {
+      return usageError("run: cannot write '" + output + "': it is a directory; name the HDF5 file, e.g. " +
+                        (std::filesystem::path(output) / "run.h5").string());
+    }
+  }
+
   RunControl control;
   ProgressView view(::isatty(STDERR_FILENO) == 1);
   ProgressFile progressFile(progressPath);
-  control.log = [&view, &progressFile](const std::string& text) {
+  // The interrupt notice comes before anything the run says about stopping: whichever thread sees
+  // the cancel flag first prints it, once.
+  std::atomic<bool> noticed{false};
+  auto noticeInterrupt = [&] {
+    if (control.cancel.load() && !noticed.exchange(true))
+      view.message("interrupted: stopping and writing an incomplete result file (Ctrl-C again to kill)");
+  };
+  control.log = [&view, &progressFile, &noticeInterrupt](const std::string& text) {
+    noticeInterrupt();
     view.message(text);
     progressFile.stage(text);
   };
@@ -216,7 +247,6 @@ int runCommand(const Args& args) {
       }
       finished.store(true);
     });
-    bool noticed = false;
     auto lastProgressWrite = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     while (!finished.load()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -224,13 +254,11 @@ int runCommand(const Args& args) {
         lastProgressWrite = std::chrono::steady_clock::now();
         progressFile.write(control.progress.load());
       }
-      if (control.cancel.load() && !noticed) {
-        noticed = true;
-        view.message("interrupted: stopping and writing an incomplete result file (Ctrl-C again to kill)");
-      }
+      noticeInterrupt();
       if (!finished.load()) view.update(control.progress.load());
     }
     worker.join();
+    noticeInterrupt();
   }
   if (!failure) view.update(control.progress.load(), true);
   view.close();

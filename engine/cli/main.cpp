@@ -10,6 +10,8 @@ constexpr const char* kUsage = R"(usage: rupture <command> [options]
 commands:
   run SPEC.json -o RUN.h5 [--threads N]   run a scenario, write one HDF5 file (+ .xdmf2 sidecar),
                                           print the summary as JSON
+  xdmf RESULT.h5 [-o OUT.xdmf2]           write a ParaView sidecar for a run file, or one per run
+                                          for a job's merged file (RESULT.run-<k>.xdmf2)
   validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
   scenarios                               list the scenarios
   schema SCENARIO                         print a scenario's JSON Schema
@@ -45,6 +47,7 @@ int main(int argc, char** argv) {
     if (command == "schema") return schemaCommand(rest);
     if (command == "calibrate") return calibrateCommand(rest);
     if (command == "bench") return benchCommand(rest);
+    if (command == "xdmf") return xdmfCommand(rest);
   } catch (const std::exception& e) {
     std::cerr << "rupture " << command << ": " << e.what() << "\n";
     return 1;

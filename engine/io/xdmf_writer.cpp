@@ -2,6 +2,7 @@
 
 #include "io/xml_escape.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -77,9 +78,65 @@ std::string attribute(const std::string& name, const std::string& type,
          "\" Center=\"Node\">\n" + hdfItem("     ", dims, fileRef, path) + "    </Attribute>\n";
 }
 
-std::string snapshotGrid(const Hdf5File& file, const std::string& name,
+/// Integer connectivity (the bond pairs): NumberType follows the dataset's stored width.
+std::string intItem(const std::string& indent, const std::vector<std::size_t>& dims,
+                    const std::string& fileRef, const std::string& path) {
+  return indent + "<DataItem Dimensions=\"" + formatDims(dims) +
+         "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" + xmlEscape(fileRef) + ":" +
+         xmlEscape(path) + "</DataItem>\n";
+}
+
+std::string cellAttribute(const std::string& name, const std::vector<std::size_t>& dims,
+                          const std::string& numberType, int precision, const std::string& fileRef,
+                          const std::string& path) {
+  return "    <Attribute Name=\"" + name + "\" AttributeType=\"Scalar\" Center=\"Cell\">\n" +
+         "     <DataItem Dimensions=\"" + formatDims(dims) + "\" NumberType=\"" + numberType +
+         "\" Precision=\"" + std::to_string(precision) + "\" Format=\"HDF\">" + xmlEscape(fileRef) + ":" +
+         xmlEscape(path) + "</DataItem>\n    </Attribute>\n";
+}
+
+/// The bonds of one snapshot as line cells (Polyline, two nodes each) over the snapshot's
+/// positions, with their state as cell data: bond_intact (1/0), bond_load (measure/threshold) and,
+/// for beams, bond_equivalent_stress (Pa). Empty when the file has no bond pairs or the snapshot no
+/// bond state (SPH runs, files written before bonds were recorded).
+std::string bondGrid(const Hdf5File& file, const std::string& root, const std::string& name,
+                     const std::string& fileRef) {
+  const std::string pairsPath = root + "/sample/bonds";
+  const std::string base = root + "/snapshots/" + name;
+  if (!file.exists(pairsPath) || !file.exists(base + "/bond_intact")) return {};
+  const std::vector<std::size_t> pairDims = file.datasetDims(pairsPath);
+  if (pairDims.size() != 2 || pairDims[1] != 2) {
+    throw Hdf5Error("XDMF: bonds must have shape {bonds, 2}, found {" + formatDims(pairDims) +
+                    "} (file '" + file.path() + "', object '" + pairsPath + "')");
+  }
+  const std::size_t nb = pairDims[0];
+  const std::vector<std::size_t> posDims = file.datasetDims(base + "/position");
+  const auto intactDims = requireDims(file, base + "/bond_intact", {nb});
+  if (nb == 0 || posDims.empty() || posDims[0] == 0) return {};
+  const double time = file.readAttributeDouble(base, "time");
+
+  std::string xml;
+  xml += "   <Grid Name=\"bonds_" + xmlEscape(name) + "\" GridType=\"Uniform\">\n";
+  xml += "    <Time Value=\"" + formatDouble(time) + "\"/>\n";
+  xml += "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(nb) +
+         "\" NodesPerElement=\"2\">\n";
+  xml += intItem("     ", pairDims, fileRef, pairsPath);
+  xml += "    </Topology>\n";
+  xml += "    <Geometry GeometryType=\"XYZ\">\n";
+  xml += hdfItem("     ", posDims, fileRef, base + "/position");
+  xml += "    </Geometry>\n";
+  xml += cellAttribute("bond_intact", intactDims, "UChar", 1, fileRef, base + "/bond_intact");
+  for (const char* field : {"bond_load", "bond_equivalent_stress"}) {
+    const std::string path = base + "/" + field;
+    if (file.exists(path)) xml += cellAttribute(field, requireDims(file, path, {nb}), "Float", 8, fileRef, path);
+  }
+  xml += "   </Grid>\n";
+  return xml;
+}
+
+std::string snapshotGrid(const Hdf5File& file, const std::string& root, const std::string& name,
                          const std::string& fileRef) {
-  const std::string base = "/snapshots/" + name;
+  const std::string base = root + "/snapshots/" + name;
   const std::string posPath = base + "/position";
   if (!file.exists(posPath)) {
     throw Hdf5Error("XDMF: snapshot dataset missing (file '" + file.path() + "', object '" +
@@ -161,27 +218,49 @@ void writeAtomically(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath) {
-  std::string xml;
-  {
-    const Hdf5File file = Hdf5File::openReadOnly(hdf5Path);
-    if (!file.exists("/snapshots")) {
-      throw Hdf5Error("XDMF: run file has no /snapshots group (file '" + hdf5Path + "')");
-    }
-    const std::string fileRef = relativeReference(hdf5Path, xdmfPath);
-    // Layout of the verified template in dependencies notes §5.3 (ParaView 5.11, Xdmf2 reader).
-    xml += "<?xml version=\"1.0\" ?>\n";
-    xml += "<Xdmf Version=\"2.0\">\n";
-    xml += " <Domain>\n";
-    xml += "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const std::string& name : file.listGroup("/snapshots")) {
-      xml += snapshotGrid(file, name, fileRef);
-    }
-    xml += "  </Grid>\n";
-    xml += " </Domain>\n";
-    xml += "</Xdmf>\n";
+std::string xdmfDocument(const std::string& hdf5Path, const std::string& fileRef, const std::string& root) {
+  const Hdf5File file = Hdf5File::openReadOnly(hdf5Path);
+  const std::string snapshots = root + "/snapshots";
+  if (!file.exists(snapshots)) {
+    throw Hdf5Error("XDMF: run file has no " + snapshots + " group (file '" + hdf5Path + "')");
   }
-  writeAtomically(xdmfPath, xml);
+  const std::vector<std::string> names = file.listGroup(snapshots);
+  // Layout of the verified template in dependencies notes §5.3 (ParaView 5.11, Xdmf2 reader).
+  std::string xml;
+  xml += "<?xml version=\"1.0\" ?>\n";
+  xml += "<Xdmf Version=\"2.0\">\n";
+  xml += " <Domain>\n";
+  xml += "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const std::string& name : names) xml += snapshotGrid(file, root, name, fileRef);
+  xml += "  </Grid>\n";
+  std::string bonds;
+  for (const std::string& name : names) bonds += bondGrid(file, root, name, fileRef);
+  if (!bonds.empty()) {
+    xml += "  <Grid Name=\"bonds\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    xml += bonds;
+    xml += "  </Grid>\n";
+  }
+  xml += " </Domain>\n";
+  xml += "</Xdmf>\n";
+  return xml;
+}
+
+void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath, const std::string& root) {
+  writeAtomically(xdmfPath, xdmfDocument(hdf5Path, relativeReference(hdf5Path, xdmfPath), root));
+}
+
+std::vector<std::string> runGroupsWithSnapshots(const std::string& hdf5Path) {
+  const Hdf5File file = Hdf5File::openReadOnly(hdf5Path);
+  std::vector<std::string> roots;
+  if (file.exists("/snapshots")) return {""};
+  for (const std::string& name : file.listGroup("/")) {
+    if (name.rfind("run-", 0) == 0 && file.exists("/" + name + "/snapshots")) roots.push_back("/" + name);
+  }
+  // Numeric order (run-2 before run-10).
+  std::sort(roots.begin(), roots.end(), [](const std::string& a, const std::string& b) {
+    return a.size() != b.size() ? a.size() < b.size() : a < b;
+  });
+  return roots;
 }
 
 }  // namespace rupture::io

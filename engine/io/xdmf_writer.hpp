@@ -2,6 +2,7 @@
 // ParaView sidecar for a run file. XDMF keeps the small metadata in XML and points at the arrays in
 // the HDF5 file, so ParaView can show snapshots without a converter (dependencies notes §5.3).
 #include <string>
+#include <vector>
 
 namespace rupture::io {
 
@@ -18,8 +19,26 @@ namespace rupture::io {
 /// Xdmf3 readers. The sidecar is written to a temporary file and renamed into place. If this
 /// process still has the run file open for writing, flush it first.
 ///
+/// Bonded runs also get a second temporal collection, "bonds": per snapshot, the bond pairs of
+/// /sample/bonds {b,2} as line cells (Polyline, 2 nodes) over that snapshot's positions, with cell
+/// data bond_intact (1 intact, 0 broken), bond_load (criterion measure / threshold, 1) and, for
+/// beams, bond_equivalent_stress (Pa), whichever the snapshot holds.
+///
+/// `root` is the group that holds the run ("" for a run file, "/run-<k>" inside a job's merged
+/// file).
+///
 /// Throws Hdf5Error if the run file cannot be read or does not have this layout, and
 /// std::runtime_error if the sidecar cannot be written.
-void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath);
+void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath,
+                      const std::string& root = "");
+
+/// The sidecar's text, naming the HDF5 file as `fileRef` (the server names it by its download
+/// name, so the sidecar and the file work side by side in the user's directory).
+std::string xdmfDocument(const std::string& hdf5Path, const std::string& fileRef,
+                         const std::string& root = "");
+
+/// The runs of a file that XDMF can describe: {""} for a run file with /snapshots, else the
+/// "/run-<k>" groups of a merged job file that hold snapshots, in run order.
+std::vector<std::string> runGroupsWithSnapshots(const std::string& hdf5Path);
 
 }  // namespace rupture::io

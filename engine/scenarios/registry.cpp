@@ -4,6 +4,7 @@
 
 #include "scenarios/scenario.hpp"
 #include "io/spec_reader.hpp"
+#include "io/unknown_keys.hpp"
 
 namespace rupture {
 
@@ -54,17 +55,34 @@ nlohmann::json scenarioSchema(const std::string& name) {
   return scenarioFor({{"scenario", name}}), nlohmann::json();  // throws SpecError naming the field
 }
 
-void validateSpec(const nlohmann::json& spec) { scenarioFor(spec).validate(spec); }
+namespace {
+
+/// The scenario of a spec whose keys its schema all knows (unknown keys are reported first, with
+/// the nearest allowed key, before any value is read and any required key is found missing).
+const Scenario& scenarioWithKnownKeys(const nlohmann::json& spec) {
+  const Scenario& scenario = scenarioFor(spec);
+  static const std::vector<nlohmann::json> schemas = [] {
+    std::vector<nlohmann::json> out;
+    for (const Scenario& s : scenarioRegistry()) out.push_back(nlohmann::json::parse(embeddedSchema(s.info.name)));
+    return out;
+  }();
+  io::rejectUnknownKeys(spec, schemas[static_cast<std::size_t>(&scenario - scenarioRegistry().data())]);
+  return scenario;
+}
+
+}  // namespace
+
+void validateSpec(const nlohmann::json& spec) { scenarioWithKnownKeys(spec).validate(spec); }
 
 RunEstimate estimateRun(const nlohmann::json& spec) {
-  const Scenario& scenario = scenarioFor(spec);
+  const Scenario& scenario = scenarioWithKnownKeys(spec);
   if (scenario.estimate) return scenario.estimate(spec);  // parses, so it validates too
   scenario.validate(spec);
   return {};
 }
 
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control, int threads) {
-  const Scenario& scenario = scenarioFor(spec);
+  const Scenario& scenario = scenarioWithKnownKeys(spec);
   scenario.validate(spec);
   // OpenMP's thread count is per calling thread: each server worker sets its own.
   omp_set_num_threads(std::max(1, threads));

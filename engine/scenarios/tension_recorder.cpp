@@ -8,24 +8,12 @@
 
 #include "io/interleave.hpp"
 #include "scenarios/bond_network.hpp"
+#include "scenarios/bond_snapshot.hpp"
 #include "scenarios/virial_stress.hpp"
 
 namespace rupture {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::vector<std::int32_t> bondPairs(const BondStore& bonds) {
-  std::vector<std::int32_t> pairs(2 * bonds.size());
-  for (std::size_t b = 0; b < bonds.size(); ++b) {
-    pairs[2 * b] = bonds.i[b];
-    pairs[2 * b + 1] = bonds.j[b];
-  }
-  return pairs;
-}
-
-}  // namespace
 
 const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
   static const std::vector<std::pair<std::string, std::string>> names = {
@@ -73,7 +61,7 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
                    {"section", "m^2"}});
   m_file.writeDataset("/sample/radius", p.radius, {n}, "m");
   m_file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
-  m_file.writeDataset("/sample/bonds", bondPairs(system.bonds), {system.bonds.size(), 2}, "1");
+  writeBondPairs(m_file, system.bonds);
   std::vector<std::int32_t> group(n, 0);
   for (std::int32_t k : geometry.xmin) group[k] = 1;
   for (std::int32_t k : geometry.xmax) group[k] = 2;
@@ -101,9 +89,7 @@ void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFr
   m_file.writeDataset(base + "/stress", virialStress(system, packingFraction, thickness2d), {n, 3, 3}, "Pa");
   m_file.writeDataset(base + "/damage", elementDamage(system.bonds, n, &p.volume), {n}, "1");
   m_file.writeDataset(base + "/radius", p.radius, {n}, "m");
-  std::vector<std::uint8_t> intact(system.bonds.size());
-  for (std::size_t b = 0; b < intact.size(); ++b) intact[b] = system.bonds.intact[b] > 0.5 ? 1 : 0;
-  m_file.writeDataset(base + "/bond_intact", intact, {intact.size()}, "1");
+  writeBondState(m_file, base, system);
   ++m_snapshots;
 }
 

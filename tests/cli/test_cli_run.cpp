@@ -56,7 +56,9 @@ TEST(CliRun, WritesResultSidecarAndSummary) {
   int refs = 0;
   for (auto it = std::sregex_iterator(xml.begin(), xml.end(), ref); it != std::sregex_iterator(); ++it, ++refs)
     EXPECT_TRUE(file.exists((*it)[2].str())) << (*it)[2].str();
-  EXPECT_EQ(refs, 3 * 5);  // snapshots at 0, 3e-4 and the final one
+  // Snapshots at 0, 3e-4 and the final one; per snapshot 5 particle datasets and 5 of the bond grid
+  // (pairs, positions, bond_intact, bond_load, bond_equivalent_stress).
+  EXPECT_EQ(refs, 3 * (5 + 5));
   EXPECT_DOUBLE_EQ(file.readAttributeDouble("/summary", "peak_stress"), summary["peak_stress"].get<double>());
 }
 

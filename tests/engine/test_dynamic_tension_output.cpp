@@ -240,7 +240,9 @@ TEST(DynamicTensionOutput, XdmfSidecarReferencesExistingDatasets) {
     EXPECT_TRUE(f.exists((*it)[2].str())) << (*it)[2].str();
     ++count;
   }
-  EXPECT_EQ(count, 3u * 5u);  // 3 snapshots × (position, velocity, stress, damage, radius)
+  // 3 snapshots × (position, velocity, stress, damage, radius) and × the bond grid (pairs,
+  // positions, bond_intact, bond_load, bond_equivalent_stress).
+  EXPECT_EQ(count, 3u * (5u + 5u));
 }
 
 TEST(DynamicTensionOutput, ConcurrentRunsOnOneSampleComputeThePreliminaryRunOnce) {

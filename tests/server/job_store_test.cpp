@@ -50,7 +50,7 @@ TEST(JobStore, StatusRollsUpFromRuns) {
   EXPECT_FALSE(store.startRun({id, 0}));  // already running
   EXPECT_EQ(store.job(id)->status, Status::Running);
   EXPECT_FALSE(store.job(id)->started.empty());
-  store.setProgress({{{id, 0}, 0.5}});
+  store.setProgress({{{id, 0}, 0.5, ""}});
   EXPECT_NEAR(store.job(id)->progress, 0.5 / 3, 1e-9);
   store.finishSuccessful({id, 0}, Json{{"peak_stress", 1e8}}, "jobs/1/run-0.h5");
   ASSERT_TRUE(store.startRun({id, 1}));

@@ -10,6 +10,7 @@
 #include "io/interleave.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/bond_network.hpp"
+#include "scenarios/bond_snapshot.hpp"
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
 #include "scenarios/run_support.hpp"
@@ -169,6 +170,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
   file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
   file.writeDataset("/sample/radius", p.radius, {n}, "m");
   file.writeDataset("/sample/volume", p.volume, {n}, "m^3");
+  writeBondPairs(file, system.bonds);
   file.createGroup("/snapshots");
   std::size_t snapshots = 0;
   auto snapshot = [&](const std::string& trigger, const std::vector<double>& damage) {
@@ -184,6 +186,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
     file.writeDataset(base + "/stress", particleStress(system), {n, 3, 3}, "Pa");
     file.writeDataset(base + "/damage", damage, {n}, "1");
     file.writeDataset(base + "/radius", p.radius, {n}, "m");
+    writeBondState(file, base, system);
   };
 
   const std::vector<std::string> columns = {"time", "crack_tip_x", "crack_tip_y", "crack_tip_z", "crack_length",

@@ -1,0 +1,71 @@
+// HTML views (OGC API style): ?f=html or Accept: text/html gives a server-rendered page with a
+// strict CSP and escaped values; JSON stays the default. tests/browser loads the job page in a real
+// headless browser.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "server_test_support.hpp"
+
+namespace rupture::server {
+namespace {
+
+using test::getJson;
+using test::LiveServer;
+namespace fs = std::filesystem;
+
+std::string getHtml(httplib::Client& client, const std::string& path, const httplib::Headers& headers = {}) {
+  auto res = client.Get(path.c_str(), headers);
+  EXPECT_TRUE(res) << path;
+  if (!res) return {};
+  EXPECT_EQ(res->status, 200) << path << ": " << res->body.substr(0, 300);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "text/html; charset=utf-8") << path;
+  const std::string csp = res->get_header_value("Content-Security-Policy");
+  EXPECT_NE(csp.find("default-src 'none'"), std::string::npos) << csp;
+  EXPECT_EQ(csp.find("unsafe-inline"), std::string::npos) << csp;
+  EXPECT_EQ(res->body.find("http://"), std::string::npos) << "no external assets: " << path;
+  return res->body;
+}
+
+class HtmlViews : public ::testing::Test {
+protected:
+  void SetUp() override {
+    if (!test::scenarioAvailable()) GTEST_SKIP();
+    client = live.client();
+    Json body{{"inputs", test::smallInputs()}, {"name", "html <b>&amp; test</b>"},
+              {"sweep", {{"loading.strain_rate", test::twoStrainRates()}}}};
+    jobId = test::submit(*client, body);
+    ASSERT_GT(jobId, 0);
+    ASSERT_EQ(test::waitForJob(*client, jobId, {"successful", "failed"}, 180)["status"], "successful");
+  }
+  LiveServer live;
+  std::unique_ptr<httplib::Client> client;
+  std::int64_t jobId = 0;
+};
+
+TEST_F(HtmlViews, PagesListTheJobItsRunsSummaryAndPlot) {
+  const std::string id = std::to_string(jobId);
+  EXPECT_NE(getHtml(*client, "/", {{"Accept", "text/html"}}).find("/processes?f=html"), std::string::npos);
+  EXPECT_TRUE(getJson(*client, "/")["links"].is_array()) << "JSON stays the default";
+  const std::string processes = getHtml(*client, "/processes?f=html");
+  EXPECT_NE(processes.find("loading.strain_rate"), std::string::npos);
+  const std::string jobs = getHtml(*client, "/jobs?f=html&name=test&status=successful");
+  EXPECT_NE(jobs.find("href=\"/jobs/" + id + "?f=html\""), std::string::npos) << jobs;
+  EXPECT_NE(jobs.find("html &lt;b&gt;&amp;amp; test&lt;/b&gt;"), std::string::npos) << "names are escaped";
+  EXPECT_EQ(jobs.find("<b>&amp; test</b>"), std::string::npos);
+  EXPECT_EQ(getHtml(*client, "/jobs?f=html&name=nothing-like-it").find("href=\"/jobs/" + id + "?f=html\""), std::string::npos);
+  EXPECT_EQ(getJson(*client, "/jobs?name=TEST")["numberMatched"], 1);
+
+  const std::string page = getHtml(*client, "/jobs/" + id + "?f=html");
+  EXPECT_NE(page.find("id=\"run-0\""), std::string::npos);
+  EXPECT_NE(page.find("id=\"run-1\""), std::string::npos);
+  EXPECT_NE(page.find("<table id=\"summary\">"), std::string::npos);
+  EXPECT_NE(page.find("peak_stress"), std::string::npos);
+  EXPECT_NE(page.find("/summary.svg?x=loading.strain_rate&amp;y=peak_stress"), std::string::npos);
+  EXPECT_NE(page.find("/runs/0/bundle"), std::string::npos);
+  EXPECT_EQ(client->Get(("/jobs/" + id + "?f=xml").c_str())->status, 400);
+}
+
+}  // namespace
+}  // namespace rupture::server

@@ -1,0 +1,88 @@
+// Live progress over HTTP: a running run and its job carry a stage, elapsed_s, eta_s and an
+// `updated` that moves while the progress rises; a dismissed job keeps the progress of what ran.
+#include <gtest/gtest.h>
+
+#include "progress_info.hpp"
+#include "rupture/progress.hpp"
+#include "server_test_support.hpp"
+
+namespace rupture::server {
+namespace {
+
+using test::getJson;
+using test::LiveServer;
+
+Json slowThenQuick() {
+  const auto knob = test::runLengthKnob();
+  return Json{{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.slow, knob.quick})}}}};
+}
+
+TEST(LiveProgress, EstimatorAndTimestamps) {
+  EXPECT_DOUBLE_EQ(estimateRemainingSeconds(30.0, 0.25), 90.0);
+  EXPECT_DOUBLE_EQ(estimateRemainingSeconds(30.0, 1.0), 0.0);
+  EXPECT_LT(estimateRemainingSeconds(30.0, 0.001), 0.0) << "too early to tell";
+  EXPECT_DOUBLE_EQ(secondsBetween("2026-01-02T03:04:05.500Z", "2026-01-02T03:05:07.000Z"), 61.5);
+  EXPECT_DOUBLE_EQ(secondsBetween("2025-12-31T23:59:59.000Z", "2026-01-01T00:00:01.000Z"), 2.0);
+  EXPECT_LT(secondsBetween("yesterday", "2026-01-01T00:00:01.000Z"), 0.0);
+}
+
+TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {
+  ASSERT_TRUE(test::scenarioAvailable());
+  LiveServer live([](ServerConfig& c) { c.workers = 1; });
+  auto client = live.client();
+  const std::int64_t id = test::submit(*client, slowThenQuick());
+  ASSERT_GT(id, 0);
+  const std::string path = "/jobs/" + std::to_string(id);
+  Json first;
+  ASSERT_TRUE(test::waitFor([&] {
+    first = getJson(*client, path);
+    // The job's ETA needs 1 % of the whole job (run 0's 2 % of its half).
+    return !first["runs"][0]["eta_s"].is_null() && !first["eta_s"].is_null();
+  }, 120)) << first.dump(2);
+  const Json& run = first["runs"][0];
+  EXPECT_EQ(run["status"], "running");
+  EXPECT_TRUE(run["stage"].is_string());
+  EXPECT_NE(run["stage"], "queued");
+  EXPECT_GT(run["elapsed_s"].get<double>(), 0.0);
+  EXPECT_GT(run["eta_s"].get<double>(), 0.0);
+  EXPECT_EQ(first["runs"][1]["stage"], "queued");
+  EXPECT_TRUE(first["runs"][1]["elapsed_s"].is_null());
+  EXPECT_TRUE(first["stage"].get<std::string>().find("0 of 2 runs finished, 1 running") == 0) << first["stage"];
+  EXPECT_GT(first["elapsed_s"].get<double>(), 0.0);
+  EXPECT_FALSE(first["eta_s"].is_null());
+
+  // While the progress rises, both `updated` stamps move and elapsed grows.
+  Json later;
+  ASSERT_TRUE(test::waitFor([&] {
+    later = getJson(*client, path);
+    return later["runs"][0]["progress"].get<int>() > run["progress"].get<int>();
+  }, 120)) << later.dump(2);
+  EXPECT_GT(later["runs"][0]["updated"].get<std::string>(), run["updated"].get<std::string>());
+  EXPECT_GT(later["updated"].get<std::string>(), first["updated"].get<std::string>());
+  EXPECT_GT(later["runs"][0]["elapsed_s"].get<double>(), run["elapsed_s"].get<double>());
+  // The job list carries the same members.
+  const Json list = getJson(*client, "/jobs");
+  ASSERT_EQ(list["jobs"].size(), 1u);
+  for (const char* key : {"stage", "elapsed_s", "eta_s", "updated"}) EXPECT_TRUE(list["jobs"][0].contains(key)) << key;
+
+  // Dismissed: the job's progress is what ran (run 0's share), not the dismissed runs counted as done.
+  auto res = client->Delete(path.c_str());
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  Json done = test::waitForJob(*client, id, {"dismissed"}, 30);
+  ASSERT_TRUE(test::waitFor([&] {
+    done = getJson(*client, path);
+    return done["runs"][0]["status"] == "dismissed";
+  }, 30)) << done.dump(2);
+  const int ran = done["runs"][0]["progress"].get<int>();
+  EXPECT_GT(ran, 0);
+  EXPECT_LT(ran, 100);
+  EXPECT_EQ(done["runs"][1]["progress"], 0);
+  EXPECT_LE(done["progress"].get<int>(), (ran + 1) / 2);
+  EXPECT_GE(done["progress"].get<int>(), ran / 2 - 1);
+  EXPECT_TRUE(done["eta_s"].is_null());
+  EXPECT_EQ(done["runs"][1]["stage"], "dismissed");
+}
+
+}  // namespace
+}  // namespace rupture::server
