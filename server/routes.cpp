@@ -19,6 +19,7 @@
 #include "results.hpp"
 #include "rupture/run.hpp"
 #include "summary.hpp"
+#include "plot_png.hpp"
 #include "svg_plot.hpp"
 #include "sweep.hpp"
 #include "utf8.hpp"
@@ -193,58 +194,6 @@ bool knownScenario(const std::string& name) {
     if (s.name == name) return true;
   }
   return false;
-}
-
-std::string schemaUnitOfNode(const nlohmann::json& node) {
-  for (const char* key : {"x-unit", "unit", "units"}) {
-    if (node.contains(key) && node[key].is_string()) return node[key].get<std::string>();
-  }
-  if (node.contains("description") && node["description"].is_string()) {
-    // Conventions in descriptions: "Imposed strain rate (1/s): ...", "Box edges (m), ...",
-    // "... (1, dimensionless)", or a trailing "[Pa]". Equation references "(eq. 3)" are skipped.
-    static const std::regex paren(R"(\(([^()]{1,24})\))");
-    static const std::regex bracket(R"(\[([^\[\]]{1,16})\]\s*\.?\s*$)");
-    static const std::regex unitLike(R"(^[A-Za-z0-9/^*.+\- ]{1,12}$)");
-    const std::string d = node["description"].get<std::string>();
-    std::smatch m;
-    if (std::regex_search(d, m, bracket)) return m[1];
-    for (auto it = std::sregex_iterator(d.begin(), d.end(), paren); it != std::sregex_iterator(); ++it) {
-      const std::string inside = (*it)[1];
-      if (inside.rfind("1, dimensionless", 0) == 0 || inside == "1") return "";
-      if (inside.rfind("eq", 0) == 0 || inside.rfind("default", 0) == 0) continue;
-      if (std::regex_match(inside, unitLike)) return inside;
-    }
-  }
-  return "";
-}
-
-/// The unit of a dotted spec path from the scenario's JSON Schema, "" when it says none.
-std::string schemaUnit(const nlohmann::json& schema, const std::string& path) {
-  const nlohmann::json* node = &schema;
-  for (const std::string& segment : splitPath(path)) {
-    if (node->contains("properties") && (*node)["properties"].contains(segment)) {
-      node = &(*node)["properties"][segment];
-    } else if (node->contains("items")) {
-      node = &(*node)["items"];
-    } else {
-      return "";
-    }
-  }
-  return schemaUnitOfNode(*node);
-}
-
-UnitLookup unitLookupFor(const std::string& scenario) {
-  nlohmann::json schema;
-  try {
-    schema = rupture::scenarioSchema(scenario);
-  } catch (const std::exception&) {
-    schema = nlohmann::json::object();
-  }
-  return [schema](const std::string& column) {
-    std::string unit = knownScalarUnit(column);
-    if (unit.empty()) unit = schemaUnit(schema, column);
-    return unit;
-  };
 }
 
 int percent(double fraction) { return static_cast<int>(std::floor(std::clamp(fraction, 0.0, 1.0) * 100.0 + 1e-9)); }
@@ -672,6 +621,13 @@ public:
       length = std::max(length, table.columns[i].size());
     }
     doc["units"] = units;
+    Json labels = Json::object();
+    const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
+    for (const std::string& name : table.names) {
+      const rupture::ResultField* f = scenario ? rupture::findResultField(scenario->series, name) : nullptr;
+      labels[name] = f ? f->label : name;
+    }
+    doc["labels"] = labels;
     doc["length"] = length;
     doc["series"] = series;
     sendJson(res, doc);
@@ -684,7 +640,7 @@ public:
       res.set_content(summaryCsv(table), kCsvType);
       return;
     }
-    Json doc = summaryJson(table, unitLookupFor(job.processId));
+    Json doc = summaryJson(table);
     doc["status"] = toString(job.status);
     sendJson(res, doc);
   }
@@ -702,9 +658,33 @@ public:
     }
     plot.xScale = scaleParam(req, "xscale");
     plot.yScale = scaleParam(req, "yscale");
-    plot.title = plot.y + " vs " + plot.x + " - job " + std::to_string(job.id) +
+    plot.width = static_cast<int>(intParam(req, "width", 800, kMinWidth, kMaxWidth));
+    plot.height = static_cast<int>(intParam(req, "height", 500, kMinHeight, kMaxHeight));
+    plot.yMin = numberParam(req, "ymin");
+    plot.yMax = numberParam(req, "ymax");
+    if (req.has_param("yerror")) plot.yError = req.get_param_value("yerror");
+    if (!plot.yError.empty() && !table.hasColumn(plot.yError)) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "yerror='" + plot.yError + "' is not a column of this job's summary", "yerror",
+                     Json{{"in", "query"}, {"value", plot.yError}});
+    }
+    const std::string yLabel = table.hasColumn(plot.y) ? table.columnInfo(plot.y).label : plot.y;
+    const std::string xLabel = table.hasColumn(plot.x) ? table.columnInfo(plot.x).label : plot.x;
+    plot.title = yLabel + " vs " + xLabel + " - job " + std::to_string(job.id) +
                  (job.name.empty() ? "" : " (" + job.name + ")");
-    res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(job.processId)), "image/svg+xml");
+    const std::string format = req.has_param("format") ? req.get_param_value("format") : "svg";
+    if (format != "svg" && format != "png") {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "format must be 'svg' or 'png', got '" + format + "'", "format",
+                     Json{{"in", "query"}, {"value", format}, {"allowed", Json::array({"svg", "png"})}});
+    }
+    const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
+    const std::string svg = rupture::server::summarySvg(table, plot);
+    if (format == "png") {
+      res.set_content(renderPng(svg, plot.width * scale, plot.height * scale), "image/png");
+    } else {
+      res.set_content(svg, "image/svg+xml");
+    }
   }
 
   // -- shared checks ---------------------------------------------------------------------------
@@ -787,6 +767,19 @@ private:
                      name, Json{{"in", "query"}, {"value", text}});
     }
     return *v;
+  }
+
+  static std::optional<double> numberParam(const Request& req, const char* name) {
+    if (!req.has_param(name)) return std::nullopt;
+    const std::string text = req.get_param_value(name);
+    double v = 0;
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     std::string(name) + " must be a finite number (in the column's SI unit), got '" + text + "'",
+                     name, Json{{"in", "query"}, {"value", text}});
+    }
+    return v;
   }
 
   static AxisScale scaleParam(const Request& req, const char* name) {
