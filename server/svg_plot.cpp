@@ -65,6 +65,26 @@ std::string shortNumber(double v) {
 
 std::string valueText(const Json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+/// A legend value: text as is; a number with 4 significant digits, powers of ten as 10⁷ or
+/// 2.5×10⁷ beyond 10⁴, and its unit ("10⁷ 1/s").
+std::string legendValue(const Json& v, const std::string& unit) {
+  if (!v.is_number()) return valueText(v);
+  const double x = v.get<double>();
+  std::string text;
+  const int e = x == 0 ? 0 : static_cast<int>(std::floor(std::log10(std::abs(x)) + 1e-12));
+  if (std::abs(e) >= 4) {
+    const double m = x / std::pow(10.0, e);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", m);
+    text = (std::string(buf) == "1" ? std::string() : std::string(buf) + "×") + "10" + superscript(e);
+  } else {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", x);
+    text = buf;
+  }
+  return unit.empty() || unit == "1" ? text : text + " " + unit;
+}
+
 struct Axis {
   bool log = false;
   bool categorical = false;
@@ -282,7 +302,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
     std::string key;
     for (const auto& p : others) {
       key += (key.empty() ? "" : ", ") + (others.size() > 1 ? table.columnInfo(p).label + " " : std::string()) +
-             valueText(table.value(row, p));
+             legendValue(table.value(row, p), table.columnInfo(p).unit);
     }
     double err = 0;
     if (!request.yError.empty()) {

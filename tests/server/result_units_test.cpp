@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "io/hdf5_file.hpp"
 #include "results.hpp"
@@ -57,6 +58,25 @@ const std::map<std::string, Json>& tinySpecs() {
   return specs;
 }
 
+/// Points RUPTURE_CACHE_DIR at a directory for this scope and restores it afterwards (the other
+/// tests of this process rely on the server's own cache directory).
+class CacheDirFor {
+public:
+  explicit CacheDirFor(const fs::path& dir) {
+    if (const char* old = std::getenv("RUPTURE_CACHE_DIR")) m_old = old;
+    ::setenv("RUPTURE_CACHE_DIR", dir.c_str(), 1);
+  }
+  ~CacheDirFor() {
+    if (m_old) ::setenv("RUPTURE_CACHE_DIR", m_old->c_str(), 1);
+    else ::unsetenv("RUPTURE_CACHE_DIR");
+  }
+  CacheDirFor(const CacheDirFor&) = delete;
+  CacheDirFor& operator=(const CacheDirFor&) = delete;
+
+private:
+  std::optional<std::string> m_old;
+};
+
 std::string headerUnit(const std::string& cell) {
   const std::size_t open = cell.rfind(" [");
   return open == std::string::npos || cell.back() != ']' ? std::string("(none)") : cell.substr(open + 2, cell.size() - open - 3);
@@ -64,7 +84,7 @@ std::string headerUnit(const std::string& cell) {
 
 TEST(ResultUnits, EveryScenarioDeclaresAndWritesAUnitForEveryResult) {
   test::TempDir dir;
-  ::setenv("RUPTURE_CACHE_DIR", (dir.path() / "cache").c_str(), 1);
+  const CacheDirFor cache(dir.path() / "cache");
   for (const ScenarioInfo& scenario : listScenarios()) {
     SCOPED_TRACE(scenario.name);
     auto spec = tinySpecs().find(scenario.name);
@@ -152,7 +172,7 @@ TEST(ResultUnits, EveryScenarioDeclaresAndWritesAUnitForEveryResult) {
 
 TEST(MergedResults, SummaryTableWithUnitsAndNoServerPaths) {
   test::TempDir dir;
-  ::setenv("RUPTURE_CACHE_DIR", (dir.path() / "cache").c_str(), 1);
+  const CacheDirFor cache(dir.path() / "cache");
   Json spec = tinySpecs().at("dynamic-tension");
   spec["loading"]["initial_velocity"] = "V0";  // V0 without a ramp time: the cached preliminary run
   RunControl control;

@@ -141,6 +141,7 @@ TEST(SvgPlot, CategoricalXAndLinearY) {
   EXPECT_NE(svg.find(">Fragments</text>"), std::string::npos);  // dimensionless: no unit brackets
   EXPECT_EQ(svg.find("[-]"), std::string::npos);
   EXPECT_EQ(svg.find("<polyline"), std::string::npos);  // categories are not joined by lines
+  EXPECT_NE(svg.find("data-label=\"10⁵ 1/s\""), std::string::npos);  // legend values with their unit
 }
 
 TEST(SvgPlot, UnknownColumnsAndImpossibleScalesAre400) {
