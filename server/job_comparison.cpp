@@ -9,8 +9,8 @@ namespace rupture::server {
 namespace {
 
 /// The job's rows as JSON objects (summary rows, or aggregated points).
-Json rowsOf(const ComparedJob& j, bool aggregate, const UnitLookup& units, Json& columns) {
-  const Json doc = aggregate ? aggregateJson(j.table, aggregateReplicates(j.table), units) : summaryJson(j.table, units);
+Json rowsOf(const ComparedJob& j, bool aggregate, Json& columns) {
+  const Json doc = aggregate ? aggregateJson(j.table, aggregateReplicates(j.table)) : summaryJson(j.table);
   columns = doc["columns"];
   return doc["rows"];
 }
@@ -44,11 +44,10 @@ std::string jobLabel(const JobRecord& job) {
   return job.name.empty() ? "job " + std::to_string(job.id) : std::to_string(job.id) + ": " + job.name;
 }
 
-Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate,
-                    const std::function<UnitLookup(const std::string& scenario)>& unitsOf) {
+Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
   Json doc = Json::object();
   Json list = Json::array();
-  Json columns = Json::array({Json{{"name", "job"}, {"kind", "job"}, {"unit", ""}}});
+  Json columns = Json::array({Json{{"name", "job"}, {"kind", "job"}, {"unit", ""}, {"label", "Job"}, {"description", "The job id"}}});
   Json rows = Json::array();
   for (const ComparedJob& j : jobs) {
     list.push_back({{"jobID", std::to_string(j.job.id)},
@@ -59,7 +58,7 @@ Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate,
                     {"runs_total", j.job.runsTotal},
                     {"runs_successful", j.job.runsSuccessful}});
     Json jobColumns;
-    const Json jobRows = rowsOf(j, aggregate, unitsOf ? unitsOf(j.job.processId) : UnitLookup(), jobColumns);
+    const Json jobRows = rowsOf(j, aggregate, jobColumns);
     for (const auto& c : jobColumns) addColumn(columns, c);
     for (const auto& r : jobRows) {
       Json row = Json::object();
@@ -81,7 +80,7 @@ std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) 
   std::vector<Json> flat;
   for (const ComparedJob& j : jobs) {
     Json columns;
-    for (const auto& r : rowsOf(j, aggregate, UnitLookup(), columns)) {
+    for (const auto& r : rowsOf(j, aggregate, columns)) {
       Json row = Json::object();
       row["job"] = std::to_string(j.job.id);
       row["job_name"] = j.job.name;
@@ -105,29 +104,29 @@ std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) 
   return out.str();
 }
 
-SummaryTable comparisonPlotTable(const std::vector<ComparedJob>& jobs, const std::string& y,
-                                 std::vector<std::pair<double, double>>& yIntervals) {
+SummaryTable comparisonPlotTable(const std::vector<ComparedJob>& jobs) {
   SummaryTable out;
   out.sweptPaths.push_back("job");
-  for (const ComparedJob& j : jobs) {
-    for (const auto& p : j.table.sweptPaths) {
-      if (std::find(out.sweptPaths.begin(), out.sweptPaths.end(), p) == out.sweptPaths.end()) out.sweptPaths.push_back(p);
+  out.info["job"] = {"", "Job", "The job (id: name)"};
+  std::vector<SummaryTable> means;
+  for (const ComparedJob& j : jobs) means.push_back(meansTable(j.table, aggregateReplicates(j.table)));
+  auto addColumns = [](const std::vector<std::string>& from, std::vector<std::string>& to) {
+    for (const auto& c : from) {
+      if (std::find(to.begin(), to.end(), c) == to.end()) to.push_back(c);
     }
-    for (const auto& s : j.table.scalarNames) {
-      if (std::find(out.scalarNames.begin(), out.scalarNames.end(), s) == out.scalarNames.end()) out.scalarNames.push_back(s);
-    }
+  };
+  for (const SummaryTable& m : means) {
+    addColumns(m.sweptPaths, out.sweptPaths);
+    addColumns(m.scalarNames, out.scalarNames);
+    addColumns(m.declaredScalars, out.declaredScalars);
+    out.info.insert(m.info.begin(), m.info.end());  // the first job that names a column gives its unit
   }
-  yIntervals.clear();
-  for (const ComparedJob& j : jobs) {
-    std::vector<std::pair<double, double>> intervals;
-    const SummaryTable means = meansTable(j.table, aggregateReplicates(j.table), y, intervals);
-    for (std::size_t r = 0; r < means.rows.size(); ++r) {
-      SummaryRow row = means.rows[r];
-      Json swept = Json::array({jobLabel(j.job)});
-      for (std::size_t a = 1; a < out.sweptPaths.size(); ++a) swept.push_back(means.value(row, out.sweptPaths[a]));
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    for (SummaryRow row : means[k].rows) {
+      Json swept = Json::array({jobLabel(jobs[k].job)});
+      for (std::size_t a = 1; a < out.sweptPaths.size(); ++a) swept.push_back(means[k].value(row, out.sweptPaths[a]));
       row.swept = swept;
       out.rows.push_back(std::move(row));
-      yIntervals.push_back(intervals[r]);
     }
   }
   return out;

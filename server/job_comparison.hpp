@@ -3,7 +3,6 @@
 // job's summary (or, aggregated, its sweep points) with a leading "job" column, the columns being
 // the union of the jobs' columns in the order they first appear. Unfinished jobs are included as
 // they stand: their unfinished runs are rows with status accepted or running and no scalars.
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,17 +22,16 @@ struct ComparedJob {
 std::string jobLabel(const JobRecord& job);
 
 /// {"jobs": [{jobID, name, label, processID, status, runs_total, runs_successful}], "aggregate",
-///  "columns": [{name, kind, unit}], "rows": [{job, ...}]}
-Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate,
-                    const std::function<UnitLookup(const std::string& scenario)>& unitsOf);
+///  "columns": [{name, kind, unit, label, description}], "rows": [{job, ...}]}
+Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate);
 
 /// The same rows as CSV: job,job_name, then the union of the columns (statistics as
 /// <scalar>.mean, ... when aggregated).
 std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate);
 
 /// A table for the plot: swept paths "job" (the label) and the union of the jobs' swept paths, one
-/// row per sweep point at its mean, with the 95 % interval of `y` per row in `yIntervals`.
-SummaryTable comparisonPlotTable(const std::vector<ComparedJob>& jobs, const std::string& y,
-                                 std::vector<std::pair<double, double>>& yIntervals);
+/// row per sweep point at its mean, with the derived columns of meansTable (ciHalfWidthColumn(y)
+/// is the error-bar column).
+SummaryTable comparisonPlotTable(const std::vector<ComparedJob>& jobs);
 
 }  // namespace rupture::server

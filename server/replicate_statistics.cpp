@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "rupture/result_fields.hpp"
 #include "student_t.hpp"
 
 namespace rupture::server {
@@ -105,15 +106,24 @@ std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table) {
   return points;
 }
 
-Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>& points, const UnitLookup& unitOf) {
+Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>& points) {
   Json doc = Json::object();
   doc["jobID"] = std::to_string(table.jobId);
   doc["aggregate"] = "replicates";
   doc["confidence_level"] = kConfidenceLevel;
   Json columns = Json::array();
-  for (const auto& p : table.sweptPaths) columns.push_back({{"name", p}, {"kind", "swept"}, {"unit", unitOf ? unitOf(p) : ""}});
-  columns.push_back({{"name", "n_runs"}, {"kind", "count"}, {"unit", ""}});
-  columns.push_back({{"name", "n_successful"}, {"kind", "count"}, {"unit", ""}});
+  Json units = Json::object();
+  auto column = [&](const std::string& name, const char* kind) {
+    const ColumnInfo info = table.columnInfo(name);
+    units[name] = info.unit;
+    return Json{{"name", name}, {"kind", kind}, {"unit", info.unit}, {"label", info.label}, {"description", info.description}};
+  };
+  for (const auto& p : table.sweptPaths) columns.push_back(column(p, "swept"));
+  columns.push_back({{"name", "n_runs"}, {"kind", "count"}, {"unit", "1"}, {"label", "Runs"}, {"description", "Runs of the point"}});
+  columns.push_back({{"name", "n_successful"}, {"kind", "count"}, {"unit", "1"}, {"label", "Successful runs"},
+                     {"description", "Successful runs of the point (the statistics use only these)"}});
+  units["n_runs"] = "1";
+  units["n_successful"] = "1";
   // A scalar is a column when some point has statistics for it.
   std::vector<std::string> numeric;
   for (const auto& s : table.scalarNames) {
@@ -125,12 +135,12 @@ Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>&
     }
   }
   for (const auto& s : numeric) {
-    columns.push_back({{"name", s},
-                       {"kind", "statistics"},
-                       {"unit", unitOf ? unitOf(s) : knownScalarUnit(s)},
-                       {"members", Json::array({"mean", "sd", "ci95_low", "ci95_high", "ci95_half_width", "n"})}});
+    Json c = column(s, "statistics");
+    c["members"] = Json::array({"mean", "sd", "ci95_low", "ci95_high", "ci95_half_width", "n"});
+    columns.push_back(std::move(c));
   }
   doc["columns"] = columns;
+  doc["units"] = units;
   Json rows = Json::array();
   for (const PointAggregate& p : points) {
     Json r = Json::object();
@@ -162,10 +172,13 @@ std::string aggregateCsv(const SummaryTable& table, const std::vector<PointAggre
   std::ostringstream out;
   bool first = true;
   auto sep = [&] { if (!first) out << ','; first = false; };
-  for (const auto& p : table.sweptPaths) { sep(); out << csvTextCell(p); }
-  sep(); out << "n_runs,n_successful";
+  for (const auto& p : table.sweptPaths) { sep(); out << csvTextCell(rupture::nameWithUnit(p, table.columnInfo(p).unit)); }
+  sep(); out << "n_runs [1],n_successful [1]";
   for (const auto& s : numeric) {
-    for (const char* member : {".mean", ".sd", ".ci95_low", ".ci95_high", ".ci95_half_width", ".n"}) out << ',' << csvTextCell(s + member);
+    const std::string unit = table.columnInfo(s).unit;
+    for (const char* member : {".mean", ".sd", ".ci95_low", ".ci95_high", ".ci95_half_width"})
+      out << ',' << csvTextCell(rupture::nameWithUnit(s + member, unit));
+    out << ',' << csvTextCell(rupture::nameWithUnit(s + ".n", "1"));
   }
   out << "\r\n";
   for (const PointAggregate& p : points) {
@@ -186,14 +199,36 @@ std::string aggregateCsv(const SummaryTable& table, const std::vector<PointAggre
   return out.str();
 }
 
-SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggregate>& points, const std::string& y,
-                        std::vector<std::pair<double, double>>& yIntervals) {
+std::string ciHalfWidthColumn(const std::string& scalar) { return scalar + ".ci95_half_width"; }
+
+SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggregate>& points) {
   SummaryTable means;
   means.jobId = table.jobId;
   means.sweptPaths = table.sweptPaths;
-  means.scalarNames = table.scalarNames;
-  yIntervals.clear();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
+  means.info = table.info;
+  means.declaredScalars = table.declaredScalars;
+  // Every scalar keeps its column (now the mean); numeric ones get their derived columns.
+  std::vector<std::string> numeric;
+  for (const auto& s : table.scalarNames) {
+    means.scalarNames.push_back(s);
+    for (const PointAggregate& p : points) {
+      if (p.find(s)) {
+        numeric.push_back(s);
+        break;
+      }
+    }
+  }
+  for (const auto& s : numeric) {
+    const ColumnInfo base = table.columnInfo(s);
+    means.info[s] = {base.unit, base.label, "Mean over the successful replicates of: " + base.description};
+    means.scalarNames.push_back(s + ".sd");
+    means.info[s + ".sd"] = {base.unit, base.label + " (sd)", "Sample standard deviation (n - 1) of " + s + " over the replicates"};
+    means.scalarNames.push_back(ciHalfWidthColumn(s));
+    means.info[ciHalfWidthColumn(s)] = {base.unit, base.label + " (95 % CI half-width)",
+                                        "Half-width of the 95 % confidence interval of the mean of " + s + " (Student t)"};
+    means.scalarNames.push_back(s + ".n");
+    means.info[s + ".n"] = {"1", base.label + " (n)", "Successful replicates that reported " + s};
+  }
   for (const PointAggregate& p : points) {
     SummaryRow row;
     row.run = p.runs.empty() ? 0 : p.runs.front();
@@ -201,11 +236,12 @@ SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggreg
     row.swept = p.swept;
     row.scalars = Json::object();
     for (const auto& [name, stats] : p.scalars) {
-      if (stats.n > 0) row.scalars[name] = stats.mean;
+      if (stats.n == 0) continue;
+      row.scalars[name] = stats.mean;
+      row.scalars[name + ".n"] = stats.n;
+      if (stats.sd) row.scalars[name + ".sd"] = *stats.sd;
+      if (stats.ciHalfWidth) row.scalars[ciHalfWidthColumn(name)] = *stats.ciHalfWidth;
     }
-    const ScalarStatistics* s = p.find(y);
-    if (s && s->ciHalfWidth) yIntervals.emplace_back(s->mean - *s->ciHalfWidth, s->mean + *s->ciHalfWidth);
-    else yIntervals.emplace_back(nan, nan);
     means.rows.push_back(std::move(row));
   }
   return means;

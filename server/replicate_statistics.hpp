@@ -42,14 +42,20 @@ std::vector<PointAggregate> aggregateReplicates(const SummaryTable& table);
 /// {"jobID", "aggregate": "replicates", "confidence_level": 0.95, "columns": [...],
 ///  "rows": [{<swept>, n_runs, n_successful, runs, excluded, <scalar>: {mean, sd, ci95_low,
 ///  ci95_high, ci95_half_width, n}}]}
-Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>& points, const UnitLookup& unitOf);
+/// Each column carries unit, label and description from the table's column info.
+Json aggregateJson(const SummaryTable& table, const std::vector<PointAggregate>& points);
 
-/// CSV: <swept paths>,n_runs,n_successful,<s>.mean,<s>.sd,<s>.ci95_low,<s>.ci95_high,<s>.ci95_half_width,<s>.n per scalar.
+/// CSV: <swept paths>,n_runs,n_successful,<s>.mean,<s>.sd,<s>.ci95_low,<s>.ci95_high,<s>.ci95_half_width,<s>.n per scalar,
+/// each header "name [unit]" like the summary CSV (the statistics of s in s's unit, n in "1").
 std::string aggregateCsv(const SummaryTable& table, const std::vector<PointAggregate>& points);
 
-/// The points as a summary table of means (one row per point; run = the point's first run), with
-/// the 95 % interval of `y` aligned with its rows (NaN where there is none): what the plot draws.
-SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggregate>& points, const std::string& y,
-                        std::vector<std::pair<double, double>>& yIntervals);
+/// The column of a means table holding the 95 % confidence half-width of `scalar` ("<scalar>.ci95_half_width").
+std::string ciHalfWidthColumn(const std::string& scalar);
+
+/// The points as a summary table of means (one row per point; run = the point's first run): each
+/// numeric scalar s holds its mean, and derived columns s.sd, s.ci95_half_width and s.n hold the
+/// rest, with units and labels in the table's column info. A plot draws the 95 % intervals by
+/// naming ciHalfWidthColumn(y) as PlotRequest::yError.
+SummaryTable meansTable(const SummaryTable& table, const std::vector<PointAggregate>& points);
 
 }  // namespace rupture::server

@@ -1,15 +1,75 @@
 #include "results.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "files.hpp"
 #include "io/hdf5_file.hpp"
+#include "rupture/result_fields.hpp"
 #include "summary.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
 using rupture::io::Hdf5File;
+
+namespace {
+
+/// /summary: one dataset per column (run, status, swept values, result scalars), one row per run,
+/// each with attributes unit, label and description; numbers as float64 (NaN where a run has no
+/// value), anything else as UTF-8 text. The group's "columns" attribute lists them in order.
+void writeSummaryTable(Hdf5File& out, const SummaryTable& table) {
+  out.createGroup("/summary");
+  Json columns = Json::array({"run", "status"});
+  std::vector<std::int32_t> runIndex;
+  std::vector<std::string> status;
+  for (const SummaryRow& row : table.rows) {
+    runIndex.push_back(row.run);
+    status.emplace_back(toString(row.status));
+  }
+  auto describe = [&](const std::string& path, const std::string& label, const std::string& description) {
+    out.setAttribute(path, "label", label);
+    out.setAttribute(path, "description", description);
+  };
+  out.writeDataset("/summary/run", runIndex, {runIndex.size()}, "1");
+  describe("/summary/run", "Run", "Index of the run in the job (group /run-<index> when it succeeded)");
+  out.writeDataset("/summary/status", status, "");
+  describe("/summary/status", "Status", "Final status of the run");
+  std::vector<std::string> names = table.sweptPaths;
+  names.insert(names.end(), table.scalarNames.begin(), table.scalarNames.end());
+  for (const std::string& name : names) {
+    const ColumnInfo info = table.columnInfo(name);
+    bool numeric = true;
+    for (const SummaryRow& row : table.rows) {
+      const Json v = table.value(row, name);
+      if (!v.is_null() && !v.is_number()) numeric = false;
+    }
+    const std::string path = "/summary/" + name;
+    if (numeric) {
+      std::vector<double> values;
+      for (const SummaryRow& row : table.rows) {
+        const Json v = table.value(row, name);
+        values.push_back(v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN());
+      }
+      out.writeDataset(path, values, {values.size()}, info.unit);
+    } else {
+      std::vector<std::string> values;
+      for (const SummaryRow& row : table.rows) {
+        const Json v = table.value(row, name);
+        values.push_back(v.is_string() ? v.get<std::string>() : v.is_null() ? "" : v.dump());
+      }
+      out.writeDataset(path, values, info.unit);
+    }
+    describe(path, info.label, info.description);
+    columns.push_back(name);
+  }
+  out.setAttribute("/summary", "columns", columns.dump());
+  out.setAttribute("/summary", "description",
+                   "One row per run of the job: its swept values and result scalars, one dataset per column "
+                   "(listed in order in \"columns\"), each with its SI unit in the attribute \"unit\"");
+}
+
+}  // namespace
 
 fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs, const fs::path& dataDir) {
   // One builder at a time: HDF5 serialises calls anyway, and two requests for the same job must not
@@ -25,6 +85,8 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
   fs::remove(part, ec);
   {
     Hdf5File out = Hdf5File::create(part.string());
+    const SummaryTable table = buildSummary(job, runs);
+    writeSummaryTable(out, table);
     for (const RunRecord& run : runs) {
       if (run.status != Status::Successful || run.resultPath.empty()) continue;
       out.copyFileInto((dataDir / run.resultPath).string(), "/run-" + std::to_string(run.key.index));
@@ -56,6 +118,8 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
         else if (v.is_number()) out.setAttribute(group, name, v.get<double>());
         else if (v.is_string()) out.setAttribute(group, name, v.get<std::string>());
         else out.setAttribute(group, name, v.dump());
+        const std::string unit = table.columnInfo(job.sweptPaths[i].get<std::string>()).unit;
+        if (!unit.empty()) out.setAttribute(group, name + "_unit", unit);
       }
       ++included;
     }
@@ -96,7 +160,7 @@ std::string seriesCsv(const SeriesTable& table) {
   std::ostringstream out;
   std::size_t rows = 0;
   for (std::size_t i = 0; i < table.names.size(); ++i) {
-    out << (i ? "," : "") << csvTextCell(table.names[i]);
+    out << (i ? "," : "") << csvTextCell(rupture::nameWithUnit(table.names[i], table.units[i]));
     rows = std::max(rows, table.columns[i].size());
   }
   out << "\r\n";

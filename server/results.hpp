@@ -14,7 +14,10 @@ namespace rupture::server {
 /// and returns its path. Call only for a job whose runs have all finished: the file is then final
 /// and is built once (written as .part, then renamed). Group per run: /run-<k>, holding a copy of
 /// every object of run-<k>.h5, the run file's root attributes, and attributes sweep.run_index,
-/// sweep.values (JSON) and sweep.<path> for each swept value. Root attributes describe the job.
+/// sweep.values (JSON) and sweep.<path> for each swept value (with sweep.<path>_unit when it has
+/// one). Root attributes describe the job. /summary holds the job's summary table: one dataset per
+/// column (run, status, swept values, result scalars), one row per run, each with "unit", "label"
+/// and "description" attributes.
 std::filesystem::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
                                     const std::filesystem::path& dataDir);
 
@@ -31,7 +34,7 @@ std::vector<std::string> seriesNames(const std::filesystem::path& runFile);
 /// unknown series and listing the available ones.
 SeriesTable readSeries(const std::filesystem::path& runFile, const std::vector<std::string>& names);
 
-/// CSV with one column per series (RFC 4180, header line of names).
+/// CSV with one column per series (RFC 4180, header line of "name [unit]", as the summary CSV).
 std::string seriesCsv(const SeriesTable& table);
 
 }  // namespace rupture::server

@@ -26,6 +26,7 @@
 #include "replicate_statistics.hpp"
 #include "replicates.hpp"
 #include "summary.hpp"
+#include "plot_png.hpp"
 #include "svg_plot.hpp"
 #include "tar_archive.hpp"
 #include "io/xdmf_writer.hpp"
@@ -220,58 +221,6 @@ bool knownScenario(const std::string& name) {
     if (s.name == name) return true;
   }
   return false;
-}
-
-std::string schemaUnitOfNode(const nlohmann::json& node) {
-  for (const char* key : {"x-unit", "unit", "units"}) {
-    if (node.contains(key) && node[key].is_string()) return node[key].get<std::string>();
-  }
-  if (node.contains("description") && node["description"].is_string()) {
-    // Conventions in descriptions: "Imposed strain rate (1/s): ...", "Box edges (m), ...",
-    // "... (1, dimensionless)", or a trailing "[Pa]". Equation references "(eq. 3)" are skipped.
-    static const std::regex paren(R"(\(([^()]{1,24})\))");
-    static const std::regex bracket(R"(\[([^\[\]]{1,16})\]\s*\.?\s*$)");
-    static const std::regex unitLike(R"(^[A-Za-z0-9/^*.+\- ]{1,12}$)");
-    const std::string d = node["description"].get<std::string>();
-    std::smatch m;
-    if (std::regex_search(d, m, bracket)) return m[1];
-    for (auto it = std::sregex_iterator(d.begin(), d.end(), paren); it != std::sregex_iterator(); ++it) {
-      const std::string inside = (*it)[1];
-      if (inside.rfind("1, dimensionless", 0) == 0 || inside == "1") return "";
-      if (inside.rfind("eq", 0) == 0 || inside.rfind("default", 0) == 0) continue;
-      if (std::regex_match(inside, unitLike)) return inside;
-    }
-  }
-  return "";
-}
-
-/// The unit of a dotted spec path from the scenario's JSON Schema, "" when it says none.
-std::string schemaUnit(const nlohmann::json& schema, const std::string& path) {
-  const nlohmann::json* node = &schema;
-  for (const std::string& segment : splitPath(path)) {
-    if (node->contains("properties") && (*node)["properties"].contains(segment)) {
-      node = &(*node)["properties"][segment];
-    } else if (node->contains("items")) {
-      node = &(*node)["items"];
-    } else {
-      return "";
-    }
-  }
-  return schemaUnitOfNode(*node);
-}
-
-UnitLookup unitLookupFor(const std::string& scenario) {
-  nlohmann::json schema;
-  try {
-    schema = rupture::scenarioSchema(scenario);
-  } catch (const std::exception&) {
-    schema = nlohmann::json::object();
-  }
-  return [schema](const std::string& column) {
-    std::string unit = knownScalarUnit(column);
-    if (unit.empty()) unit = schemaUnit(schema, column);
-    return unit;
-  };
 }
 
 int percent(double fraction) { return static_cast<int>(std::floor(std::clamp(fraction, 0.0, 1.0) * 100.0 + 1e-9)); }
@@ -827,6 +776,13 @@ public:
       length = std::max(length, table.columns[i].size());
     }
     doc["units"] = units;
+    Json labels = Json::object();
+    const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
+    for (const std::string& name : table.names) {
+      const rupture::ResultField* f = scenario ? rupture::findResultField(scenario->series, name) : nullptr;
+      labels[name] = f ? f->label : name;
+    }
+    doc["labels"] = labels;
     doc["length"] = length;
     doc["series"] = series;
     sendJson(res, doc);
@@ -842,8 +798,7 @@ public:
       return;
     }
     const std::vector<PointAggregate> points = aggregateReplicates(table);
-    Json doc = aggregate ? aggregateJson(table, points, unitLookupFor(job.processId))
-                         : summaryJson(table, unitLookupFor(job.processId));
+    Json doc = aggregate ? aggregateJson(table, points) : summaryJson(table);
     doc["status"] = toString(job.status);
     if (Json rates = rateDependence(table, points); !rates.is_null()) doc["rate_dependence"] = rates;
     sendJson(res, doc);
@@ -857,29 +812,27 @@ public:
       res.set_content(comparisonCsv(jobs, aggregate), kCsvType);
       return;
     }
-    sendJson(res, comparisonJson(jobs, aggregate, [](const std::string& scenario) { return unitLookupFor(scenario); }));
+    sendJson(res, comparisonJson(jobs, aggregate));
   }
 
   /// GET /plot?jobs=3,5,7: one series per job (point means, 95 % intervals as error bars).
   void comparePlot(const Request& req, Response& res) {
     const std::vector<ComparedJob> jobs = loadComparedJobs(req);
-    std::vector<std::pair<double, double>> intervals;
-    const std::string yName = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
-    SummaryTable table = comparisonPlotTable(jobs, yName, intervals);
+    const SummaryTable table = comparisonPlotTable(jobs);
     PlotRequest plot;
     plot.x = req.has_param("x") ? req.get_param_value("x") : (table.sweptPaths.size() > 1 ? table.sweptPaths[1] : "");
-    plot.y = yName;
+    plot.y = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
     if (plot.x.empty()) {
       throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
                      "these jobs sweep nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
     }
-    plot.xScale = scaleParam(req, "xscale");
-    plot.yScale = scaleParam(req, "yscale");
-    plot.yIntervals = intervals;
+    // Each point is a mean: its 95 % interval is the error bar unless ?yerror= names another column.
+    if (table.hasColumn(ciHalfWidthColumn(plot.y))) plot.yError = ciHalfWidthColumn(plot.y);
+    readPlotOptions(req, table, plot);
     std::string ids;
     for (const ComparedJob& j : jobs) ids += (ids.empty() ? "" : ", ") + std::to_string(j.job.id);
-    plot.title = plot.y + " vs " + plot.x + " - jobs " + ids;
-    res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(jobs.front().job.processId)), "image/svg+xml");
+    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids + " - mean, 95 % CI";
+    sendPlot(req, res, table, plot);
   }
 
   void summarySvg(const Request& req, Response& res) {
@@ -893,16 +846,17 @@ public:
       throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
                      "this job sweeps nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
     }
-    plot.xScale = scaleParam(req, "xscale");
-    plot.yScale = scaleParam(req, "yscale");
-    plot.title = plot.y + " vs " + plot.x + " - job " + std::to_string(job.id) +
-                 (job.name.empty() ? "" : " (" + job.name + ")");
-    if (table.replicated && table.hasColumn(plot.y)) {
-      // Replicates: one point per sweep point, at the mean, with its 95 % interval as an error bar.
-      table = meansTable(table, aggregateReplicates(table), plot.y, plot.yIntervals);
-      plot.title += " - mean, 95 % CI";
+    const bool replicated = table.replicated && table.hasColumn(plot.y);
+    if (replicated) {
+      // Replicates: one point per sweep point, at the mean, with its 95 % interval as the error bar
+      // (unless ?yerror= names another column, e.g. peak_stress.sd).
+      table = meansTable(table, aggregateReplicates(table));
+      if (table.hasColumn(ciHalfWidthColumn(plot.y))) plot.yError = ciHalfWidthColumn(plot.y);
     }
-    res.set_content(rupture::server::summarySvg(table, plot, unitLookupFor(job.processId)), "image/svg+xml");
+    readPlotOptions(req, table, plot);
+    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - job " + std::to_string(job.id) +
+                 (job.name.empty() ? "" : " (" + job.name + ")") + (replicated ? " - mean, 95 % CI" : "");
+    sendPlot(req, res, table, plot);
   }
 
   // -- shared checks ---------------------------------------------------------------------------
@@ -1035,6 +989,57 @@ private:
       jobs.push_back({*job, buildSummary(*job, m_ctx.store->runs(*id))});
     }
     return jobs;
+  }
+
+  static std::string columnLabel(const SummaryTable& table, const std::string& column) {
+    return table.hasColumn(column) ? table.columnInfo(column).label : column;
+  }
+
+  /// The plot query options shared by summary.svg and /plot: xscale, yscale, width, height, ymin,
+  /// ymax and yerror (a column of `table` holding each point's error half-width).
+  static void readPlotOptions(const Request& req, const SummaryTable& table, PlotRequest& plot) {
+    plot.xScale = scaleParam(req, "xscale");
+    plot.yScale = scaleParam(req, "yscale");
+    plot.width = static_cast<int>(intParam(req, "width", 800, kMinWidth, kMaxWidth));
+    plot.height = static_cast<int>(intParam(req, "height", 500, kMinHeight, kMaxHeight));
+    plot.yMin = numberParam(req, "ymin");
+    plot.yMax = numberParam(req, "ymax");
+    if (req.has_param("yerror")) plot.yError = req.get_param_value("yerror");
+    if (!plot.yError.empty() && !table.hasColumn(plot.yError)) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "yerror='" + plot.yError + "' is not a column of this summary", "yerror",
+                     Json{{"in", "query"}, {"value", plot.yError}});
+    }
+  }
+
+  /// The plot as SVG, or with ?format=png&scale=1..4 as PNG.
+  static void sendPlot(const Request& req, Response& res, const SummaryTable& table, const PlotRequest& plot) {
+    const std::string format = req.has_param("format") ? req.get_param_value("format") : "svg";
+    if (format != "svg" && format != "png") {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "format must be 'svg' or 'png', got '" + format + "'", "format",
+                     Json{{"in", "query"}, {"value", format}, {"allowed", Json::array({"svg", "png"})}});
+    }
+    const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
+    const std::string svg = rupture::server::summarySvg(table, plot);
+    if (format == "png") {
+      res.set_content(renderPng(svg, plot.width * scale, plot.height * scale), "image/png");
+    } else {
+      res.set_content(svg, "image/svg+xml");
+    }
+  }
+
+  static std::optional<double> numberParam(const Request& req, const char* name) {
+    if (!req.has_param(name)) return std::nullopt;
+    const std::string text = req.get_param_value(name);
+    double v = 0;
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     std::string(name) + " must be a finite number (in the column's SI unit), got '" + text + "'",
+                     name, Json{{"in", "query"}, {"value", text}});
+    }
+    return v;
   }
 
   static AxisScale scaleParam(const Request& req, const char* name) {

@@ -1,5 +1,7 @@
 #include "summary.hpp"
 
+#include "rupture/run.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <string_view>
@@ -9,18 +11,6 @@
 
 namespace rupture::server {
 namespace {
-
-/// The scalars every run reports, in the order a reader wants them.
-const std::vector<std::pair<std::string, std::string>>& knownScalars() {
-  static const std::vector<std::pair<std::string, std::string>> list = {
-      {"peak_stress", "Pa"},        {"strain_at_peak", ""}, {"crack_onset_strain", ""},
-      {"broken_bond_fraction", ""}, {"fragments", ""},      {"debris", ""},
-      {"largest_fragment_fraction", ""}, {"cracks_crossing", ""}, {"separated", ""},
-      {"separation_strain", ""},    {"equilibrium_ratio", ""}, {"equilibrium_ratio_at_peak", ""},
-      {"steps", ""},                {"wall_time_s", "s"},
-  };
-  return list;
-}
 
 void flatten(const Json& value, const std::string& prefix, Json& out) {
   if (value.is_object()) {
@@ -68,21 +58,6 @@ std::string formatNumber(double value) {
   return nlohmann::json(value).dump();
 }
 
-bool isKnownScalar(const std::string& name) {
-  for (const auto& [n, unit] : knownScalars()) {
-    if (n == name) return true;
-  }
-  return false;
-}
-
-std::string knownScalarUnit(const std::string& name) {
-  for (const auto& [n, unit] : knownScalars()) {
-    if (n == name) return unit;
-  }
-  if (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0) return "s";
-  return "";
-}
-
 Json SummaryTable::value(const SummaryRow& row, const std::string& column) const {
   for (std::size_t i = 0; i < sweptPaths.size(); ++i) {
     if (sweptPaths[i] == column) return i < row.swept.size() ? row.swept[i] : Json();
@@ -95,6 +70,33 @@ bool SummaryTable::hasColumn(const std::string& column) const {
   return std::find(sweptPaths.begin(), sweptPaths.end(), column) != sweptPaths.end() ||
          std::find(scalarNames.begin(), scalarNames.end(), column) != scalarNames.end();
 }
+
+ColumnInfo SummaryTable::columnInfo(const std::string& column) const {
+  auto it = info.find(column);
+  return it != info.end() ? it->second : ColumnInfo{"", column, ""};
+}
+
+namespace {
+
+/// True when scalar `name` repeats swept column `path` (same last segment, same value in every row
+/// that has both).
+bool repeatsSweptValue(const SummaryTable& table, const std::string& path, const std::string& name) {
+  const std::size_t dot = path.rfind('.');
+  if ((dot == std::string::npos ? path : path.substr(dot + 1)) != name) return false;
+  for (const SummaryRow& row : table.rows) {
+    const Json a = table.value(row, path), b = table.value(row, name);
+    if (a.is_null() || b.is_null()) continue;
+    if (a.is_number() && b.is_number()) {
+      const double x = a.get<double>(), y = b.get<double>();
+      if (std::abs(x - y) > 1e-12 * std::max(std::abs(x), std::abs(y))) return false;
+    } else if (a != b) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
 
 SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs) {
   SummaryTable table;
@@ -116,28 +118,57 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
     }
     table.rows.push_back(std::move(row));
   }
-  for (const auto& [name, unit] : knownScalars()) {
-    if (std::find(seen.begin(), seen.end(), name) != seen.end()) table.scalarNames.push_back(name);
+  // Column metadata from the scenario's declarations and its schema.
+  const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
+  Json schema = Json::object();
+  if (scenario) schema = rupture::scenarioSchema(job.processId);
+  const int dimension = rupture::specDimension(schema, runs.empty() ? Json::object() : runs.front().spec);
+  for (const std::string& p : table.sweptPaths) {
+    table.info[p] = {rupture::specFieldUnit(schema, p), rupture::specFieldLabel(schema, p), ""};
+  }
+  auto keep = [&](const std::string& name) {
+    for (const std::string& p : table.sweptPaths)
+      if (repeatsSweptValue(table, p, name)) return false;
+    return std::find(table.sweptPaths.begin(), table.sweptPaths.end(), name) == table.sweptPaths.end();
+  };
+  if (scenario) {
+    for (const rupture::ResultField& f : scenario->summary) {
+      if (std::find(seen.begin(), seen.end(), f.name) == seen.end() || !keep(f.name)) continue;
+      table.scalarNames.push_back(f.name);
+    }
   }
   for (const std::string& name : seen) {
-    if (std::find(table.scalarNames.begin(), table.scalarNames.end(), name) == table.scalarNames.end()) {
+    if (std::find(table.scalarNames.begin(), table.scalarNames.end(), name) == table.scalarNames.end() && keep(name)) {
       table.scalarNames.push_back(name);
     }
+  }
+  if (scenario) {
+    for (const rupture::ResultField& f : scenario->summary) {
+      table.declaredScalars.push_back(f.name);
+      table.info[f.name] = {f.unitFor(dimension), f.label, f.description};
+    }
+  }
+  for (const std::string& name : table.scalarNames) {
+    const rupture::ResultField* f = scenario ? rupture::findResultField(scenario->summary, name) : nullptr;
+    table.info[name] = f ? ColumnInfo{f->unitFor(dimension), f->label, f->description} : ColumnInfo{"", name, ""};
   }
   return table;
 }
 
-Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
+Json summaryJson(const SummaryTable& table) {
   Json doc = Json::object();
   doc["jobID"] = std::to_string(table.jobId);
-  Json columns = Json::array();
-  for (const auto& p : table.sweptPaths) {
-    columns.push_back({{"name", p}, {"kind", "swept"}, {"unit", unitOf ? unitOf(p) : ""}});
-  }
-  for (const auto& s : table.scalarNames) {
-    columns.push_back({{"name", s}, {"kind", "result"}, {"unit", unitOf ? unitOf(s) : knownScalarUnit(s)}});
-  }
+  Json columns = Json::array(), units = Json::object();
+  auto column = [&](const std::string& name, const char* kind) {
+    const ColumnInfo info = table.columnInfo(name);
+    columns.push_back({{"name", name}, {"kind", kind}, {"unit", info.unit}, {"label", info.label},
+                       {"description", info.description}});
+    units[name] = info.unit;
+  };
+  for (const auto& p : table.sweptPaths) column(p, "swept");
+  for (const auto& s : table.scalarNames) column(s, "result");
   doc["columns"] = columns;
+  doc["units"] = units;
   Json rows = Json::array();
   for (const SummaryRow& row : table.rows) {
     Json r = Json::object();
@@ -158,8 +189,8 @@ Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf) {
 std::string summaryCsv(const SummaryTable& table) {
   std::ostringstream out;
   out << "run,status" << (table.replicated ? ",replicate" : "");
-  for (const auto& p : table.sweptPaths) out << ',' << csvTextCell(p);
-  for (const auto& s : table.scalarNames) out << ',' << csvTextCell(s);
+  for (const auto& p : table.sweptPaths) out << ',' << csvTextCell(rupture::nameWithUnit(p, table.columnInfo(p).unit));
+  for (const auto& s : table.scalarNames) out << ',' << csvTextCell(rupture::nameWithUnit(s, table.columnInfo(s).unit));
   out << ",error\r\n";
   for (const SummaryRow& row : table.rows) {
     out << row.run << ',' << toString(row.status);

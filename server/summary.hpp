@@ -1,7 +1,9 @@
 #pragma once
 // A job's summary table: one row per run with its swept values and the scalars the run reported
-// (peak_stress, strain_at_peak, ...), rendered as JSON or CSV. Units are SI and named per column.
-#include <functional>
+// (peak_stress, strain_at_peak, ...), rendered as JSON or CSV. Every column carries its SI unit and
+// a human label from one source: the scenario's declared result fields (rupture/result_fields.hpp)
+// for scalars, the schema keyword "x-unit" (and "title") for swept spec fields.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -9,8 +11,12 @@
 
 namespace rupture::server {
 
-/// Unit of a column (a swept dotted path or a summary scalar), "" when dimensionless or unknown.
-using UnitLookup = std::function<std::string(const std::string& column)>;
+/// What a column means: its SI unit ("1" dimensionless, "" text or undeclared), label, description.
+struct ColumnInfo {
+  std::string unit;
+  std::string label;
+  std::string description;
+};
 
 struct SummaryRow {
   int run = 0;
@@ -24,9 +30,17 @@ struct SummaryRow {
 struct SummaryTable {
   std::int64_t jobId = 0;
   std::vector<std::string> sweptPaths;
-  std::vector<std::string> scalarNames;  ///< the well-known ones first, then the rest as they appear
+  /// Result scalars: the scenario's declared ones in declaration order, then undeclared ones as
+  /// they appear. A scalar that repeats a swept value (strain_rate when loading.strain_rate is
+  /// swept, same value in every row) is left out.
+  std::vector<std::string> scalarNames;
   std::vector<SummaryRow> rows;
   bool replicated = false;  ///< the job runs replicates: rows carry a "replicate" column
+  std::vector<std::string> declaredScalars;  ///< every scalar the scenario may report (a plot may name one before any run has it)
+  std::map<std::string, ColumnInfo> info;  ///< per column (swept path, scalar or declared scalar)
+
+  /// The column's unit, label and description (name as label, no unit, when unknown).
+  ColumnInfo columnInfo(const std::string& column) const;
 
   /// The value of a column (swept path or scalar) in a row; null when absent.
   Json value(const SummaryRow& row, const std::string& column) const;
@@ -35,17 +49,14 @@ struct SummaryTable {
 
 SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs);
 
-/// {"jobID", "columns": [{name, kind, unit}], "rows": [{run, status, <columns>..., error?}]}
-Json summaryJson(const SummaryTable& table, const UnitLookup& unitOf);
+/// {"jobID", "columns": [{name, kind, unit, label, description}], "units": {name: unit},
+///  "rows": [{run, status, <columns>..., error?}]}
+Json summaryJson(const SummaryTable& table);
 
-/// RFC 4180 CSV: header run,status,<swept paths>,<scalars>,error; one line per run.
+/// RFC 4180 CSV: header run,status,<swept paths>,<scalars>,error, each column named
+/// "name [unit]" (rupture::nameWithUnit: "peak_stress [Pa]", "fragments [1]", text columns bare);
+/// one line per run.
 std::string summaryCsv(const SummaryTable& table);
-
-/// True for the scalars every scenario reports (peak_stress, strain_at_peak, ...).
-bool isKnownScalar(const std::string& name);
-
-/// Units of the scalars every scenario reports (peak_stress -> "Pa", wall_time_s -> "s", ...).
-std::string knownScalarUnit(const std::string& name);
 
 /// Formats a number the way JSON would (shortest round-trip form); "" for NaN and infinities.
 std::string formatNumber(double value);

@@ -11,6 +11,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -31,6 +32,35 @@
 #include "rupture/run.hpp"
 
 namespace rupture::cli {
+namespace {
+
+/// The summary for a reader, on stderr (stdout stays the JSON that scripts and the Slurm executor
+/// parse): each declared scalar with its label and unit, in the scenario's order.
+void printReadableSummary(const nlohmann::json& spec, const nlohmann::json& summary) {
+  const ScenarioInfo* scenario = spec.contains("scenario") && spec["scenario"].is_string()
+                                     ? findScenario(spec["scenario"].get<std::string>())
+                                     : nullptr;
+  if (!scenario || !summary.is_object()) return;
+  const int dimension = specDimension(scenarioSchema(scenario->name), spec);
+  std::size_t width = 0;
+  for (const ResultField& f : scenario->summary)
+    if (summary.contains(f.name)) width = std::max(width, f.label.size());
+  for (const ResultField& f : scenario->summary) {
+    auto it = summary.find(f.name);
+    if (it == summary.end()) continue;
+    std::string value = it->is_string() ? it->get<std::string>() : it->is_null() ? "n/a" : it->dump();
+    if (it->is_number_float()) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", it->get<double>());
+      value = buf;
+    }
+    const std::string& unit = f.unitFor(dimension);
+    std::cerr << "  " << f.label << std::string(width - f.label.size(), ' ') << "  " << value
+              << (unit.empty() || unit == "1" || it->is_null() ? "" : " " + unit) << "\n";
+  }
+}
+
+}  // namespace
 
 namespace {
 
@@ -290,6 +320,7 @@ int runCommand(const Args& args) {
     code = code == 0 ? 1 : code;
   }
   std::cout << outcome.summary.dump(2) << std::endl;
+  printReadableSummary(spec, outcome.summary);
   std::cerr << "rupture run: " << (outcome.completed ? "done" : "interrupted, result marked incomplete") << ": "
             << output << (sidecar.empty() ? "" : " (+ " + sidecar + ")") << "\n";
   return code;

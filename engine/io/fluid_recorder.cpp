@@ -33,6 +33,8 @@ void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::strin
   f.setAttribute(base, "time", system.time);
   f.setAttribute(base, "step", static_cast<std::int64_t>(system.steps));
   f.setAttribute(base, "trigger", trigger);
+  f.setAttribute(base, "time_unit", std::string("s"));
+  f.setAttribute(base, "step_unit", std::string("1"));
   std::vector<double> x, y, z, vx, vy, vz, rho, pressure(n);
   p.inCreationOrder(p.x, x); p.inCreationOrder(p.y, y); p.inCreationOrder(p.z, z);
   p.inCreationOrder(p.vx, vx); p.inCreationOrder(p.vy, vy); p.inCreationOrder(p.vz, vz);
@@ -64,6 +66,7 @@ void FluidRecorder::finish(bool completed) {
     const std::string path = "/series/probe_pressure_" + std::to_string(k);
     f.writeDataset(path, column, {rows}, "Pa");
     f.setAttribute(path, "position", m_probePositions[k]);
+    f.setAttribute(path, "position_unit", std::string("m"));
   }
   m_result.finish(completed);
 }

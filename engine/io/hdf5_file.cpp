@@ -579,6 +579,56 @@ void Hdf5File::writeDataset(const std::string& path, const std::vector<std::uint
   writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8);
 }
 
+void Hdf5File::writeDataset(const std::string& path, const std::vector<std::string>& data, const std::string& unit) {
+  requireOpen();
+  const htri_t present = H5Lexists(m_id, path.c_str(), H5P_DEFAULT);
+  if (present > 0) {
+    Handle old(checkId(H5Oopen(m_id, path.c_str(), H5P_DEFAULT), m_path, path, "cannot open existing object"),
+               H5Oclose);
+    if (H5Iget_type(old.get()) != H5I_DATASET) fail(m_path, path, "exists and is not a dataset");
+    old.reset();
+    checkRc(H5Ldelete(m_id, path.c_str(), H5P_DEFAULT), m_path, path, "cannot replace dataset");
+  }
+  Handle type = variableUtf8String(m_path, path);
+  const hsize_t n = data.size();
+  Handle space(checkId(H5Screate_simple(1, &n, nullptr), m_path, path, "cannot create dataspace"), H5Sclose);
+  Handle lcpl = intermediateGroupsLcpl(m_path, path);
+  Handle dset(checkId(H5Dcreate2(m_id, path.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+                      m_path, path, "cannot create dataset"),
+              H5Dclose);
+  std::vector<const char*> pointers;
+  for (const std::string& text : data) pointers.push_back(text.c_str());
+  if (!data.empty()) {
+    checkRc(H5Dwrite(dset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()), m_path, path,
+            "cannot write dataset");
+  }
+  writeStringAttribute(dset.get(), m_path, attrLabel(path, "unit"), "unit", unit);
+}
+
+std::vector<std::string> Hdf5File::readDatasetString(const std::string& path) const {
+  requireOpen();
+  Handle dset(checkId(H5Dopen2(m_id, path.c_str(), H5P_DEFAULT), m_path, path, "cannot open dataset"), H5Dclose);
+  Handle fileType(checkId(H5Dget_type(dset.get()), m_path, path, "cannot get dataset type"), H5Tclose);
+  if (H5Tget_class(fileType.get()) != H5T_STRING || H5Tis_variable_str(fileType.get()) <= 0)
+    fail(m_path, path, "not a variable-length string dataset");
+  Handle space(checkId(H5Dget_space(dset.get()), m_path, path, "cannot get dataspace"), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  checkRc(n < 0 ? -1 : 0, m_path, path, "cannot get dataspace size");
+  std::vector<char*> pointers(static_cast<std::size_t>(n), nullptr);
+  Handle memType = variableUtf8String(m_path, path);
+  checkRc(H5Tset_cset(memType.get(), H5Tget_cset(fileType.get())), m_path, path, "cannot make string type");
+  if (n > 0) {
+    checkRc(H5Dread(dset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()), m_path, path,
+            "cannot read dataset");
+  }
+  std::vector<std::string> out;
+  for (char* p : pointers) {
+    out.emplace_back(p ? p : "");
+    H5free_memory(p);  // allocated by the library for the variable-length read
+  }
+  return out;
+}
+
 std::vector<double> Hdf5File::readDatasetDouble(const std::string& path) const {
   requireOpen();
   return readTypedDataset<double>(m_id, m_path, path, H5T_NATIVE_DOUBLE, Accept::IntegerOrFloat);

@@ -72,6 +72,11 @@ public:
                     const std::vector<std::size_t>& dims, const std::string& unit);
   void writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
                     const std::vector<std::size_t>& dims, const std::string& unit);
+  /// A 1-D dataset of variable-length UTF-8 strings (text columns of a table), contiguous, with
+  /// the string attribute "unit" ("" for text); replaces an existing dataset at path.
+  void writeDataset(const std::string& path, const std::vector<std::string>& data, const std::string& unit);
+  /// Reads a 1-D dataset of variable-length strings.
+  std::vector<std::string> readDatasetString(const std::string& path) const;
   /// Reads any integer or floating-point dataset, flattened row-major, converted to double.
   std::vector<double> readDatasetDouble(const std::string& path) const;
   /// Reads any integer dataset as int64; a floating-point one throws rather than being truncated.

@@ -1,8 +1,10 @@
 #include "scenarios/dynamic_tension.hpp"
+#include "scenarios/dynamic_tension_results.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -64,7 +66,9 @@ nlohmann::json preliminaryAttributes(const PreliminaryResult* r, bool fromCache,
   if (!r) return {{"used", 0}};
   return {{"used", 1},
           {"from_cache", fromCache ? 1 : 0},
-          {"cache_file", cacheFile},
+          // The cache file's name only: the cache directory is the machine's (a server's path must
+          // not leak into result files); the name is the cache key's hash.
+          {"cache_file", std::filesystem::path(cacheFile).filename().string()},
           {"strain_rate", r->strainRate},
           {"ramp_time", r->rampTime},
           {"time_step", r->timeStep},
@@ -84,7 +88,8 @@ const std::map<std::string, std::string>& preliminaryUnits() {
   static const std::map<std::string, std::string> units = {
       {"strain_rate", "1/s"},   {"ramp_time", "s"},     {"time_step", "s"},       {"capture_strain", "1"},
       {"capture_time", "s"},    {"onset_strain", "1"},  {"face_velocity", "m/s"}, {"modulus", "Pa"},
-      {"wave_speed", "m/s"},    {"equilibrium_ratio", "1"}, {"wall_time_s", "s"}};
+      {"wave_speed", "m/s"},    {"equilibrium_ratio", "1"}, {"wall_time_s", "s"},       {"capture_steps", "1"},
+      {"steps", "1"},           {"used", "1"},          {"from_cache", "1"}};
   return units;
 }
 
@@ -184,21 +189,7 @@ RunOutcome cancelledDuringBuild(const DynamicTensionSpec& spec, const nlohmann::
 }  // namespace
 
 const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
-  static const std::map<std::string, std::string> units = {
-      {"peak_stress", "Pa"},          {"strain_at_peak", "1"},        {"time_at_peak", "s"},
-      {"stress_xmin_at_peak", "Pa"},  {"stress_xmax_at_peak", "Pa"},  {"max_stress_xmin", "Pa"},
-      {"max_stress_xmax", "Pa"},      {"equilibrium_ratio", "1"},     {"crack_onset_strain", "1"},
-      {"crack_onset_time", "s"},      {"strain_rate_at_onset", "1/s"}, {"broken_bond_fraction", "1"},  {"broken_bonds", "1"},
-      {"fragments", "1"},             {"debris", "1"},                {"largest_fragment_fraction", "1"},
-      {"cracks_crossing", "1"},       {"separated", "1"},             {"separation_strain", "1"},
-      {"separation_time", "s"},       {"equilibrium_ratio_at_peak", "1"},
-      {"final_strain", "1"},          {"final_time", "s"},
-      {"steps", "1"},                 {"time_step", "s"},             {"critical_time_step", "s"},
-      {"wall_time_s", "s"},           {"completed", "1"},             {"elements", "1"},
-      {"bonds", "1"},                 {"mean_coordination", "1"},     {"porosity", "1"},
-      {"strain_rate", "1/s"},         {"max_velocity", "m/s"},        {"ramp_time", "s"},
-      {"wave_speed", "m/s"},          {"gauge_length", "m"},          {"section", "m^2"},
-      {"modulus", "Pa"},              {"sample_from_cache", "1"}};
+  static const std::map<std::string, std::string> units = unitMap(dynamicTensionSummaryFields());
   return units;
 }
 
@@ -407,6 +398,8 @@ Scenario dynamicTensionScenario() {
       "stopped (or a strain limit). Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
       "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, macroscopic fragments, debris, cracks "
       "crossing the section and the equilibrium ratio of the loading branch.";
+  s.info.summary = dynamicTensionSummaryFields();
+  s.info.series = dynamicTensionSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseDynamicTensionSpec(spec).sample); };
   s.run = runDynamicTension;

@@ -14,6 +14,7 @@
 #include "io/spec_reader.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/run_support.hpp"
+#include "scenarios/elastic_properties_results.hpp"
 
 namespace rupture {
 
@@ -84,14 +85,7 @@ nlohmann::json toJson(const ElasticPropertiesSpec& s) {
 }
 
 const std::map<std::string, std::string>& elasticPropertiesSummaryUnits() {
-  static const std::map<std::string, std::string> units = {
-      {"young_modulus", "Pa"},        {"poisson_ratio", "1"},         {"converged", "1"},
-      {"relaxation_steps", "1"},      {"elements", "1"},              {"bonds", "1"},
-      {"mean_coordination", "1"},     {"porosity", "1"},              {"wall_time_s", "s"},
-      {"completed", "1"},             {"beam_young_modulus", "Pa"},   {"beam_radius_ratio", "1"},
-      {"target_young_modulus", "Pa"}, {"target_poisson_ratio", "1"},  {"evaluations", "1"},
-      {"tensile_strength", "Pa"},     {"crack_onset_strain", "1"},    {"strain_at_peak", "1"},
-      {"beam_failure_stress", "Pa"},  {"target_tensile_strength", "Pa"}, {"strength_evaluations", "1"}};
+  static const std::map<std::string, std::string> units = unitMap(elasticPropertiesSummaryFields());
   return units;
 }
 
@@ -217,6 +211,7 @@ Scenario elasticPropertiesScenario() {
       "With a target E and nu, the beams' Young's modulus and radius ratio are fitted to reach them (André et al. "
       "2012), up to about 20 tension tests; with a target tensile strength, the beams' failure stress is fitted; "
       "the fitted beams are reported with the values they achieve.";
+  s.info.summary = elasticPropertiesSummaryFields();
   s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseElasticPropertiesSpec(spec).sample); };
   s.run = runElasticProperties;

@@ -43,6 +43,12 @@ const Scenario& scenarioFor(const nlohmann::json& spec) {
   throw SpecError("scenario", io::describeValue(*it), "one of " + names);
 }
 
+const ScenarioInfo* findScenario(const std::string& name) {
+  for (const Scenario& s : scenarioRegistry())
+    if (s.info.name == name) return &s.info;
+  return nullptr;
+}
+
 std::vector<ScenarioInfo> listScenarios() {
   std::vector<ScenarioInfo> out;
   for (const Scenario& s : scenarioRegistry()) out.push_back(s.info);

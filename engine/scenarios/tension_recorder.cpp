@@ -9,6 +9,7 @@
 #include "io/interleave.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/bond_snapshot.hpp"
+#include "scenarios/dynamic_tension_results.hpp"
 #include "scenarios/virial_stress.hpp"
 
 namespace rupture {
@@ -16,17 +17,11 @@ namespace rupture {
 namespace fs = std::filesystem;
 
 const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
-  static const std::vector<std::pair<std::string, std::string>> names = {
-      {"time", "s"},
-      {"strain", "1"},
-      {"stress_xmin", "Pa"},
-      {"stress_xmax", "Pa"},
-      {"stress_mean", "Pa"},
-      {"broken_bond_fraction", "1"},
-      {"kinetic_energy", "J"},
-      {"elastic_energy", "J"},
-      {"face_velocity", "m/s"},
-  };
+  static const std::vector<std::pair<std::string, std::string>> names = [] {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const ResultField& f : dynamicTensionSeriesFields()) out.emplace_back(f.name, f.unit);
+    return out;
+  }();
   return names;
 }
 
@@ -54,7 +49,15 @@ void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport
                    {"section", geometry.section},
                    {"xmin_elements", static_cast<std::int64_t>(geometry.xmin.size())},
                    {"xmax_elements", static_cast<std::int64_t>(geometry.xmax.size())}},
-                  {{"thickness", "m"},
+                  {{"elements", "1"},
+                   {"bonds", "1"},
+                   {"mean_coordination", "1"},
+                   {"packing_fraction", "1"},
+                   {"packing_residual_overlap", "1"},
+                   {"porosity", "1"},
+                   {"xmin_elements", "1"},
+                   {"xmax_elements", "1"},
+                   {"thickness", "m"},
                    {"element_density", "kg/m^3"},
                    {"bulk_density", "kg/m^3"},
                    {"gauge_length", "m"},
@@ -83,6 +86,9 @@ void TensionRecorder::writeSnapshot(const BondedSystem& system, double packingFr
   m_file.setAttribute(base, "time", system.time);
   m_file.setAttribute(base, "strain", strain);
   m_file.setAttribute(base, "step", static_cast<std::int64_t>(system.steps));
+  m_file.setAttribute(base, "time_unit", std::string("s"));
+  m_file.setAttribute(base, "strain_unit", std::string("1"));
+  m_file.setAttribute(base, "step_unit", std::string("1"));
   m_file.setAttribute(base, "trigger", trigger);
   m_file.writeDataset(base + "/position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
   m_file.writeDataset(base + "/velocity", io::interleave(p.vx, p.vy, p.vz), {n, 3}, "m/s");
@@ -103,7 +109,8 @@ void TensionRecorder::writeFragments(const FragmentAnalysis& fragments, std::siz
                    {"debris", static_cast<std::int64_t>(fragments.debris)},
                    {"debris_elements", static_cast<std::int64_t>(fragments.debrisElements)},
                    {"cracks_crossing", static_cast<std::int64_t>(cracksCrossing)}},
-                  {});
+                  {{"min_elements", "1"}, {"min_fraction", "1"}, {"count", "1"},
+                   {"debris", "1"}, {"debris_elements", "1"}, {"cracks_crossing", "1"}});
   const std::vector<std::int32_t> sizes(fragments.fragmentSizes.begin(), fragments.fragmentSizes.end());
   m_file.writeDataset("/fragments/sizes", sizes, {sizes.size()}, "1");
   m_file.writeDataset("/fragments/element_fragment", fragments.elementFragment, {fragments.elementFragment.size()},

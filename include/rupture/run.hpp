@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rupture/result_fields.hpp"
 #include "rupture/spec_error.hpp"
 
 namespace rupture {
@@ -35,7 +36,12 @@ struct ScenarioInfo {
   std::string name;         ///< registry key, e.g. "dynamic-tension"
   std::string title;        ///< one line
   std::string description;  ///< a paragraph: what it models, what it outputs
+  ResultFields summary;     ///< every scalar a run may write to /summary (and RunOutcome::summary)
+  ResultFields series;      ///< every dataset a run may write to /series (one row per output)
 };
+
+/// The registered scenario's info, or nullptr for an unknown name.
+const ScenarioInfo* findScenario(const std::string& name);
 
 /// The registered scenarios, in registry order.
 std::vector<ScenarioInfo> listScenarios();

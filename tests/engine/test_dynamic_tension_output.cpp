@@ -279,7 +279,10 @@ TEST(DynamicTensionOutput, PreliminaryRunIsCached) {
   EXPECT_EQ(a.readAttributeInt("/preliminary", "from_cache"), 0);
   EXPECT_EQ(b.readAttributeInt("/preliminary", "from_cache"), 1);
   EXPECT_EQ(a.readAttributeString("/preliminary", "cache_file"), b.readAttributeString("/preliminary", "cache_file"));
-  EXPECT_TRUE(fs::exists(a.readAttributeString("/preliminary", "cache_file")));
+  // A name inside the cache directory, never the machine's absolute path.
+  const std::string cacheName = a.readAttributeString("/preliminary", "cache_file");
+  EXPECT_EQ(cacheName.find('/'), std::string::npos) << cacheName;
+  EXPECT_TRUE(fs::exists(dir / "cache" / cacheName));
   EXPECT_EQ(first.summary["peak_stress"], second.summary["peak_stress"]);  // bit-identical field
   EXPECT_EQ(first.summary["steps"], second.summary["steps"]);
   // The packed sample is cached too (scenarios/sample_cache.hpp), and gives the same run.

@@ -94,7 +94,7 @@ TEST_F(StudyHttp, ReplicatedSweepReportsMeansAndIntervalsOfItsRowsAndComparesWit
   EXPECT_EQ(csv->status, 200);
   const auto table = test::parseCsv(csv->body);
   ASSERT_EQ(table.size(), 3u);
-  EXPECT_EQ(table[0][3], "peak_stress.mean");
+  EXPECT_EQ(table[0][3], "peak_stress.mean [Pa]");
   EXPECT_EQ(table[1][2], "3");
   auto svg = client->Get((base + ".svg").c_str());
   ASSERT_TRUE(svg);

@@ -12,6 +12,7 @@
 #include "replicates.hpp"
 #include "server_test_support.hpp"
 #include "student_t.hpp"
+#include "svg_plot.hpp"
 
 namespace rupture::server {
 namespace {
@@ -86,7 +87,7 @@ TEST(ReplicateStatistics, PointsAggregateTheirSuccessfulReplicatesOnly) {
   EXPECT_NEAR(*b->ciHalfWidth, 12.706205 * std::sqrt(18.0) / std::sqrt(2.0), 1e-4);
   EXPECT_EQ(points[1].excluded, Json::parse(R"([{"run": 5, "status": "failed"}])"));
 
-  const Json doc = aggregateJson(t, points, {});
+  const Json doc = aggregateJson(t, points);
   EXPECT_EQ(doc["aggregate"], "replicates");
   EXPECT_EQ(doc["rows"][1]["n_runs"], 3);
   EXPECT_EQ(doc["rows"][1]["n_successful"], 2);
@@ -94,13 +95,51 @@ TEST(ReplicateStatistics, PointsAggregateTheirSuccessfulReplicatesOnly) {
   EXPECT_NEAR(doc["rows"][0]["peak_stress"]["ci95_low"].get<double>(), 12 - 4.302653 * 2 / std::sqrt(3.0), 1e-5);
   const std::string csv = aggregateCsv(t, points);
   EXPECT_EQ(csv.substr(0, csv.find("\r\n")),
-            "loading.strain_rate,n_runs,n_successful,peak_stress.mean,peak_stress.sd,peak_stress.ci95_low,"
-            "peak_stress.ci95_high,peak_stress.ci95_half_width,peak_stress.n");
+            "loading.strain_rate,n_runs [1],n_successful [1],peak_stress.mean,peak_stress.sd,peak_stress.ci95_low,"
+            "peak_stress.ci95_high,peak_stress.ci95_half_width,peak_stress.n [1]");
   EXPECT_NE(csv.find("\r\n1000000.0,3,2,23.0,"), std::string::npos) << csv;
   // The per-replicate rows stay available, with their replicate index.
-  const Json rows = summaryJson(t, {});
+  const Json rows = summaryJson(t);
   EXPECT_EQ(rows["rows"][4]["replicate"], 1);
   EXPECT_EQ(summaryCsv(t).substr(0, 28), "run,status,replicate,loading");
+}
+
+TEST(ReplicateStatistics, MeansTableCarriesUnitsAndDrawsTheIntervalsAsErrorBars) {
+  SummaryTable t = twoPointsThreeReplicates();
+  t.info["loading.strain_rate"] = {"1/s", "Strain rate", ""};
+  t.info["peak_stress"] = {"Pa", "Peak stress", "Maximum of the mean boundary stress"};
+  const auto points = aggregateReplicates(t);
+  const SummaryTable means = meansTable(t, points);
+  ASSERT_EQ(means.rows.size(), 2u);
+  // Derived columns: in the scalar's unit (n dimensionless), labelled after it.
+  ASSERT_TRUE(means.hasColumn(ciHalfWidthColumn("peak_stress")));
+  EXPECT_EQ(ciHalfWidthColumn("peak_stress"), "peak_stress.ci95_half_width");
+  EXPECT_EQ(means.columnInfo("peak_stress").unit, "Pa");
+  EXPECT_EQ(means.columnInfo("peak_stress.sd").unit, "Pa");
+  EXPECT_EQ(means.columnInfo("peak_stress.ci95_half_width").unit, "Pa");
+  EXPECT_EQ(means.columnInfo("peak_stress.ci95_half_width").label, "Peak stress (95 % CI half-width)");
+  EXPECT_EQ(means.columnInfo("peak_stress.n").unit, "1");
+  EXPECT_FALSE(means.hasColumn("note.sd"));  // text has no statistics
+  EXPECT_DOUBLE_EQ(means.value(means.rows[1], "peak_stress").get<double>(), 23);
+  EXPECT_EQ(means.value(means.rows[1], "peak_stress.n"), 2);
+  EXPECT_NEAR(means.value(means.rows[0], "peak_stress.ci95_half_width").get<double>(), 4.302653 * 2 / std::sqrt(3.0), 1e-5);
+  // The aggregate JSON and CSV carry the units too.
+  const Json doc = aggregateJson(t, points);
+  EXPECT_EQ(doc["columns"][0]["unit"], "1/s");
+  EXPECT_EQ(doc["units"]["peak_stress"], "Pa");
+  const std::string csv = aggregateCsv(t, points);
+  EXPECT_EQ(csv.substr(0, csv.find(",n_runs")), "loading.strain_rate [1/s]");
+  EXPECT_NE(csv.find(",peak_stress.ci95_half_width [Pa],peak_stress.n [1]\r\n"), std::string::npos) << csv;
+  // One error bar per point that has an interval (both have n >= 2).
+  PlotRequest plot;
+  plot.x = "loading.strain_rate";
+  plot.y = "peak_stress";
+  plot.yError = ciHalfWidthColumn("peak_stress");
+  const std::string svg = summarySvg(means, plot);
+  std::size_t bars = 0;
+  for (std::size_t p = svg.find("class=\"error-bar\""); p != std::string::npos; p = svg.find("class=\"error-bar\"", p + 1)) ++bars;
+  EXPECT_EQ(bars, 2u);
+  EXPECT_NE(svg.find("Peak stress ["), std::string::npos);
 }
 
 // -- refinement planner ------------------------------------------------------------------------

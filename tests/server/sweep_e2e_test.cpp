@@ -108,7 +108,10 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
     auto rows = test::parseCsv(csv->body);
     ASSERT_EQ(rows.size(), 5u);
     const auto& header = rows[0];
-    const auto col = std::find(header.begin(), header.end(), "peak_stress") - header.begin();
+    // Every column named with its unit; the swept strain rate once (not again as strain_rate).
+    const auto col = std::find(header.begin(), header.end(), "peak_stress [Pa]") - header.begin();
+    EXPECT_NE(std::find(header.begin(), header.end(), "loading.strain_rate [1/s]"), header.end());
+    EXPECT_EQ(std::find(header.begin(), header.end(), "strain_rate [1/s]"), header.end());
     ASSERT_LT(col, static_cast<long>(header.size()));
     for (std::size_t r = 1; r < rows.size(); ++r) {
       ASSERT_EQ(rows[r].size(), header.size());
@@ -125,11 +128,29 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
   EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
   std::string error;
   EXPECT_TRUE(test::wellFormedXml(svg->body, error)) << error;
-  EXPECT_NE(svg->body.find("(log scale)"), std::string::npos);
-  EXPECT_NE(svg->body.find("peak_stress [Pa]"), std::string::npos);
+  EXPECT_NE(svg->body.find(">Strain rate [1/s]</text>"), std::string::npos);
+  EXPECT_NE(svg->body.find(">Peak stress [MPa]</text>"), std::string::npos);
+  EXPECT_NE(svg->body.find(">10⁶</text>"), std::string::npos);
   EXPECT_NE(svg->body.find("data-label=\"V0\""), std::string::npos);
   EXPECT_NE(svg->body.find("data-label=\"VL\""), std::string::npos);
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?y=nope").c_str()), 400, "y");
+  // The same plot as a PNG of the asked size (IHDR width and height, big-endian).
+  auto png = client->Get(("/jobs/" + id + "/summary.svg?format=png&width=640&height=400&scale=2").c_str());
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->status, 200);
+  EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+  ASSERT_GT(png->body.size(), 24u);
+  EXPECT_EQ(png->body.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  auto u32 = [&](std::size_t at) {
+    return (std::uint32_t(std::uint8_t(png->body[at])) << 24) | (std::uint32_t(std::uint8_t(png->body[at + 1])) << 16) |
+           (std::uint32_t(std::uint8_t(png->body[at + 2])) << 8) | std::uint32_t(std::uint8_t(png->body[at + 3]));
+  };
+  EXPECT_EQ(png->body.substr(12, 4), "IHDR");
+  EXPECT_EQ(u32(16), 1280u);
+  EXPECT_EQ(u32(20), 800u);
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?format=gif").c_str()), 400, "format");
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?width=10").c_str()), 400, "width");
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?ymin=abc").c_str()), 400, "ymin");
 
   // Both HDF5 downloads open with the HDF5 API; the merged one has a self-contained group per run.
   test::TempDir tmp;
@@ -143,6 +164,9 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
       EXPECT_TRUE(merged.exists(g + "/series/stress_mean")) << g;
     }
     EXPECT_EQ(merged.readAttributeInt("/", "runs_included"), 4);
+    EXPECT_EQ(merged.readDatasetDouble("/summary/peak_stress").size(), 4u);
+    EXPECT_EQ(merged.readAttributeString("/summary/peak_stress", "unit"), "Pa");
+    EXPECT_EQ(merged.readAttributeString("/summary/loading.strain_rate", "unit"), "1/s");
     EXPECT_EQ(merged.readAttributeString("/", "process_id"), test::kScenario);
   }
   std::string runBytes;
@@ -167,7 +191,8 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
   ASSERT_TRUE(seriesCsv);
   auto csvRows = test::parseCsv(seriesCsv->body);
   ASSERT_EQ(csvRows.size(), series["length"].get<std::size_t>() + 1);
-  EXPECT_EQ(csvRows[0], (std::vector<std::string>{"strain", "stress_mean"}));
+  EXPECT_EQ(csvRows[0], (std::vector<std::string>{"strain [1]", "stress_mean [Pa]"}));
+  EXPECT_EQ(series["labels"]["stress_mean"], "Mean stress");
   expectProblem(client->Get(("/jobs/" + id + "/runs/0/series?names=nope").c_str()), 400, "names");
   expectProblem(client->Get(("/jobs/" + id + "/runs/4/results").c_str()), 404, "run");
 

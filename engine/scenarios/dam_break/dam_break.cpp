@@ -7,6 +7,7 @@
 
 #include "io/fluid_recorder.hpp"
 #include "scenarios/dam_break/dam_break_lattice.hpp"
+#include "scenarios/fluid_results.hpp"
 #include "scenarios/fluid_run_loop.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
@@ -17,30 +18,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A 2D slice carries mass and energy per metre of depth.
+/// The /series columns in the row order of the recorder (probe datasets are added by the recorder).
 std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
-  const std::string perDepth = dimension == 2 ? "/m" : "";
-  return {{"time", "s"},
-          {"front_position", "m"},
-          {"fluid_mass", "kg" + perDepth},
-          {"kinetic_energy", "J" + perDepth},
-          {"potential_energy", "J" + perDepth},
-          {"max_density_error", "1"},
-          {"particles_outside", "1"},
-          {"time_step", "s"}};
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const ResultField& f : damBreakSeriesFields())
+    if (f.name.back() != '*') columns.emplace_back(f.name, f.unitFor(dimension));
+  return columns;
 }
 
-const std::map<std::string, std::string>& summaryUnits() {
-  static const std::map<std::string, std::string> units = {
-      {"front_position_final", "m"}, {"peak_pressure", "Pa"},   {"mass_error", "1"},
-      {"max_density_error", "1"},    {"particles_outside_max", "1"}, {"final_time", "s"},
-      {"steps", "1"},                {"time_step_min", "s"},    {"time_step_max", "s"},
-      {"wall_time_s", "s"},          {"completed", "1"},        {"particles", "1"},
-      {"fluid_particles", "1"},      {"sound_speed", "m/s"},    {"smoothing_length", "m"},
-      {"kinetic_energy_final", "J"}, {"potential_energy_initial", "J"}, {"potential_energy_final", "J"},
-      {"neighbour_list_builds", "1"}};
-  return units;
-}
 
 RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
   const auto wallStart = Clock::now();
@@ -66,7 +51,7 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
                             {"spacing", g.dx}, {"smoothing_length", s.model.h()}, {"wall_layers", spec.resolution.wallLayers},
                             {"vertical_axis", dim == 3 ? "z" : "y"}},
                            {{"column_width", "m"}, {"column_height", "m"}, {"tank_length", "m"}, {"tank_height", "m"},
-                            {"width", "m"}, {"spacing", "m"}, {"smoothing_length", "m"}});
+                            {"width", "m"}, {"spacing", "m"}, {"smoothing_length", "m"}, {"wall_layers", "1"}});
 
   const double mass0 = s.fluidMass(), rho0 = s.model.eos.referenceDensity;
   const double potential0 = s.potentialEnergy();
@@ -111,10 +96,7 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
       {"kinetic_energy_final", s.kineticEnergy()},
       {"potential_energy_initial", potential0},
       {"potential_energy_final", s.potentialEnergy()}};
-  std::map<std::string, std::string> units = summaryUnits();
-  if (dim == 2)
-    for (const char* energy : {"kinetic_energy_final", "potential_energy_initial", "potential_energy_final"})
-      units[energy] = "J/m";
+  const std::map<std::string, std::string> units = unitMap(damBreakSummaryFields(), dim);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
                         std::move(summary), units, control, wallStart);
 }
@@ -131,6 +113,8 @@ Scenario damBreakScenario() {
       "Monaghan artificial viscosity, delta-SPH density diffusion, walls of dummy particles with pressure extrapolated from the fluid (Adami 2012), 2D or 3D. "
       "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
       "and snapshots of position, velocity, density and pressure.";
+  s.info.summary = damBreakSummaryFields();
+  s.info.series = damBreakSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parseDamBreakSpec(spec).estimatedParticles); };
   s.run = runDamBreak;

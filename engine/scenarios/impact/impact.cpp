@@ -8,6 +8,7 @@
 #include "dem/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "io/interleave.hpp"
+#include "scenarios/impact/impact_results.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/bond_snapshot.hpp"
@@ -64,12 +65,7 @@ struct Projectile {
 };
 
 const std::map<std::string, std::string>& summaryUnits() {
-  static const std::map<std::string, std::string> units = {
-      {"crack_speed_max", "m/s"}, {"crack_length", "m"},     {"branches", "1"},     {"fragments", "1"},
-      {"broken_bonds", "1"},      {"broken_bond_fraction", "1"}, {"final_time", "s"}, {"steps", "1"},
-      {"time_step", "s"},         {"critical_time_step", "s"}, {"elements", "1"},    {"bonds", "1"},
-      {"wall_time_s", "s"},       {"completed", "1"},        {"projectile_final_speed", "m/s"},
-      {"kinetic_energy", "J"},    {"elastic_energy", "J"}};
+  static const std::map<std::string, std::string> units = unitMap(impactSummaryFields());
   return units;
 }
 
@@ -89,7 +85,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
     result.writeSpec(toJson(spec), json);
     const nlohmann::json summary = {{"completed", 0}, {"stop_reason", "cancelled"},
                                     {"wall_time_s", std::chrono::duration<double>(Clock::now() - wallStart).count()}};
-    result.writeAttributes("/summary", summary, {{"completed", "1"}, {"wall_time_s", "s"}});
+    result.writeAttributes("/summary", summary, summaryUnits());
     result.finish(false);
     logStage(control, "cancelled while building the sample: file marked incomplete");
     return {summary, false};
@@ -181,6 +177,8 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
     file.setAttribute(base, "time", system.time);
     file.setAttribute(base, "strain", 0.0);  // the XDMF layout's attribute; impact has no imposed strain
     file.setAttribute(base, "trigger", trigger);
+    file.setAttribute(base, "time_unit", std::string("s"));
+    file.setAttribute(base, "strain_unit", std::string("1"));
     file.writeDataset(base + "/position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
     file.writeDataset(base + "/velocity", io::interleave(p.vx, p.vy, p.vz), {n, 3}, "m/s");
     file.writeDataset(base + "/stress", particleStress(system), {n, 3, 3}, "Pa");
@@ -189,10 +187,11 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
     writeBondState(file, base, system);
   };
 
-  const std::vector<std::string> columns = {"time", "crack_tip_x", "crack_tip_y", "crack_tip_z", "crack_length",
-                                            "crack_speed", "kinetic_energy", "elastic_energy",
-                                            "projectile_kinetic_energy", "broken_bond_fraction"};
-  const std::vector<std::string> units = {"s", "m", "m", "m", "m", "m/s", "J", "J", "J", "1"};
+  std::vector<std::string> columns, units;  // in the row order of record() below
+  for (const ResultField& f : impactSeriesFields()) {
+    columns.push_back(f.name);
+    units.push_back(f.unit);
+  }
   std::vector<std::vector<double>> series(columns.size());
   const double bondCount = std::max<double>(1.0, static_cast<double>(system.bonds.size()));
   auto projectileEnergy = [&] {
@@ -287,6 +286,8 @@ Scenario impactScenario() {
       "hit by a rigid projectile (penalty contact), driven by imposed velocities on boxes of particles, or loaded by "
       "tractions on boxes at an edge; free elsewhere. Outputs the crack tip (farthest cracked particle from the "
       "notch), its smoothed speed, branching, fragments, energies and damage-field snapshots.";
+  s.info.summary = impactSummaryFields();
+  s.info.series = impactSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parseImpactSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseImpactSpec(spec).sample); };
   s.run = runImpact;

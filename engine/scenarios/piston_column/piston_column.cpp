@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "io/fluid_recorder.hpp"
+#include "scenarios/fluid_results.hpp"
 #include "scenarios/fluid_run_loop.hpp"
 #include "scenarios/piston_column/piston_column_lattice.hpp"
 #include "scenarios/run_support.hpp"
@@ -19,34 +20,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A 2D slice carries force, mass and energy per metre of depth.
+/// The /series columns in the row order of the recorder (probe datasets are added by the recorder).
 std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
-  const std::string perDepth = dimension == 2 ? "/m" : "";
-  return {{"time", "s"},
-          {"bottom_pressure", "Pa"},
-          {"piston_position", "m"},
-          {"piston_velocity", "m/s"},
-          {"piston_force", "N" + perDepth},
-          {"fluid_mass", "kg" + perDepth},
-          {"kinetic_energy", "J" + perDepth},
-          {"max_density_error", "1"},
-          {"particles_outside", "1"},
-          {"time_step", "s"}};
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const ResultField& f : pistonColumnSeriesFields())
+    if (f.name.back() != '*') columns.emplace_back(f.name, f.unitFor(dimension));
+  return columns;
 }
 
-const std::map<std::string, std::string>& summaryUnits() {
-  static const std::map<std::string, std::string> units = {
-      {"peak_pressure", "Pa"},          {"peak_bottom_pressure", "Pa"},  {"first_peak_bottom_pressure", "Pa"},
-      {"time_of_first_peak", "s"},      {"acoustic_pressure", "Pa"},     {"shock_pressure", "Pa"},
-      {"piston_initial_speed", "m/s"},  {"piston_final_speed", "m/s"},   {"piston_final_position", "m"},
-      {"piston_impulse", "N s"},        {"piston_mass", "kg"},           {"section_area", "m^2"},
-      {"mass_error", "1"},              {"max_density_error", "1"},      {"particles_outside_max", "1"},
-      {"final_time", "s"},              {"steps", "1"},                  {"time_step_min", "s"},
-      {"time_step_max", "s"},           {"wall_time_s", "s"},            {"completed", "1"},
-      {"particles", "1"},               {"fluid_particles", "1"},        {"sound_speed", "m/s"},
-      {"smoothing_length", "m"},        {"neighbour_list_builds", "1"}};
-  return units;
-}
 
 RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
   const auto wallStart = Clock::now();
@@ -75,7 +56,8 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
                             {"wall_layers", spec.resolution.wallLayers}, {"piston_mass", piston.mass},
                             {"vertical_axis", dim == 3 ? "z" : "y"}},
                            {{"diameter", "m"}, {"column_height", "m"}, {"section_area", dim == 3 ? "m^2" : "m"},
-                            {"spacing", "m"}, {"smoothing_length", "m"}, {"piston_mass", dim == 3 ? "kg" : "kg/m"}});
+                            {"spacing", "m"}, {"smoothing_length", "m"}, {"piston_mass", dim == 3 ? "kg" : "kg/m"},
+                            {"wall_layers", "1"}});
 
   // The fluid's push on the bottom, over its area: the mean bottom pressure.
   auto bottomPressure = [&] { return -s.bodies[kColumnBottom].force[dim - 1] / g.area; };
@@ -139,12 +121,7 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
                            piston.impulse[2] * piston.axis[2])},
       {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
       {"section_area", g.area}};
-  std::map<std::string, std::string> units = summaryUnits();
-  if (dim == 2) {  // a 2D slice carries mass, force and impulse per metre of depth
-    units["piston_mass"] = "kg/m";
-    units["piston_impulse"] = "N s/m";
-    units["section_area"] = "m";
-  }
+  const std::map<std::string, std::string> units = unitMap(pistonColumnSummaryFields(), dim);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
                         std::move(summary), units, control, wallStart);
 }
@@ -161,6 +138,8 @@ Scenario pistonColumnScenario() {
       "prescribed speed history. Weakly compressible SPH with dummy-particle walls (Adami 2012), 2D slice or 3D. Outputs "
       "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
       "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
+  s.info.summary = pistonColumnSummaryFields();
+  s.info.series = pistonColumnSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
   s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parsePistonColumnSpec(spec).estimatedParticles); };
   s.run = runPistonColumn;
