@@ -615,7 +615,7 @@ public:
       std::string plot;
       if (job.runsAccepted + job.runsRunning == 0 && job.runsSuccessful > 0) {
         const SummaryTable table = buildSummary(job, runs);
-        summary = summaryJson(table, unitLookupFor(job.processId));
+        summary = summaryJson(table);
         if (!table.sweptPaths.empty() && !table.scalarNames.empty()) {
           const bool peak = std::find(table.scalarNames.begin(), table.scalarNames.end(), "peak_stress") != table.scalarNames.end();
           plot = "/jobs/" + std::to_string(job.id) + "/summary.svg?x=" +
