@@ -3,6 +3,7 @@
 // as the local executor, DELETE cancels the cluster's runs, a run killed by scancel from outside is
 // failed with Slurm's reason and can be retried, and a restarted server re-attaches to the runs in
 // the queue instead of submitting them twice.
+#include <cmath>
 #include <chrono>
 #include <fstream>
 
@@ -75,7 +76,21 @@ TEST(SlurmExecutor, SameSweepSameResultsAsTheLocalExecutor) {
   ASSERT_EQ(done["status"], "successful") << done.dump();
   cluster = summaryRows(*client, id);
   ASSERT_EQ(local.size(), 2u);
-  EXPECT_EQ(cluster, local) << "the same specs give the same numbers on the cluster";
+  // The same specs give the same numbers on the cluster. Which run packs the sample and which reads
+  // it from the sample cache depends on timing, and a run on a cached sample agrees with one on a
+  // freshly packed sample to round-off (docs/dynamic-tension.md, "Sample cache"), not bit for bit.
+  for (std::size_t r = 0; r < local.size(); ++r) {
+    ASSERT_EQ(cluster[r].size(), local[r].size()) << r;
+    for (const auto& [key, value] : local[r].items()) {
+      if (key == "sample_from_cache") continue;
+      SCOPED_TRACE("run " + std::to_string(r) + " " + key);
+      ASSERT_TRUE(cluster[r].contains(key));
+      if (value.is_number_float() && cluster[r][key].is_number())
+        EXPECT_NEAR(cluster[r][key].get<double>(), value.get<double>(), 1e-9 * std::abs(value.get<double>()));
+      else
+        EXPECT_EQ(cluster[r][key], value);
+    }
+  }
   // The run files are served from the shared directory like local ones.
   auto file = client->Get(("/jobs/" + std::to_string(id) + "/runs/0/results").c_str());
   ASSERT_TRUE(file);
