@@ -2,19 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "core/format_number.hpp"
 #include "rupture/spec_error.hpp"
 
 namespace rupture {
-namespace {
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 double LemaitreChabocheDamage::delayedRate(double undelayed, double damage) const {
   const double gap = std::max(undelayed - damage, 0.0);
   return (1.0 - std::exp(-delaySharpness * gap)) / delayTime;
@@ -22,18 +14,18 @@ double LemaitreChabocheDamage::delayedRate(double undelayed, double damage) cons
 
 void validateDamage(const LemaitreChabocheDamage& d, const std::string& prefix) {
   if (!(std::isfinite(d.thresholdPlasticStrain) && d.thresholdPlasticStrain >= 0.0))
-    throw SpecError(prefix + ".threshold_plastic_strain", text(d.thresholdPlasticStrain), "a strain >= 0");
+    throw SpecError(prefix + ".threshold_plastic_strain", formatNumber(d.thresholdPlasticStrain), "a strain >= 0");
   if (!(std::isfinite(d.criticalPlasticStrain) && d.criticalPlasticStrain > d.thresholdPlasticStrain))
-    throw SpecError(prefix + ".critical_plastic_strain", text(d.criticalPlasticStrain),
-                    "a strain > threshold_plastic_strain (" + text(d.thresholdPlasticStrain) + ")");
+    throw SpecError(prefix + ".critical_plastic_strain", formatNumber(d.criticalPlasticStrain),
+                    "a strain > threshold_plastic_strain (" + formatNumber(d.thresholdPlasticStrain) + ")");
   if (!(d.criticalDamage > 0.0 && d.criticalDamage < 1.0))
-    throw SpecError(prefix + ".critical_damage", text(d.criticalDamage), "a number in (0, 1)");
+    throw SpecError(prefix + ".critical_damage", formatNumber(d.criticalDamage), "a number in (0, 1)");
   if (!(std::isfinite(d.delayTime) && d.delayTime > 0.0))
-    throw SpecError(prefix + ".delay_time", text(d.delayTime), "a time > 0 (s)");
+    throw SpecError(prefix + ".delay_time", formatNumber(d.delayTime), "a time > 0 (s)");
   if (!(std::isfinite(d.delaySharpness) && d.delaySharpness > 0.0))
-    throw SpecError(prefix + ".delay_sharpness", text(d.delaySharpness), "a number > 0");
+    throw SpecError(prefix + ".delay_sharpness", formatNumber(d.delaySharpness), "a number > 0");
   if (!(d.poissonRatio > -1.0 && d.poissonRatio < 0.5))
-    throw SpecError(prefix + ".poisson_ratio", text(d.poissonRatio), "a number in (-1, 0.5)");
+    throw SpecError(prefix + ".poisson_ratio", formatNumber(d.poissonRatio), "a number in (-1, 0.5)");
 }
 
 double energyReleaseRate(const LemaitreChabocheDamage& d, double effectiveVonMises,

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/format_number.hpp"
 #include "lattice/lattice_geometry.hpp"
 #include "lattice/spring_mapping.hpp"
 
@@ -23,12 +24,6 @@ constexpr double kMaxPores = 1e4;
 constexpr std::int64_t kMaxGrains = 100000;  // the grid search stays O(particles) whatever the count
 constexpr double kMaxPorosity2D = 0.5;
 constexpr double kMaxPorosity3D = 0.35;
-
-std::string shortNumber(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 double ballVolume(int dimension, double r) {
   return dimension == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
@@ -102,7 +97,7 @@ SampleSpec parseSample(const SpecReader& root) {
     // A pore is carved out of whole elements: one smaller than an element carves nothing.
     if (pores[0] < s.elementRadius)
       sample.fail("pore_radius", std::string("pore radii >= ") + (lattice ? "half the sample.spacing" : "sample.element_radius") +
-                                     " (" + shortNumber(s.elementRadius) + " m)");
+                                     " (" + formatNumber(s.elementRadius) + " m)");
   }
   s.seed = static_cast<std::uint64_t>(sample.integer("seed", 0, (std::int64_t{1} << 53), 1));
   for (const SpecReader& notch : sample.objects("notches", "{\"start\": [x, y(, z)], \"end\": [...]} (m)")) {
@@ -143,7 +138,7 @@ SampleSpec parseSample(const SpecReader& root) {
     if (2.0 * radius[1] >= smallestEdge) inclusions->fail("radius", "diameters smaller than the smallest sample edge");
     if (radius[0] < s.elementRadius)
       inclusions->fail("radius", std::string("radii >= ") + (lattice ? "half the sample.spacing" : "sample.element_radius") +
-                                     " (" + shortNumber(s.elementRadius) + " m)");
+                                     " (" + formatNumber(s.elementRadius) + " m)");
     const Range factor{0.0, 100.0, true, false};
     c.stiffnessFactor = inclusions->number("stiffness_factor", factor, "1", 1.0);
     c.strengthFactor = inclusions->number("strength_factor", factor, "1", 1.0);
@@ -160,11 +155,11 @@ SampleSpec parseSample(const SpecReader& root) {
   const double estimate = volume / (lattice ? siteMeasure(kind) * std::pow(s.spacing, s.dimension)
                                             : ballVolume(s.dimension, s.elementRadius));
   if (estimate > kMaxElements)
-    throw SpecError(sample.pathOf(key), shortNumber(value),
+    throw SpecError(sample.pathOf(key), formatNumber(value),
                     "a value giving at most 5e6 elements for this sample.size (this gives about " +
-                        shortNumber(std::round(estimate)) + ")");
+                        formatNumber(std::round(estimate)) + ")");
   if (estimate < 8)
-    throw SpecError(sample.pathOf(key), shortNumber(value),
+    throw SpecError(sample.pathOf(key), formatNumber(value),
                     "a value small enough for at least 8 elements in sample.size");
   if (s.inclusions.volumeFraction > 0) {
     const double count = s.inclusions.volumeFraction * volume /
@@ -172,18 +167,18 @@ SampleSpec parseSample(const SpecReader& root) {
                           meanPower(s.dimension, s.inclusions.radius[0], s.inclusions.radius[1]));
     if (count > kMaxPores)
       throw SpecError(sample.pathOf("inclusions") + ".radius",
-                      "[" + shortNumber(s.inclusions.radius[0]) + ", " + shortNumber(s.inclusions.radius[1]) + "]",
+                      "[" + formatNumber(s.inclusions.radius[0]) + ", " + formatNumber(s.inclusions.radius[1]) + "]",
                       "radii large enough for at most 10000 inclusions at this volume_fraction and sample.size (these need about " +
-                          shortNumber(std::round(count)) + ")");
+                          formatNumber(std::round(count)) + ")");
   }
   if (s.porosity > 0) {
     const double pores = s.porosity * volume /
                          ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
                           meanPower(s.dimension, s.poreRadius[0], s.poreRadius[1]));
     if (pores > kMaxPores)
-      throw SpecError(sample.pathOf("pore_radius"), "[" + shortNumber(s.poreRadius[0]) + ", " + shortNumber(s.poreRadius[1]) + "]",
+      throw SpecError(sample.pathOf("pore_radius"), "[" + formatNumber(s.poreRadius[0]) + ", " + formatNumber(s.poreRadius[1]) + "]",
                       "pore radii large enough for at most 10000 pores at this porosity and sample.size (these need about " +
-                          shortNumber(std::round(pores)) + ")");
+                          formatNumber(std::round(pores)) + ")");
   }
   return s;
 }

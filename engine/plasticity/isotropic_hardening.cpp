@@ -1,26 +1,18 @@
 #include "plasticity/isotropic_hardening.hpp"
 
 #include <cmath>
-#include <sstream>
 
+#include "core/format_number.hpp"
 #include "rupture/spec_error.hpp"
 
 namespace rupture {
-namespace {
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 void validateHardening(const IsotropicHardening& h, const std::string& prefix) {
   if (!(std::isfinite(h.initialYieldStress) && h.initialYieldStress > 0.0))
-    throw SpecError(prefix + ".initial_yield_stress", text(h.initialYieldStress), "a stress > 0 (Pa)");
+    throw SpecError(prefix + ".initial_yield_stress", formatNumber(h.initialYieldStress), "a stress > 0 (Pa)");
   if (!(std::isfinite(h.modulus) && h.modulus >= 0.0))
-    throw SpecError(prefix + ".hardening_modulus", text(h.modulus), "a stress >= 0 (Pa)");
+    throw SpecError(prefix + ".hardening_modulus", formatNumber(h.modulus), "a stress >= 0 (Pa)");
   if (h.kind == HardeningKind::johnsonCook && !(h.exponent > 0.0 && h.exponent <= 1.0))
-    throw SpecError(prefix + ".hardening_exponent", text(h.exponent), "a number in (0, 1]");
+    throw SpecError(prefix + ".hardening_exponent", formatNumber(h.exponent), "a number in (0, 1]");
 }
 
 HardeningKind hardeningKindFromName(const std::string& name, const std::string& field) {

@@ -1,18 +1,12 @@
 #include "plasticity/von_mises.hpp"
 
 #include <cmath>
-#include <sstream>
 
+#include "core/format_number.hpp"
 #include "rupture/spec_error.hpp"
 
 namespace rupture {
 namespace {
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 /// Root of a strictly decreasing residual r on [0, hi] with r(0) > 0 and r(hi) < 0: Newton steps,
 /// falling back to bisection when a step leaves the bracket. Converges to round-off.
@@ -36,9 +30,9 @@ double decreasingRoot(Residual&& residual, double hi) {
 
 void validateElasticPlastic(const ElasticPlasticMaterial& m, const std::string& prefix) {
   if (!(std::isfinite(m.youngModulus) && m.youngModulus > 0.0))
-    throw SpecError(prefix + ".young_modulus", text(m.youngModulus), "a modulus > 0 (Pa)");
+    throw SpecError(prefix + ".young_modulus", formatNumber(m.youngModulus), "a modulus > 0 (Pa)");
   if (!(m.poissonRatio > -1.0 && m.poissonRatio < 0.5))
-    throw SpecError(prefix + ".poisson_ratio", text(m.poissonRatio), "a number in (-1, 0.5)");
+    throw SpecError(prefix + ".poisson_ratio", formatNumber(m.poissonRatio), "a number in (-1, 0.5)");
   validateHardening(m.hardening, prefix);
 }
 
