@@ -379,11 +379,7 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
                      formatNumber(summary["strain_rate_at_onset"].get<double>()) +
                      " /s: the requested strain rate is above eq. 7's limit for this ramp time");
   summary["wall_time_s"] = seconds(wallStart);
-  recorder.writeAttributes("/summary", summary, dynamicTensionSummaryUnits());
-  recorder.finish(completed);
-  if (completed) reportProgress(control, 1.0);
-  logStage(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
-  return {summary, completed};
+  return finishRun(recorder, summary, dynamicTensionSummaryUnits(), completed, stopReason, control);
 }
 
 Scenario dynamicTensionScenario() {

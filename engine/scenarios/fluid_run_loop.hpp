@@ -103,11 +103,7 @@ inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSyst
       {"smoothing_length", s.model.h()},
       {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())},
       {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}});
-  recorder.writeAttributes("/summary", summary, units);
-  recorder.finish(completed);
-  if (completed) reportProgress(control, 1.0);
-  logStage(control, completed ? "done: " + loop.stopReason : "cancelled: file marked incomplete");
-  return {summary, completed};
+  return finishRun(recorder, summary, units, completed, loop.stopReason, control);
 }
 
 }  // namespace rupture

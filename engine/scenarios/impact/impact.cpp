@@ -270,11 +270,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
       {"projectile_final_speed", v ? nlohmann::json(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])) : nlohmann::json(nullptr)},
   };
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
-  result.writeAttributes("/summary", summary, summaryUnits());
-  result.finish(completed);
-  if (completed) reportProgress(control, 1.0);
-  logStage(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
-  return {summary, completed};
+  return finishRun(result, summary, summaryUnits(), completed, stopReason, control);
 }
 
 Scenario impactScenario() {
