@@ -95,7 +95,7 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
   }
 }
 
-bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& r) {
+bool writeCacheEntry(const std::string& file, const std::function<void(io::Hdf5File&)>& fill) {
   static std::atomic<unsigned> counter{0};
   const fs::path target(file);
   const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp." + std::to_string(::getpid()) +
@@ -105,25 +105,7 @@ bool storePreliminary(const std::string& file, const nlohmann::json& key, const 
   try {
     {
       io::Hdf5File f = io::Hdf5File::create(tmp.string());
-      f.setAttribute("/", "format_version", kFormatVersion);
-      f.setAttribute("/", "key", key.dump());
-      f.setAttribute("/", "elements", static_cast<std::int64_t>(r.field.vx.size()));
-      f.setAttribute("/", "face_velocity", r.faceVelocity);
-      f.setAttribute("/", "strain_rate", r.strainRate);
-      f.setAttribute("/", "ramp_time", r.rampTime);
-      f.setAttribute("/", "time_step", r.timeStep);
-      f.setAttribute("/", "capture_strain", r.captureStrain);
-      f.setAttribute("/", "capture_time", r.captureTime);
-      f.setAttribute("/", "capture_steps", r.captureSteps);
-      f.setAttribute("/", "steps", r.steps);
-      f.setAttribute("/", "onset_strain", r.onsetStrain);
-      f.setAttribute("/", "modulus", r.modulus);
-      f.setAttribute("/", "wave_speed", r.waveSpeed);
-      f.setAttribute("/", "equilibrium_ratio", r.equilibriumRatio);
-      f.setAttribute("/", "wall_time_s", r.wallTime);
-      const std::size_t n = r.field.vx.size();
-      f.writeDataset("/velocity", io::interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
-      f.writeDataset("/angular_velocity", io::interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
+      fill(f);
       f.close();
     }
     fs::rename(tmp, target);
@@ -132,6 +114,30 @@ bool storePreliminary(const std::string& file, const nlohmann::json& key, const 
     fs::remove(tmp, ec);
     return false;
   }
+}
+
+bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& r) {
+  return writeCacheEntry(file, [&](io::Hdf5File& f) {
+    f.setAttribute("/", "format_version", kFormatVersion);
+    f.setAttribute("/", "key", key.dump());
+    f.setAttribute("/", "elements", static_cast<std::int64_t>(r.field.vx.size()));
+    f.setAttribute("/", "face_velocity", r.faceVelocity);
+    f.setAttribute("/", "strain_rate", r.strainRate);
+    f.setAttribute("/", "ramp_time", r.rampTime);
+    f.setAttribute("/", "time_step", r.timeStep);
+    f.setAttribute("/", "capture_strain", r.captureStrain);
+    f.setAttribute("/", "capture_time", r.captureTime);
+    f.setAttribute("/", "capture_steps", r.captureSteps);
+    f.setAttribute("/", "steps", r.steps);
+    f.setAttribute("/", "onset_strain", r.onsetStrain);
+    f.setAttribute("/", "modulus", r.modulus);
+    f.setAttribute("/", "wave_speed", r.waveSpeed);
+    f.setAttribute("/", "equilibrium_ratio", r.equilibriumRatio);
+    f.setAttribute("/", "wall_time_s", r.wallTime);
+    const std::size_t n = r.field.vx.size();
+    f.writeDataset("/velocity", io::interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
+    f.writeDataset("/angular_velocity", io::interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
+  });
 }
 
 CacheEntryLock::CacheEntryLock(const std::string& file, const std::atomic<bool>& cancel) {

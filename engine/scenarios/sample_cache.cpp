@@ -94,35 +94,23 @@ std::optional<PackedSample> load(const std::string& file, const nlohmann::json& 
 }
 
 void store(const std::string& file, const nlohmann::json& key, const PackedSample& s) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path target(file);
-  const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp." + std::to_string(::getpid()) +
-                                               "." + std::to_string(counter++));
-  std::error_code ec;
-  fs::create_directories(target.parent_path(), ec);
-  try {
-    {
-      io::Hdf5File f = io::Hdf5File::create(tmp.string());
-      const std::size_t n = s.radius.size(), b = s.bond.size() / 2;
-      f.setAttribute("/", "format_version", kFormatVersion);
-      f.setAttribute("/", "key", key.dump());
-      f.setAttribute("/", "elements", static_cast<std::int64_t>(n));
-      f.setAttribute("/", "bonds", static_cast<std::int64_t>(b));
-      f.setAttribute("/", "checksum", checksum(s.position, s.radius, s.bond, s.pore));
-      f.setAttribute("/", "packing_fraction", s.report.packingFraction);
-      f.setAttribute("/", "porosity", s.report.porosity);
-      f.setAttribute("/", "thickness", s.report.thickness);
-      f.setAttribute("/", "relaxation_overlap", s.report.relaxationOverlap);
-      f.writeDataset("/position", s.position, {n, 3}, "m");
-      f.writeDataset("/radius", s.radius, {n}, "m");
-      f.writeDataset("/bond", s.bond, {b, 2}, "1");
-      f.writeDataset("/pore", s.pore, {s.pore.size() / 4, 4}, "m");
-      f.close();
-    }
-    fs::rename(tmp, target);
-  } catch (const std::exception&) {
-    fs::remove(tmp, ec);  // a read-only cache: the run goes on without it
-  }
+  // A read-only cache: the run goes on without it (writeCacheEntry leaves no file).
+  writeCacheEntry(file, [&](io::Hdf5File& f) {
+    const std::size_t n = s.radius.size(), b = s.bond.size() / 2;
+    f.setAttribute("/", "format_version", kFormatVersion);
+    f.setAttribute("/", "key", key.dump());
+    f.setAttribute("/", "elements", static_cast<std::int64_t>(n));
+    f.setAttribute("/", "bonds", static_cast<std::int64_t>(b));
+    f.setAttribute("/", "checksum", checksum(s.position, s.radius, s.bond, s.pore));
+    f.setAttribute("/", "packing_fraction", s.report.packingFraction);
+    f.setAttribute("/", "porosity", s.report.porosity);
+    f.setAttribute("/", "thickness", s.report.thickness);
+    f.setAttribute("/", "relaxation_overlap", s.report.relaxationOverlap);
+    f.writeDataset("/position", s.position, {n, 3}, "m");
+    f.writeDataset("/radius", s.radius, {n}, "m");
+    f.writeDataset("/bond", s.bond, {b, 2}, "1");
+    f.writeDataset("/pore", s.pore, {s.pore.size() / 4, 4}, "m");
+  });
 }
 
 /// The packed system from a cache entry: the same elements, bonds (rest state from the same
