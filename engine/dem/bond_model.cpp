@@ -55,7 +55,7 @@ void assignLatticeSprings(BondedSystem& system, const SampleSpec& sample, const 
 
 }  // namespace
 
-void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& m) {
+void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& m, const Cancellation& cancel) {
   BondStore& bonds = system.bonds;
   if (m.model == "beam") {
     system.model = BeamModel{};
@@ -84,9 +84,9 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
                                     backward != m.interblock.end() ? backward->second : own);
     }
   }
-  if (sample.grains.count > 0) weakenGrainBoundaries(voronoiGrains(sample, p), sample.grains.boundaryFactor, bonds);
+  if (sample.grains.count > 0) weakenGrainBoundaries(voronoiGrains(sample, p, cancel), sample.grains.boundaryFactor, bonds);
   if (sample.inclusions.volumeFraction > 0)
-    applyInclusionProperties(sample.inclusions, insideInclusions(placeInclusions(sample), system.particles),
+    applyInclusionProperties(sample.inclusions, insideInclusions(placeInclusions(sample, cancel), system.particles),
                              system.particles, bonds);
   for (std::size_t b = 0; b < bonds.size(); ++b)
     for (const Box& box : m.noFailureRegions) {

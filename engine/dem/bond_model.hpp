@@ -7,6 +7,7 @@
 #include <string>
 #include <variant>
 
+#include "core/cancellation.hpp"
 #include "damage/critical_energy.hpp"
 #include "damage/critical_stretch.hpp"
 #include "damage/griffith_energy.hpp"
@@ -53,6 +54,8 @@ class BondedSystem;
 /// Chooses the law and criterion of `material` and sets every bond's constants (stiffness,
 /// threshold, strength from material.no_failure_regions), the beam parameters and the contact.
 /// The sample's particles and bonds must be built (volumes set); call initialize() afterwards.
-void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& material);
+/// Grain and inclusion placement poll `cancel` (RunCancelled).
+void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& material,
+                    const Cancellation& cancel = {});
 
 }  // namespace rupture

@@ -169,7 +169,7 @@ void finishRandomSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem
                         const Cancellation& cancel) {
   ParticleStore& p = system.particles;
   cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
-  assignMaterial(system, s, m);            // law, criterion, per-bond constants (dem/bond_model.hpp)
+  assignMaterial(system, s, m, cancel);    // law, criterion, per-bond constants (dem/bond_model.hpp)
   system.beam = m.beam;
   system.contact.setParameters(m.contact);
   cancel.throwIfRequested();

@@ -89,7 +89,7 @@ SampleReport buildLatticeSample(const SampleSpec& s, const MaterialSpec& m, Bond
   }
   dropUnbondedElements(system);
 
-  assignMaterial(system, s, m);
+  assignMaterial(system, s, m, cancel);
   cancel.throwIfRequested();
   system.initialize();
   report.elements = p.size();
