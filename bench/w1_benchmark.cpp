@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "bonded_bench_report.hpp"
 #include "dem/bonded_system.hpp"
 
 namespace rupture::bench {
@@ -91,19 +92,10 @@ nlohmann::json runW1(const W1Options& options) {
   for (int step = 0; step < options.steps; ++step) s.step(dt);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const double particleSteps = static_cast<double>(p.size()) * options.steps;
-  const double bondSteps = static_cast<double>(s.bonds.size()) * options.steps;
-  return {{"workload", "W1"},
-          {"particles", p.size()},
-          {"bonds", s.bonds.size()},
-          {"steps", options.steps},
-          {"threads", std::max(1, options.threads)},
-          {"seconds", seconds},
-          {"particle_steps_per_s", particleSteps / seconds},
-          {"bond_steps_per_s", bondSteps / seconds},
-          {"broken_bonds", s.bonds.size() - s.bonds.intactCount()},
-          {"time_step", dt},
-          {"initial_peak_equivalent_stress", initialPeakStress}};
+  nlohmann::json report = bondedBenchReport("W1", s, options.steps, options.threads, seconds);
+  report["time_step"] = dt;
+  report["initial_peak_equivalent_stress"] = initialPeakStress;
+  return report;
 }
 
 }  // namespace rupture::bench
