@@ -1,0 +1,88 @@
+#pragma once
+// The tank-impact scenario's spec (seed 002 §2): a water column in the steel cylinder (inner
+// diameter D, rigid wall), closed at the bottom by the AU4G plate clamped on the rim of its Ø D spot
+// face (SPH shell), hit through the piston by the carriage (one rigid body of mass M, initial speed
+// V). The plate has a thickness, and optionally a central hole and pre-cracks (U, X, I, radial).
+// Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md. SI units.
+//
+// Frame: the tank axis is z; the plate's mid-surface is the plane z = 0 (its reference frame is
+// the shell's: x, y in the plane, normal +z); the water fills 0 < z < water_height above it; the
+// jet leaves downwards (z < 0).
+#include <array>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/fluid_spec.hpp"
+#include "shell/shell_parameters.hpp"
+
+namespace rupture {
+
+/// What is cut into the plate before the impact (seed §2, Table of tests).
+enum class PrecrackShape {
+  None,          ///< intact plate
+  Hole,          ///< central hole of diameter `hole_diameter` (E14, E20 tests)
+  U,             ///< U-shaped through-crack: two parallel arms of `length` joined by a base of `width` (FU tests)
+  X,             ///< two crossed through-cracks of `length` each, centred (FX tests)
+  I,             ///< one straight through-crack of `length`, centred (FI tests)
+  HoleAndCracks  ///< central hole with `crack_count` radial cracks of `length` from its edge (TF tests)
+};
+
+struct PrecrackSpec {
+  PrecrackShape shape = PrecrackShape::None;
+  double holeDiameter = 0.0;  ///< m (hole, hole+cracks)
+  double length = 0.0;        ///< m: U arm, X/I crack, radial crack from the hole edge
+  double width = 0.0;         ///< m: U base (distance between the arms)
+  int crackCount = 2;         ///< radial cracks (hole+cracks), evenly spaced
+};
+
+struct PlateSpec {
+  std::string materialPreset = "au4g_2024_t351";
+  ShellParameters shell;      ///< thickness, density, material, damage law, layers … (preset, then overrides)
+  double diameter = 0.08;     ///< clamped spot-face diameter (m); defaults to the tank's inner diameter
+  double spacing = 0.0;       ///< node spacing Δ (m); default: the fluid spacing
+  PrecrackSpec precrack;
+};
+
+/// Fluid–structure contact between water particles and plate nodes (seed §5.2, eq. 7).
+enum class ContactMethod {
+  Pinball,     ///< sphere–sphere interpenetration check; impulse cancelling the normal relative speed
+  MasterSlave  ///< fluid particles (slaves) kept on the plate's surface (master), free to slide
+};
+
+struct ContactSpec {
+  ContactMethod method = ContactMethod::Pinball;
+};
+
+/// Carriage + piston: one rigid body driving the water column from its top face.
+struct ImpactorSpec {
+  double mass = 245.0;  ///< M (kg)
+  double speed = 5.0;   ///< V (m/s), downwards, at t = 0
+};
+
+struct TankImpactSpec {
+  std::string description;
+  double innerDiameter = 0.08;   ///< D (m)
+  double waterHeight = 0.180;    ///< H (m); default 0.205 − plate thickness (seed: H = 205 mm − e_p)
+  io::ResolutionSpec resolution; ///< fluid spacing dx, h/dx, wall layers
+  io::FluidSpec fluid;
+  double soundSpeed = 1450.0;    ///< c0 resolved (m/s)
+  double gravity = 9.81;         ///< m/s² along −z
+  ImpactorSpec impactor;
+  PlateSpec plate;
+  ContactSpec contact;
+  std::array<double, 3> gauge{0.0, 0.0, 0.0};  ///< pressure gauge position (m); default: on the axis, 10 mm above the plate
+  std::vector<std::array<double, 3>> probes;   ///< further pressure probes (m)
+  io::FluidRunSpec run;
+  double estimatedParticles = 0;  ///< fluid, wall and plate particles the run will hold
+};
+
+/// Throws SpecError naming the field, its value and what is allowed.
+TankImpactSpec parseTankImpactSpec(const nlohmann::json& json);
+/// The resolved spec (every default filled in) for the result file.
+nlohmann::json toJson(const TankImpactSpec& spec);
+std::string toString(PrecrackShape shape);  ///< "none", "hole", "U", "X", "I", "hole+cracks"
+std::string toString(ContactMethod method); ///< "pinball", "master_slave"
+
+}  // namespace rupture
