@@ -141,12 +141,13 @@ struct BeamResponse {
                biz = r.tiz - twistMoment * nz;
   const double momentI2 = bix * bix + biy * biy + biz * biz;
   const double momentJ2 = bjx * bjx + bjy * bjy + bjz * bjz;
-  const double endMoment = std::sqrt(momentI2 > momentJ2 ? momentI2 : momentJ2);
-  // ½ |M_j − M_i| = (E I / L0) |φ_j − φ_i|: the chord's rotation cancels, only the disks' relative
-  // rotation bends the beam.
+  // The larger end moment, or ½ |M_j − M_i| = (E I / L0) |φ_j − φ_i|: the chord's rotation cancels,
+  // only the disks' relative rotation bends the beam. Select the square, then take one root: two
+  // roots and a select between them made the W1 bond loop 2.5 times slower (measured).
   const double hx = bjx - bix, hy = bjy - biy, hz = bjz - biz;
-  const double relativeMoment = 0.5 * std::sqrt(hx * hx + hy * hy + hz * hz);
-  const double bendingMoment = p.bendingFromRelativeRotation ? relativeMoment : endMoment;
+  const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
+  const double relativeMoment2 = 0.25 * (hx * hx + hy * hy + hz * hz);
+  const double bendingMoment = std::sqrt(p.bendingFromRelativeRotation ? relativeMoment2 : endMoment2);
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   const double shearStress = std::fabs(twistMoment) * sec.radius / sec.polarMoment;
   r.equivalentStress = rankineEquivalentStress(normalStress, shearStress);
