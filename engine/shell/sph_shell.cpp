@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "shell/wendland_kernel.hpp"
@@ -78,6 +79,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   m_stressR.assign(n, {});
   m_shearQ.assign(n, {0.0, 0.0});
   m_fractured.assign(n, 0);
+  m_fractureTime.assign(n, std::numeric_limits<double>::quiet_NaN());
   m_hasGradient.assign(n, 0);
   const std::size_t layers = m_rule.xi.size();
   m_plasticStrainTensor.assign(n * layers, {0.0, 0.0, 0.0});
@@ -459,6 +461,10 @@ void SphShell::fractureNode(std::size_t i) {
     DamageState& s = m_damage[i * layers + k];
     s.damage = std::max(s.damage, m_params.damageLaw.criticalDamage);
     s.fractured = true;
+  }
+  if (!m_fractured[i]) {
+    m_fractureTime[i] = m_time;
+    m_fractureOrder.push_back(i);
   }
   m_fractured[i] = 1;
   cutLinksOf(i);

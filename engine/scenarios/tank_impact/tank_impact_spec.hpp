@@ -38,7 +38,7 @@ struct PrecrackSpec {
 };
 
 struct PlateSpec {
-  std::string materialPreset = "au4g_2024_t351";
+  std::string materialPreset = "au4g_2024_t351_seed";  ///< seed Tables 1 and 6 (material_presets.hpp)
   ShellParameters shell;      ///< thickness, density, material, damage law, layers … (preset, then overrides)
   double diameter = 0.08;     ///< clamped spot-face diameter (m); defaults to the tank's inner diameter
   double spacing = 0.0;       ///< node spacing Δ (m); default: the fluid spacing
@@ -72,7 +72,9 @@ struct TankImpactSpec {
   ImpactorSpec impactor;
   PlateSpec plate;
   ContactSpec contact;
-  std::array<double, 3> gauge{0.0, 0.0, 0.0};  ///< pressure gauge position (m); default: on the axis, 10 mm above the plate
+  /// Pressure gauge position (m). Default: the seed's sensor on the cylinder's underside, read in
+  /// the water next to the wall: r = R − 5 mm (x axis), 10 mm above the plate (at most H/2).
+  std::array<double, 3> gauge{0.035, 0.0, 0.010};
   std::vector<std::array<double, 3>> probes;   ///< further pressure probes (m)
   io::FluidRunSpec run;
   double estimatedParticles = 0;  ///< fluid, wall and plate particles the run will hold
