@@ -93,6 +93,8 @@ public:
   /// the reference plane (m), then rebuilds the corrected gradients (free crack lips follow). Place
   /// a crack between node rows: a link that only touches the segment at a node is kept.
   void cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b);
+  /// cutAlongSegment for several segments (a polyline, a hole's edge) with one rebuild.
+  void cutAlongSegments(const std::vector<std::array<std::array<double, 2>, 2>>& segments);
   /// Number of active links whose reference segment strictly crosses [a, b] (each pair once).
   std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
   /// Kinetic energy of translation and of the director rotation (J).

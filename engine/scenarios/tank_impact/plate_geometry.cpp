@@ -202,14 +202,16 @@ PlateGeometry plateGeometry(const PlateSpec& plate) {
 
 SphShell buildPlate(const PlateSpec& plate, const PlateGeometry& geometry) {
   SphShell shell(geometry.nodes, plate.shell);
+  std::vector<std::array<Point, 2>> cuts;
   if (geometry.holeRadius > 0.0) {
     const double r = geometry.holeRadius * (1.0 - 1e-9), pi = std::numbers::pi;
     for (int k = 0; k < kHoleEdgeSides; ++k) {
       const double a0 = 2.0 * pi * k / kHoleEdgeSides, a1 = 2.0 * pi * (k + 1) / kHoleEdgeSides;
-      shell.cutAlongSegment({r * std::cos(a0), r * std::sin(a0)}, {r * std::cos(a1), r * std::sin(a1)});
+      cuts.push_back({Point{r * std::cos(a0), r * std::sin(a0)}, Point{r * std::cos(a1), r * std::sin(a1)}});
     }
   }
-  for (const PlateSegment& s : geometry.precracks) shell.cutAlongSegment(s.a, s.b);
+  for (const PlateSegment& s : geometry.precracks) cuts.push_back({s.a, s.b});
+  shell.cutAlongSegments(cuts);
   return shell;
 }
 
