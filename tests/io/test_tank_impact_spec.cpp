@@ -55,7 +55,7 @@ TEST(TankImpactSpec, DefaultsAreTheSeedsTest) {
   EXPECT_DOUBLE_EQ(s.plate.spacing, 0.004);  // the fluid spacing
   EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::None);
   EXPECT_DOUBLE_EQ(s.gauge[0], 0.035);
-  EXPECT_DOUBLE_EQ(s.gauge[2], 0.010);
+  EXPECT_DOUBLE_EQ(s.gauge[2], 0.001 + 0.010);  // 10 mm above the plate's upper face z = t/2
   // Particles: the column π R² H / dx³ = 15,944, plus wall layers and plate nodes.
   const double column = std::numbers::pi * 0.04 * 0.04 * 0.203 / std::pow(0.004, 3);
   EXPECT_GT(s.estimatedParticles, column);
@@ -66,6 +66,10 @@ TEST(TankImpactSpec, WaterHeightFollowsThePlateThickness) {
   nlohmann::json j = minimal();
   j["plate"] = {{"thickness", 0.025}};  // the thick E specimens
   EXPECT_NEAR(parseTankImpactSpec(j).waterHeight, 0.180, 1e-15);
+  EXPECT_NEAR(parseTankImpactSpec(j).gauge[2], 0.0125 + 0.010, 1e-15);
+  j["probes"] = {{0.0, 0.0, 0.010}};  // inside the 25 mm plate (its upper face is at z = 12.5 mm)
+  EXPECT_EQ(fieldOf(j), "probes.0");
+  j.erase("probes");
   j["tank"] = {{"water_height", 0.15}};
   EXPECT_DOUBLE_EQ(parseTankImpactSpec(j).waterHeight, 0.15);
 }

@@ -127,11 +127,13 @@ std::array<double, 3> parsePoint(const nlohmann::json& spec, const char* key, co
   return {c[0], c[1], c[2]};
 }
 
-void requireInsideWater(const std::array<double, 3>& p, const std::string& field, double radius, double height) {
-  if (!(std::hypot(p[0], p[1]) <= radius && p[2] >= 0.0 && p[2] <= height))
+void requireInsideWater(const std::array<double, 3>& p, const std::string& field, double radius, double bottom,
+                        double height) {
+  if (!(std::hypot(p[0], p[1]) <= radius && p[2] >= bottom && p[2] <= bottom + height))
     throw SpecError(field, io::describeValue(nlohmann::json{p[0], p[1], p[2]}),
-                    "a point inside the water: sqrt(x^2 + y^2) <= " + formatNumber(radius) + " m, z in [0, " +
-                        formatNumber(height) + "] m (the tank axis is z, the plate's mid-surface z = 0)");
+                    "a point inside the water: sqrt(x^2 + y^2) <= " + formatNumber(radius) + " m, z in [" +
+                        formatNumber(bottom) + ", " + formatNumber(bottom + height) +
+                        "] m (the tank axis is z, the plate's mid-surface z = 0, its upper face z = thickness/2)");
 }
 
 }  // namespace
@@ -220,11 +222,12 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
                     "a spacing giving at most 5e6 particles with plate.spacing = " + formatNumber(s.plate.spacing) +
                         " m (this one gives about " + formatNumber(s.estimatedParticles) + ")");
 
-  s.gauge = {std::max(0.0, R - 0.005), 0.0, std::min(0.010, 0.5 * H)};
+  const double bottom = 0.5 * s.plate.shell.thickness;  // the water's lower face: the plate's upper face
+  s.gauge = {std::max(0.0, R - 0.005), 0.0, bottom + std::min(0.010, 0.5 * H)};
   s.gauge = parsePoint(json, "gauge", s.gauge);
-  requireInsideWater(s.gauge, "gauge", R, H);
+  requireInsideWater(s.gauge, "gauge", R, bottom, H);
   s.probes = io::parseProbes(json, 3);
-  for (std::size_t k = 0; k < s.probes.size(); ++k) requireInsideWater(s.probes[k], "probes." + std::to_string(k), R, H);
+  for (std::size_t k = 0; k < s.probes.size(); ++k) requireInsideWater(s.probes[k], "probes." + std::to_string(k), R, bottom, H);
   return s;
 }
 
