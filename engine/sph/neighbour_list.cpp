@@ -77,9 +77,11 @@ std::vector<std::int32_t> NeighbourList::cellOrder(const FluidParticles& p, int 
 }
 
 std::size_t NeighbourList::totalPairs() const {
+  // Each interacting pair sits once in a fluid particle's list; a wall's list repeats its fluid–wall pairs.
   std::size_t total = 0;
-  for (std::int32_t c : m_count) total += static_cast<std::size_t>(c);
-  return total;
+  for (std::size_t i = 0; i < m_count.size(); ++i)
+    if (m_isFluid[i]) total += static_cast<std::size_t>(m_count[i]);
+  return 2 * total;
 }
 
 void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff) {
@@ -91,6 +93,8 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   binParticles(p, g, m_cellStart, m_sorted);
   m_count.assign(n, 0);
   m_fluidCount.assign(n, 0);
+  m_isFluid.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m_isFluid[i] = p.body[i] == kFluid;
   if (m_stride == 0) {
     // Neighbours of a particle in the bulk of a lattice of spacing ~ cutoff/2.6, with room to spare.
     const double ratio = 2.6 * 1.1;
@@ -121,6 +125,7 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
             const double dx = xi - p.x[j], dy = yi - p.y[j], dz = is3d ? zi - p.z[j] : 0.0;
             if (dx * dx + dy * dy + dz * dz >= cut2 || static_cast<std::size_t>(j) == i) continue;
             if (p.body[j] == kFluid) {
+              if (fluidI && static_cast<std::size_t>(j) < i) continue;  // half list: the pair is in j's
               if (nf + nb < stride) out[nf] = j;
               ++nf;
             } else if (fluidI) {
@@ -139,8 +144,41 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
       m_count[i] = total;
       m_fluidCount[i] = nf;
     }
-    if (overflow == 0) return;
+    if (overflow == 0) break;
     m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
+  }
+  splitIntoChunks();
+}
+
+void NeighbourList::splitIntoChunks() {
+  const std::size_t n = m_count.size();
+  // 1, 2, 4 or 8 chunks of at least 4,096 particles: a power of two shares evenly among 1, 2, 4, 8 threads.
+  std::size_t chunks = 1;
+  while (chunks < 8 && n / (2 * chunks) >= 4096) chunks *= 2;
+  std::size_t work = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (m_isFluid[i]) work += static_cast<std::size_t>(m_count[i]);
+  m_chunks.assign(chunks, {});
+  std::size_t i = 0, done = 0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    Chunk& k = m_chunks[c];
+    k.begin = i;
+    const std::size_t target = work * (c + 1) / chunks;
+    while (i < n && (c + 1 == chunks || done < target)) {
+      if (m_isFluid[i]) done += static_cast<std::size_t>(m_count[i]);
+      ++i;
+    }
+    k.end = i;
+    k.lo = k.begin;
+    k.hi = k.end > k.begin ? k.end - 1 : k.begin;
+    for (std::size_t a = k.begin; a < k.end; ++a) {
+      if (!m_isFluid[a]) continue;
+      const std::int32_t* nb = neighbours(a);
+      for (int m = 0; m < m_count[a]; ++m) {
+        k.lo = std::min(k.lo, static_cast<std::size_t>(nb[m]));
+        k.hi = std::max(k.hi, static_cast<std::size_t>(nb[m]));
+      }
+    }
   }
 }
 
