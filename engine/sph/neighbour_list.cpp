@@ -103,14 +103,31 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   }
   const double cut2 = cutoff * cutoff;
   const bool is3d = dimension == 3;
+  // Positions and kinds in cell order, so that the candidate scan reads memory in sequence; and the
+  // number of fluid particles before each sorted position, so that a boundary particle skips the
+  // rows of cells that hold no fluid (it lists fluid only).
+  m_sx.resize(n);
+  m_sy.resize(n);
+  m_sz.resize(n);
+  m_sFluid.resize(n);
+  m_fluidBefore.resize(n + 1);
+  m_fluidBefore[0] = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::int32_t j = m_sorted[s];
+    m_sx[s] = p.x[j];
+    m_sy[s] = p.y[j];
+    m_sz[s] = is3d ? p.z[j] : 0.0;
+    m_sFluid[s] = p.body[j] == kFluid;
+    m_fluidBefore[s + 1] = m_fluidBefore[s] + m_sFluid[s];
+  }
   while (true) {
     m_index.resize(n * m_stride);
     int overflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : overflow) if (worthParallel(n))
     for (std::size_t i = 0; i < n; ++i) {
-      const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
+      const double xi = p.x[i], yi = p.y[i], zi = is3d ? p.z[i] : 0.0;
       const bool fluidI = p.body[i] == kFluid;
-      const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(zi, 2);
+      const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(p.z[i], 2);
       std::int32_t* out = m_index.data() + i * m_stride;
       // Boundary neighbours are parked at the end of the slot (backwards) and moved behind the fluid ones.
       const int stride = static_cast<int>(m_stride);
@@ -120,15 +137,19 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
         for (int b = std::max(cy - 2, 0); b <= std::min(cy + 2, g.dims[1] - 1); ++b) {
           const std::size_t row = (static_cast<std::size_t>(a) * g.dims[1] + b) * g.dims[0];
           // Cells x0..x1 of one row are contiguous in the sorted order.
-          for (std::int32_t s = m_cellStart[row + x0]; s < m_cellStart[row + x1 + 1]; ++s) {
+          const std::int32_t s0 = m_cellStart[row + x0], s1 = m_cellStart[row + x1 + 1];
+          if (!fluidI && m_fluidBefore[s1] == m_fluidBefore[s0]) continue;
+          for (std::int32_t s = s0; s < s1; ++s) {
             const std::int32_t j = m_sorted[s];
-            const double dx = xi - p.x[j], dy = yi - p.y[j], dz = is3d ? zi - p.z[j] : 0.0;
-            if (dx * dx + dy * dy + dz * dz >= cut2 || static_cast<std::size_t>(j) == i) continue;
-            if (p.body[j] == kFluid) {
-              if (fluidI && static_cast<std::size_t>(j) < i) continue;  // half list: the pair is in j's
+            const bool fluidJ = m_sFluid[s];
+            // Half list: a fluid pair is listed by its lower index; a boundary particle lists fluid only.
+            if (fluidI ? (fluidJ && static_cast<std::size_t>(j) <= i) : !fluidJ) continue;
+            const double dx = xi - m_sx[s], dy = yi - m_sy[s], dz = zi - m_sz[s];
+            if (dx * dx + dy * dy + dz * dz >= cut2) continue;
+            if (fluidJ) {
               if (nf + nb < stride) out[nf] = j;
               ++nf;
-            } else if (fluidI) {
+            } else {
               if (nf + nb < stride) out[stride - 1 - nb] = j;
               ++nb;
             }

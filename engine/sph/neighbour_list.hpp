@@ -49,7 +49,9 @@ private:
   std::vector<Chunk> m_chunks;
 
   void splitIntoChunks();
-  std::vector<std::int32_t> m_cellStart, m_sorted;
+  std::vector<std::int32_t> m_cellStart, m_sorted, m_fluidBefore;
+  std::vector<double> m_sx, m_sy, m_sz;
+  std::vector<char> m_sFluid;
 };
 
 }  // namespace rupture::sph
