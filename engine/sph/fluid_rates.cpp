@@ -14,9 +14,10 @@ using Packed = RateWorkspace::Packed;
 /// Constants of the pair loop.
 struct PairConstants {
   double h, twoH, eta2, support2, alphaC0, beta, kx, ky, kz, diffusionScale, uniformMass;
-  // The cubic spline's F = (dW/dr)/r = kF (3 max(h − r, 0)² − 0.75 (2h − r)²)/r for r < 2h, kF = a_D/h³:
+  // The cubic spline's F = (dW/dr)/r = kF (4 max(h − r, 0)² − (2h − r)²)/r for r < 2h, kF = 0.75 a_D/h³:
   // one expression for both pieces, so no branch.
   double kF;
+  double halfAlphaC0, halfBeta;  // ½ α c0, ½ β: the ½ of 1/ρ̄ = ½ (1/ρ_a + 1/ρ_b) folded in
 };
 
 /// The pairs of fluid particle i with list[begin, end): each pair once, added to i's sums (`own`)
@@ -39,14 +40,14 @@ template <bool Diffuse, bool UniformMass>
     if (r2 >= k.support2) continue;  // a skin pair: no contribution
     const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
     const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
-    const double F = k.kF * (3.0 * s * s - 0.75 * t * t) / r;
+    const double F = k.kF * (4.0 * s * s - t * t) / r;
     const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
     const double vr = dvx * dx + dvy * dy + dvz * dz;
     const double mu = k.h * vr / (r2 + k.eta2);
     // Π only for approaching pairs (μ < 0), as min(μ, 0): a select, not a branch (its sign is random).
     // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
     const double approach = mu < 0.0 ? mu : 0.0;
-    const double viscous = approach * (k.beta * approach - k.alphaC0) * 0.5 * (a.inverseRho + b.inverseRho);
+    const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
     const double mj = UniformMass ? 1.0 : mass[j];
     const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
     const double fx = c * dx, fy = c * dy, fz = c * dz;
@@ -97,11 +98,13 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   PairConstants k{};
   k.h = kernel.h();
   k.twoH = 2.0 * k.h;
-  k.kF = kernel.normalisation() / (k.h * k.h * k.h);
+  k.kF = 0.75 * kernel.normalisation() / (k.h * k.h * k.h);
   k.eta2 = 0.01 * k.h * k.h;
   k.support2 = kernel.support() * kernel.support();
   k.alphaC0 = model.alpha * eos.soundSpeed;
   k.beta = model.beta;
+  k.halfAlphaC0 = 0.5 * k.alphaC0;
+  k.halfBeta = 0.5 * k.beta;
   // Fourtakas: ρ_a − ρ_b minus its hydrostatic part ρ0 g·x_ab/c0² (acoustic linearisation).
   if (model.diffusion == DiffusionModel::Fourtakas) {
     const double s = eos.referenceDensity / (eos.soundSpeed * eos.soundSpeed);
