@@ -133,26 +133,55 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
       const int stride = static_cast<int>(m_stride);
       int nf = 0, nb = 0;
       const int x0 = std::max(cx - 2, 0), x1 = std::min(cx + 2, g.dims[0] - 1);
+      // Candidates of sorted positions [s0, s1). Which ones a particle lists (each pair once):
+      //   Forward: cells after its own in cell order: fluid and boundary particles;
+      //   Centre:  its own cell: fluid of higher index, and boundary particles;
+      //   Backward: cells before its own: boundary particles only (their pairs with fluid ones
+      //             are listed by those, in their Forward cells);
+      //   FluidOnly: a boundary particle's list, all its fluid neighbours.
+      enum Mode { Forward, Centre, Backward, FluidOnly };
+      auto scan = [&]<int M>(std::int32_t s0, std::int32_t s1) {
+        for (std::int32_t s = s0; s < s1; ++s) {
+          const std::int32_t j = m_sorted[s];
+          const bool fluidJ = m_sFluid[s];
+          if constexpr (M == Centre) {
+            if (fluidJ && static_cast<std::size_t>(j) <= i) continue;
+          } else if constexpr (M == Backward) {
+            if (fluidJ) continue;
+          } else if constexpr (M == FluidOnly) {
+            if (!fluidJ) continue;
+          }
+          const double dx = xi - m_sx[s], dy = yi - m_sy[s], dz = zi - m_sz[s];
+          if (dx * dx + dy * dy + dz * dz >= cut2) continue;
+          if (fluidJ) {
+            if (nf + nb < stride) out[nf] = j;
+            ++nf;
+          } else {
+            if (nf + nb < stride) out[stride - 1 - nb] = j;
+            ++nb;
+          }
+        }
+      };
+      auto fluidIn = [&](std::int32_t s0, std::int32_t s1) { return m_fluidBefore[s1] - m_fluidBefore[s0]; };
       for (int a = std::max(cz - 2, 0); a <= std::min(cz + 2, g.dims[2] - 1); ++a)
         for (int b = std::max(cy - 2, 0); b <= std::min(cy + 2, g.dims[1] - 1); ++b) {
           const std::size_t row = (static_cast<std::size_t>(a) * g.dims[1] + b) * g.dims[0];
           // Cells x0..x1 of one row are contiguous in the sorted order.
           const std::int32_t s0 = m_cellStart[row + x0], s1 = m_cellStart[row + x1 + 1];
-          if (!fluidI && m_fluidBefore[s1] == m_fluidBefore[s0]) continue;
-          for (std::int32_t s = s0; s < s1; ++s) {
-            const std::int32_t j = m_sorted[s];
-            const bool fluidJ = m_sFluid[s];
-            // Half list: a fluid pair is listed by its lower index; a boundary particle lists fluid only.
-            if (fluidI ? (fluidJ && static_cast<std::size_t>(j) <= i) : !fluidJ) continue;
-            const double dx = xi - m_sx[s], dy = yi - m_sy[s], dz = zi - m_sz[s];
-            if (dx * dx + dy * dy + dz * dz >= cut2) continue;
-            if (fluidJ) {
-              if (nf + nb < stride) out[nf] = j;
-              ++nf;
-            } else {
-              if (nf + nb < stride) out[stride - 1 - nb] = j;
-              ++nb;
-            }
+          if (!fluidI) {
+            if (fluidIn(s0, s1) > 0) scan.template operator()<FluidOnly>(s0, s1);
+            continue;
+          }
+          const int order = a != cz ? a - cz : b - cy;  // rows after (> 0) or before (< 0) its own
+          if (order > 0) {
+            scan.template operator()<Forward>(s0, s1);
+          } else if (order < 0) {
+            if (fluidIn(s0, s1) < s1 - s0) scan.template operator()<Backward>(s0, s1);
+          } else {
+            const std::int32_t c0 = m_cellStart[row + cx], c1 = m_cellStart[row + cx + 1];
+            if (fluidIn(s0, c0) < c0 - s0) scan.template operator()<Backward>(s0, c0);
+            scan.template operator()<Centre>(c0, c1);
+            scan.template operator()<Forward>(c1, s1);
           }
         }
       const int total = nf + nb;

@@ -1,10 +1,12 @@
 #pragma once
 // Verlet neighbour lists for the SPH pair loops, built on a uniform cell grid (counting sort).
-// Half lists: every interacting pair is listed once, by its fluid particle of lower index (a
-// fluid particle lists the fluid neighbours of higher index first, then all its boundary
-// neighbours), so the pair loop computes each pair once and adds it to both particles
-// (fluid_rates.cpp). Boundary particles interact with fluid only; a boundary particle's list holds
-// all its fluid neighbours, for the pressure extrapolation only (those pairs are also in the
+// Half lists: every interacting pair is listed once, by a fluid particle: a fluid–fluid pair by the
+// particle whose grid cell comes first (the one of lower index within a cell), a fluid–wall pair
+// by its fluid particle. A fluid particle's list holds those fluid neighbours first, then all its
+// boundary neighbours; the pair loop computes each pair once and adds it to both particles
+// (fluid_rates.cpp). The scan for fluid–fluid pairs covers only the cells after a particle's own
+// (half the stencil). Boundary particles interact with fluid only; a boundary particle's list
+// holds all its fluid neighbours, for the pressure extrapolation only (those pairs are also in the
 // fluid particles' lists).
 // The cutoff is the kernel support plus a skin; SphSystem rebuilds when a particle has moved more
 // than half the skin since the last build.
