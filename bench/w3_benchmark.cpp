@@ -45,18 +45,20 @@ void buildW3(sph::SphSystem& s) {
       }
 }
 
-/// Directed pairs closer than the kernel support (the pairs that contribute), from the lists.
+/// Directed pairs closer than the kernel support (the pairs that contribute): every interacting
+/// pair is listed once, by its fluid particle of lower index (neighbour_list.hpp), and counts twice.
 std::size_t pairsWithinSupport(const sph::SphSystem& s) {
   const sph::FluidParticles& p = s.particles;
   const sph::NeighbourList& list = s.neighbourList();
   const double support2 = std::pow(s.model.kernel().support(), 2);
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.isFluid(i)) continue;
     const std::int32_t* nb = list.neighbours(i);
     for (int n = 0; n < list.count(i); ++n) {
       const std::int32_t j = nb[n];
       const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j], dz = p.z[i] - p.z[j];
-      if (dx * dx + dy * dy + dz * dz < support2) ++pairs;
+      if (dx * dx + dy * dy + dz * dz < support2) pairs += 2;
     }
   }
   return pairs;

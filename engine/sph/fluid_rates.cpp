@@ -9,87 +9,124 @@ namespace rupture::sph {
 
 namespace {
 
-/// Sums of one particle over a run of its neighbours.
-struct Sums {
-  double ax = 0, ay = 0, az = 0, drho = 0, diffusion = 0, maxMu = 0;
+using Packed = RateWorkspace::Packed;
+
+/// Constants of the pair loop.
+struct PairConstants {
+  double h, twoH, eta2, support2, alphaC0, beta, kx, ky, kz, diffusionScale, uniformMass;
+  // The cubic spline's F = (dW/dr)/r = kF (4 max(h − r, 0)² − (2h − r)²)/r for r < 2h, kF = 0.75 a_D/h³:
+  // one expression for both pieces, so no branch.
+  double kF;
+  double halfAlphaC0, halfBeta;  // ½ α c0, ½ β: the ½ of 1/ρ̄ = ½ (1/ρ_a + 1/ρ_b) folded in
 };
 
-/// The pair loop of particle i over neighbours list[begin, end). Diffuse: add the δ-SPH sum.
-/// Plain arrays and selects only, so GCC vectorises it (gathers of the neighbours' fields).
+/// The pairs of fluid particle i with list[begin, end): each pair once, added to i's sums (`own`)
+/// and to the neighbour's accumulator acc[4 (j − lo) …]: ax, ay, az, dρ/dt. With UniformMass the
+/// sums are per unit mass (the caller multiplies by the mass): 6 multiplications fewer per pair.
+/// Diffuse: add the δ-SPH term (fluid–fluid pairs).
 template <bool Diffuse, bool UniformMass>
-[[gnu::always_inline]] inline void gather(const FluidParticles& p, std::size_t i, const std::int32_t* list, int begin,
-                                          int end, const CubicSplineKernel& kernel, double alphaC0, double beta,
-                                          const double* hydrostatic, bool is3d, double uniformMass, Sums& s) {
-  const double* __restrict x = p.x.data();
-  const double* __restrict y = p.y.data();
-  const double* __restrict z = p.z.data();
-  const double* __restrict vx = p.vxEst.data();
-  const double* __restrict vy = p.vyEst.data();
-  const double* __restrict vz = p.vzEst.data();
-  const double* __restrict rho = p.rhoEst.data();
-  const double* __restrict P = p.pressureOverRho2.data();
-  const double* __restrict m = p.mass.data();
-  const double* __restrict invRho = p.inverseRho.data();
-  const double xi = x[i], yi = y[i], zi = is3d ? z[i] : 0.0;
-  const double vxi = vx[i], vyi = vy[i], vzi = vz[i], rhoi = rho[i], Pi = P[i], invRhoI = invRho[i];
-  const double h = kernel.h(), eta2 = 0.01 * h * h, support2 = 4.0 * h * h;
-  const double kx = hydrostatic[0], ky = hydrostatic[1], kz = hydrostatic[2];
-  double sax = 0, say = 0, saz = 0, sdrho = 0, sdiff = 0, smu = 0;
-#pragma omp simd reduction(+ : sax, say, saz, sdrho, sdiff) reduction(max : smu)
+[[gnu::always_inline]] inline void pairsOf(std::size_t i, const std::int32_t* __restrict list, int begin, int end,
+                                           const Packed* __restrict pk, const double* __restrict rho,
+                                           const double* __restrict mass, double* __restrict acc, std::size_t lo,
+                                           const PairConstants& k, double own[4], double& maxMu) {
+  const Packed a = pk[i];
+  const double rhoi = rho[i], mi = UniformMass ? 1.0 : mass[i];
+  double sax = 0, say = 0, saz = 0, sdrho = 0, smu = maxMu;
   for (int n = begin; n < end; ++n) {
-    const std::int32_t j = list[n];
-    const double dx = xi - x[j], dy = yi - y[j], dz = is3d ? zi - z[j] : 0.0;
+    const std::size_t j = static_cast<std::size_t>(list[n]);
+    const Packed& b = pk[j];
+    const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
     const double r2 = dx * dx + dy * dy + dz * dz;
-    const double inverseR = 1.0 / std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
-    const double F = kernel.gradientFactor(r2 * inverseR, inverseR);  // 0 beyond the support (skin pairs)
-    const double dvx = vxi - vx[j], dvy = vyi - vy[j], dvz = vzi - vz[j];
+    if (r2 >= k.support2) continue;  // a skin pair: no contribution
+    const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
+    const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
+    const double F = k.kF * (4.0 * s * s - t * t) / r;
+    const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
     const double vr = dvx * dx + dvy * dy + dvz * dz;
-    const double mu = h * vr / (r2 + eta2);
-    const double rhoj = rho[j];
+    const double mu = k.h * vr / (r2 + k.eta2);
+    // Π only for approaching pairs (μ < 0), as min(μ, 0): a select, not a branch (its sign is random).
     // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
-    const double viscous = vr < 0.0 ? (-alphaC0 * mu + beta * mu * mu) * 0.5 * (invRhoI + invRho[j]) : 0.0;
-    const double mj = UniformMass ? uniformMass : m[j];
-    const double c = mj * (Pi + P[j] + viscous) * F;
-    sax -= c * dx;
-    say -= c * dy;
-    saz -= c * dz;
-    sdrho += mj * F * vr;
-    if constexpr (Diffuse) sdiff += ((rhoi - rhoj) - (kx * dx + ky * dy + kz * dz)) * F * mj * invRho[j];
-    const double amu = r2 < support2 ? std::fabs(mu) : 0.0;
+    const double approach = mu < 0.0 ? mu : 0.0;
+    const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
+    const double mj = UniformMass ? 1.0 : mass[j];
+    const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
+    const double fx = c * dx, fy = c * dy, fz = c * dz;
+    const double continuity = F * vr;
+    double* __restrict aj = acc + 4 * (j - lo);
+    if constexpr (UniformMass) {
+      sax -= fx;
+      say -= fy;
+      saz -= fz;
+      aj[0] += fx;
+      aj[1] += fy;
+      aj[2] += fz;
+    } else {
+      sax -= mj * fx;
+      say -= mj * fy;
+      saz -= mj * fz;
+      aj[0] += mi * fx;
+      aj[1] += mi * fy;
+      aj[2] += mi * fz;
+    }
+    if constexpr (Diffuse) {
+      const double d = ((rhoi - rho[j]) - (k.kx * dx + k.ky * dy + k.kz * dz)) * F * k.diffusionScale;
+      sdrho += mj * (continuity + d * b.inverseRho);
+      aj[3] += mi * (continuity - d * a.inverseRho);
+    } else {
+      sdrho += mj * continuity;
+      aj[3] += mi * continuity;
+    }
+    const double amu = std::fabs(mu);
     smu = smu > amu ? smu : amu;
   }
-  s.ax += sax; s.ay += say; s.az += saz; s.drho += sdrho; s.diffusion += sdiff;
-  s.maxMu = std::max(s.maxMu, smu);
+  own[0] += sax;
+  own[1] += say;
+  own[2] += saz;
+  own[3] += sdrho;
+  maxMu = smu;
 }
 
 }  // namespace
 
-RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model) {
+RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
+                          RateWorkspace& ws) {
   const std::size_t n = p.size();
   const EquationOfState eos = model.eos;
   const CubicSplineKernel kernel = model.kernel();
   const bool is3d = model.dimension == 3;
   const bool diffuse = model.diffusion != DiffusionModel::Off && model.delta > 0;
+  PairConstants k{};
+  k.h = kernel.h();
+  k.twoH = 2.0 * k.h;
+  k.kF = 0.75 * kernel.normalisation() / (k.h * k.h * k.h);
+  k.eta2 = 0.01 * k.h * k.h;
+  k.support2 = kernel.support() * kernel.support();
+  k.alphaC0 = model.alpha * eos.soundSpeed;
+  k.beta = model.beta;
+  k.halfAlphaC0 = 0.5 * k.alphaC0;
+  k.halfBeta = 0.5 * k.beta;
   // Fourtakas: ρ_a − ρ_b minus its hydrostatic part ρ0 g·x_ab/c0² (acoustic linearisation).
-  double hydrostatic[3] = {0, 0, 0};
-  if (model.diffusion == DiffusionModel::Fourtakas)
-    for (int a = 0; a < 3; ++a) hydrostatic[a] = eos.referenceDensity * model.gravity[a] / (eos.soundSpeed * eos.soundSpeed);
-  const double alphaC0 = model.alpha * eos.soundSpeed;
-  const double diffusionScale = 2.0 * model.delta * kernel.h() * eos.soundSpeed;
+  if (model.diffusion == DiffusionModel::Fourtakas) {
+    const double s = eos.referenceDensity / (eos.soundSpeed * eos.soundSpeed);
+    k.kx = s * model.gravity[0];
+    k.ky = s * model.gravity[1];
+    k.kz = s * model.gravity[2];
+  }
+  k.diffusionScale = 2.0 * model.delta * kernel.h() * eos.soundSpeed;
 
   // Fluid pressures from the equation of state; then the boundary particles' pressures extrapolated
   // from the fluid around them (Adami et al. 2012, eq. 27), their density its EOS inverse.
 #pragma omp parallel for schedule(static) if (worthParallel(n))
-  for (std::size_t k = 0; k < n; ++k)
-    if (p.body[k] == kFluid) p.pressure[k] = eos.pressure(p.rhoEst[k]);
+  for (std::size_t a = 0; a < n; ++a)
+    if (p.body[a] == kFluid) p.pressure[a] = eos.pressure(p.rhoEst[a]);
   const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
 #pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
   for (std::size_t w = 0; w < n; ++w) {
     if (p.body[w] == kFluid) continue;
     const std::int32_t* nb = list.neighbours(w);
     double sumW = 0, sumPW = 0, sumRhoRW = 0;
-    for (int k = 0; k < list.count(w); ++k) {
-      const std::int32_t f = nb[k];
+    for (int m = 0; m < list.count(w); ++m) {
+      const std::int32_t f = nb[m];
       const double dx = p.x[w] - p.x[f], dy = p.y[w] - p.y[f], dz = is3d ? p.z[w] - p.z[f] : 0.0;
       const double W = kernel.value(std::sqrt(dx * dx + dy * dy + dz * dz));
       sumW += W;
@@ -101,41 +138,78 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     p.pressure[w] = pw;
     p.rhoEst[w] = pw > 0 ? eos.density(pw) : eos.referenceDensity;
   }
+  // What the pair loop reads of a particle, packed into one cache line.
+  ws.packed.resize(n);
 #pragma omp parallel for schedule(static) if (worthParallel(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    p.inverseRho[k] = 1.0 / p.rhoEst[k];
-    p.pressureOverRho2[k] = p.pressure[k] * p.inverseRho[k] * p.inverseRho[k];
+  for (std::size_t a = 0; a < n; ++a) {
+    p.inverseRho[a] = 1.0 / p.rhoEst[a];
+    p.pressureOverRho2[a] = p.pressure[a] * p.inverseRho[a] * p.inverseRho[a];
+    ws.packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, p.pressureOverRho2[a],
+                    p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, p.inverseRho[a]};
   }
 
-  // Equal masses (every lattice-built set): one gather fewer per pair.
-  const double uniformMass = n > 0 ? p.mass[0] : 0.0;
-  const bool uniform = std::all_of(p.mass.begin(), p.mass.end(), [&](double m) { return m == uniformMass; });
-  double maxMu = 0, maxAcc2 = 0, maxRho = 0;
-  auto pairLoop = [&]<bool Uniform>() {
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : maxMu, maxAcc2, maxRho) if (worthParallel(n))
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t* nb = list.neighbours(i);
-    const int nf = list.fluidCount(i), total = list.count(i);
-    Sums s;
-    if (p.body[i] == kFluid) {
-      if (diffuse) gather<true, Uniform>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
-      else gather<false, Uniform>(p, i, nb, 0, nf, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
-      gather<false, Uniform>(p, i, nb, nf, total, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
-      const double gx = s.ax + model.gravity[0], gy = s.ay + model.gravity[1], gz = s.az + model.gravity[2];
-      maxAcc2 = std::max(maxAcc2, gx * gx + gy * gy + gz * gz);
-      maxRho = std::max(maxRho, p.rhoEst[i]);
-    } else {
-      gather<false, Uniform>(p, i, nb, 0, total, kernel, alphaC0, model.beta, hydrostatic, is3d, uniformMass, s);
+  // Equal masses (every lattice-built set): one load fewer per pair.
+  k.uniformMass = n > 0 ? p.mass[0] : 0.0;
+  const bool uniform = std::all_of(p.mass.begin(), p.mass.end(), [&](double m) { return m == k.uniformMass; });
+
+  // Each chunk sums its pairs into its own buffer (the particles it touches).
+  const std::vector<NeighbourList::Chunk>& chunks = list.chunks();
+  std::vector<std::size_t> offset(chunks.size() + 1, 0);
+  for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + 4 * chunks[c].touched();
+  if (ws.sums.size() < offset.back()) ws.sums.resize(offset.back());
+  const Packed* pk = ws.packed.data();
+  const double* rho = p.rhoEst.data();
+  const double* mass = p.mass.data();
+  double maxMu = 0;
+  auto chunkLoop = [&]<bool Uniform>() {
+#pragma omp parallel for schedule(dynamic, 1) reduction(max : maxMu) if (chunks.size() > 1)
+    for (std::size_t c = 0; c < chunks.size(); ++c) {
+      const NeighbourList::Chunk& ch = chunks[c];
+      double* acc = ws.sums.data() + offset[c];
+      std::fill(acc, acc + 4 * ch.touched(), 0.0);
+      double mu = 0;
+      for (std::size_t i = ch.begin; i < ch.end; ++i) {
+        if (p.body[i] != kFluid) continue;
+        const std::int32_t* nb = list.neighbours(i);
+        const int nf = list.fluidCount(i), total = list.count(i);
+        double own[4] = {0, 0, 0, 0};
+        if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
+        else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
+        pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+        double* ai = acc + 4 * (i - ch.lo);
+        for (int a = 0; a < 4; ++a) ai[a] += own[a];
+      }
+      maxMu = std::max(maxMu, mu);
     }
-    maxMu = std::max(maxMu, s.maxMu);
-    p.ax[i] = s.ax;
-    p.ay[i] = s.ay;
-    p.az[i] = s.az;
-    p.drho[i] = s.drho + diffusionScale * s.diffusion;
-  }
   };
-  if (uniform) pairLoop.template operator()<true>();
-  else pairLoop.template operator()<false>();
+  if (uniform) chunkLoop.template operator()<true>();
+  else chunkLoop.template operator()<false>();
+
+  // The chunks' buffers added in chunk order: the same sums for any thread count.
+  const double massScale = uniform ? k.uniformMass : 1.0;
+  double maxAcc2 = 0, maxRho = 0;
+#pragma omp parallel for schedule(static) reduction(max : maxAcc2, maxRho) if (worthParallel(n))
+  for (std::size_t a = 0; a < n; ++a) {
+    double s[4] = {0, 0, 0, 0};
+    for (std::size_t c = 0; c < chunks.size(); ++c) {
+      const NeighbourList::Chunk& ch = chunks[c];
+      if (ch.touched() == 0 || a < ch.lo || a > ch.hi) continue;
+      const double* v = ws.sums.data() + offset[c] + 4 * (a - ch.lo);
+      for (int m = 0; m < 4; ++m) s[m] += v[m];
+    }
+    for (int m = 0; m < 4; ++m) s[m] *= massScale;
+    p.ax[a] = s[0];
+    p.ay[a] = s[1];
+    p.az[a] = s[2];
+    if (p.body[a] == kFluid) {
+      p.drho[a] = s[3];
+      const double fx = s[0] + gx, fy = s[1] + gy, fz = s[2] + gz;
+      maxAcc2 = std::max(maxAcc2, fx * fx + fy * fy + fz * fz);
+      maxRho = std::max(maxRho, p.rhoEst[a]);
+    } else {
+      p.drho[a] = 0;  // boundary densities are extrapolated, not integrated
+    }
+  }
   return {maxMu, std::sqrt(maxAcc2), maxRho};
 }
 

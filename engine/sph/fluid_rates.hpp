@@ -10,7 +10,11 @@
 // Boundary particles first take the pressure extrapolated from the fluid around them (Adami, Hu &
 // Adams 2012, eq. 27; ρ_w from the EOS inverse), then get the momentum sum from their fluid
 // neighbours: m_w·a_w is the fluid's force on them, exactly the opposite of theirs on the fluid.
-// Each particle gathers its own sums: no atomics, any thread count, the same result.
+// Each pair is computed once (half lists) and added to both particles: every chunk of the loop
+// (NeighbourList::chunks) sums into its own buffer, and the buffers are added in chunk order
+// afterwards: no atomics, and the same sums in the same order for any thread count.
+#include <vector>
+
 #include "sph/fluid_model.hpp"
 #include "sph/fluid_particles.hpp"
 #include "sph/neighbour_list.hpp"
@@ -24,8 +28,19 @@ struct RateExtremes {
   double maxDensity = 0;     ///< max over fluid particles of ρ_est (kg/m³)
 };
 
+/// Scratch of the pair loop, kept between steps so that nothing is allocated per step.
+struct RateWorkspace {
+  /// What the pair loop reads of a neighbour, in one 64-byte record (one cache line).
+  struct alignas(64) Packed {
+    double x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
+  };
+  std::vector<Packed> packed;
+  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
+};
+
 /// Sets the boundary particles' pressure and rhoEst (extrapolated), every particle's pressure,
 /// pressureOverRho2 and inverseRho, then ax/ay/az (without gravity) and drho (fluid particles).
-RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model);
+RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
+                          RateWorkspace& workspace);
 
 }  // namespace rupture::sph

@@ -77,9 +77,11 @@ std::vector<std::int32_t> NeighbourList::cellOrder(const FluidParticles& p, int 
 }
 
 std::size_t NeighbourList::totalPairs() const {
+  // Each interacting pair sits once in a fluid particle's list; a wall's list repeats its fluid–wall pairs.
   std::size_t total = 0;
-  for (std::int32_t c : m_count) total += static_cast<std::size_t>(c);
-  return total;
+  for (std::size_t i = 0; i < m_count.size(); ++i)
+    if (m_isFluid[i]) total += static_cast<std::size_t>(m_count[i]);
+  return 2 * total;
 }
 
 void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff) {
@@ -91,6 +93,8 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   binParticles(p, g, m_cellStart, m_sorted);
   m_count.assign(n, 0);
   m_fluidCount.assign(n, 0);
+  m_isFluid.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m_isFluid[i] = p.body[i] == kFluid;
   if (m_stride == 0) {
     // Neighbours of a particle in the bulk of a lattice of spacing ~ cutoff/2.6, with room to spare.
     const double ratio = 2.6 * 1.1;
@@ -99,34 +103,85 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   }
   const double cut2 = cutoff * cutoff;
   const bool is3d = dimension == 3;
+  // Positions and kinds in cell order, so that the candidate scan reads memory in sequence; and the
+  // number of fluid particles before each sorted position, so that a boundary particle skips the
+  // rows of cells that hold no fluid (it lists fluid only).
+  m_sx.resize(n);
+  m_sy.resize(n);
+  m_sz.resize(n);
+  m_sFluid.resize(n);
+  m_fluidBefore.resize(n + 1);
+  m_fluidBefore[0] = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::int32_t j = m_sorted[s];
+    m_sx[s] = p.x[j];
+    m_sy[s] = p.y[j];
+    m_sz[s] = is3d ? p.z[j] : 0.0;
+    m_sFluid[s] = p.body[j] == kFluid;
+    m_fluidBefore[s + 1] = m_fluidBefore[s] + m_sFluid[s];
+  }
   while (true) {
     m_index.resize(n * m_stride);
     int overflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : overflow) if (worthParallel(n))
     for (std::size_t i = 0; i < n; ++i) {
-      const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
+      const double xi = p.x[i], yi = p.y[i], zi = is3d ? p.z[i] : 0.0;
       const bool fluidI = p.body[i] == kFluid;
-      const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(zi, 2);
+      const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(p.z[i], 2);
       std::int32_t* out = m_index.data() + i * m_stride;
       // Boundary neighbours are parked at the end of the slot (backwards) and moved behind the fluid ones.
       const int stride = static_cast<int>(m_stride);
       int nf = 0, nb = 0;
       const int x0 = std::max(cx - 2, 0), x1 = std::min(cx + 2, g.dims[0] - 1);
+      // Candidates of sorted positions [s0, s1). Which ones a particle lists (each pair once):
+      //   Forward: cells after its own in cell order: fluid and boundary particles;
+      //   Centre:  its own cell: fluid of higher index, and boundary particles;
+      //   Backward: cells before its own: boundary particles only (their pairs with fluid ones
+      //             are listed by those, in their Forward cells);
+      //   FluidOnly: a boundary particle's list, all its fluid neighbours.
+      enum Mode { Forward, Centre, Backward, FluidOnly };
+      auto scan = [&]<int M>(std::int32_t s0, std::int32_t s1) {
+        for (std::int32_t s = s0; s < s1; ++s) {
+          const std::int32_t j = m_sorted[s];
+          const bool fluidJ = m_sFluid[s];
+          if constexpr (M == Centre) {
+            if (fluidJ && static_cast<std::size_t>(j) <= i) continue;
+          } else if constexpr (M == Backward) {
+            if (fluidJ) continue;
+          } else if constexpr (M == FluidOnly) {
+            if (!fluidJ) continue;
+          }
+          const double dx = xi - m_sx[s], dy = yi - m_sy[s], dz = zi - m_sz[s];
+          if (dx * dx + dy * dy + dz * dz >= cut2) continue;
+          if (fluidJ) {
+            if (nf + nb < stride) out[nf] = j;
+            ++nf;
+          } else {
+            if (nf + nb < stride) out[stride - 1 - nb] = j;
+            ++nb;
+          }
+        }
+      };
+      auto fluidIn = [&](std::int32_t s0, std::int32_t s1) { return m_fluidBefore[s1] - m_fluidBefore[s0]; };
       for (int a = std::max(cz - 2, 0); a <= std::min(cz + 2, g.dims[2] - 1); ++a)
         for (int b = std::max(cy - 2, 0); b <= std::min(cy + 2, g.dims[1] - 1); ++b) {
           const std::size_t row = (static_cast<std::size_t>(a) * g.dims[1] + b) * g.dims[0];
           // Cells x0..x1 of one row are contiguous in the sorted order.
-          for (std::int32_t s = m_cellStart[row + x0]; s < m_cellStart[row + x1 + 1]; ++s) {
-            const std::int32_t j = m_sorted[s];
-            const double dx = xi - p.x[j], dy = yi - p.y[j], dz = is3d ? zi - p.z[j] : 0.0;
-            if (dx * dx + dy * dy + dz * dz >= cut2 || static_cast<std::size_t>(j) == i) continue;
-            if (p.body[j] == kFluid) {
-              if (nf + nb < stride) out[nf] = j;
-              ++nf;
-            } else if (fluidI) {
-              if (nf + nb < stride) out[stride - 1 - nb] = j;
-              ++nb;
-            }
+          const std::int32_t s0 = m_cellStart[row + x0], s1 = m_cellStart[row + x1 + 1];
+          if (!fluidI) {
+            if (fluidIn(s0, s1) > 0) scan.template operator()<FluidOnly>(s0, s1);
+            continue;
+          }
+          const int order = a != cz ? a - cz : b - cy;  // rows after (> 0) or before (< 0) its own
+          if (order > 0) {
+            scan.template operator()<Forward>(s0, s1);
+          } else if (order < 0) {
+            if (fluidIn(s0, s1) < s1 - s0) scan.template operator()<Backward>(s0, s1);
+          } else {
+            const std::int32_t c0 = m_cellStart[row + cx], c1 = m_cellStart[row + cx + 1];
+            if (fluidIn(s0, c0) < c0 - s0) scan.template operator()<Backward>(s0, c0);
+            scan.template operator()<Centre>(c0, c1);
+            scan.template operator()<Forward>(c1, s1);
           }
         }
       const int total = nf + nb;
@@ -139,8 +194,41 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
       m_count[i] = total;
       m_fluidCount[i] = nf;
     }
-    if (overflow == 0) return;
+    if (overflow == 0) break;
     m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
+  }
+  splitIntoChunks();
+}
+
+void NeighbourList::splitIntoChunks() {
+  const std::size_t n = m_count.size();
+  // 1, 2, 4 or 8 chunks of at least 4,096 particles: a power of two shares evenly among 1, 2, 4, 8 threads.
+  std::size_t chunks = 1;
+  while (chunks < 8 && n / (2 * chunks) >= 4096) chunks *= 2;
+  std::size_t work = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (m_isFluid[i]) work += static_cast<std::size_t>(m_count[i]);
+  m_chunks.assign(chunks, {});
+  std::size_t i = 0, done = 0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    Chunk& k = m_chunks[c];
+    k.begin = i;
+    const std::size_t target = work * (c + 1) / chunks;
+    while (i < n && (c + 1 == chunks || done < target)) {
+      if (m_isFluid[i]) done += static_cast<std::size_t>(m_count[i]);
+      ++i;
+    }
+    k.end = i;
+    k.lo = k.begin;
+    k.hi = k.end > k.begin ? k.end - 1 : k.begin;
+    for (std::size_t a = k.begin; a < k.end; ++a) {
+      if (!m_isFluid[a]) continue;
+      const std::int32_t* nb = neighbours(a);
+      for (int m = 0; m < m_count[a]; ++m) {
+        k.lo = std::min(k.lo, static_cast<std::size_t>(nb[m]));
+        k.hi = std::max(k.hi, static_cast<std::size_t>(nb[m]));
+      }
+    }
   }
 }
 

@@ -1,9 +1,13 @@
 #pragma once
 // Verlet neighbour lists for the SPH pair loops, built on a uniform cell grid (counting sort).
-// Full lists (each pair appears in both particles' lists) so the pair loop gathers into one
-// particle at a time: no atomics, any thread count, the same sums in the same order. Each list
-// holds the fluid neighbours first, then the boundary ones (a fluid particle only); boundary
-// particles list only fluid neighbours, as boundary particles interact with fluid only.
+// Half lists: every interacting pair is listed once, by a fluid particle: a fluid–fluid pair by the
+// particle whose grid cell comes first (the one of lower index within a cell), a fluid–wall pair
+// by its fluid particle. A fluid particle's list holds those fluid neighbours first, then all its
+// boundary neighbours; the pair loop computes each pair once and adds it to both particles
+// (fluid_rates.cpp). The scan for fluid–fluid pairs covers only the cells after a particle's own
+// (half the stencil). Boundary particles interact with fluid only; a boundary particle's list
+// holds all its fluid neighbours, for the pressure extrapolation only (those pairs are also in the
+// fluid particles' lists).
 // The cutoff is the kernel support plus a skin; SphSystem rebuilds when a particle has moved more
 // than half the skin since the last build.
 #include <cstdint>
@@ -25,14 +29,31 @@ public:
   const std::int32_t* neighbours(std::size_t i) const { return m_index.data() + i * m_stride; }
   int count(std::size_t i) const { return m_count[i]; }
   int fluidCount(std::size_t i) const { return m_fluidCount[i]; }
-  std::size_t totalPairs() const;  ///< Σ count (directed pairs)
+  /// A contiguous range of particles [begin, end) of the pair loop, and the range [lo, hi] of
+  /// particles its pairs touch (the particles and their listed neighbours).
+  struct Chunk {
+    std::size_t begin = 0, end = 0, lo = 0, hi = 0;
+    std::size_t touched() const { return end > begin ? hi - lo + 1 : 0; }
+  };
+  /// The pair loop's work split into chunks of about equal pair counts. How many depends on the
+  /// particle count only (never on the thread count), so the sums come out the same for any number
+  /// of threads.
+  const std::vector<Chunk>& chunks() const { return m_chunks; }
+
+  std::size_t totalPairs() const;  ///< directed interacting pairs listed (twice the pairs in fluid lists)
   double cutoff() const { return m_cutoff; }
 
 private:
   std::size_t m_stride = 0;
   double m_cutoff = 0;
   std::vector<std::int32_t> m_index, m_count, m_fluidCount;
-  std::vector<std::int32_t> m_cellStart, m_sorted;
+  std::vector<char> m_isFluid;
+  std::vector<Chunk> m_chunks;
+
+  void splitIntoChunks();
+  std::vector<std::int32_t> m_cellStart, m_sorted, m_fluidBefore;
+  std::vector<double> m_sx, m_sy, m_sz;
+  std::vector<char> m_sFluid;
 };
 
 }  // namespace rupture::sph

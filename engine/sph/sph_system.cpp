@@ -34,7 +34,7 @@ void SphSystem::refreshMembers() {
 void SphSystem::rebuildLists() {
   const double cutoff = model.kernel().support() * (1.0 + skinFraction);
   if (m_builds % static_cast<std::size_t>(std::max(1, sortEvery)) == 0) {
-    particles.permute(NeighbourList::cellOrder(particles, model.dimension, cutoff));
+    particles.permute(NeighbourList::cellOrder(particles, model.dimension, 0.5 * cutoff));
     refreshMembers();
   }
   m_list.build(particles, model.dimension, cutoff);
@@ -82,7 +82,7 @@ void SphSystem::initialise() {
   particles.rhoEst = particles.rho;
   m_builds = 0;
   rebuildLists();
-  m_extremes = computeRates(particles, m_list, model);
+  m_extremes = computeRates(particles, m_list, model, m_workspace);
   bodyForces();
 }
 
@@ -139,7 +139,7 @@ void SphSystem::step(double dt) {
   // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
   std::vector<std::array<double, 3>> oldForce;
   for (const RigidBody& b : bodies) oldForce.push_back(b.force);
-  m_extremes = computeRates(p, m_list, model);
+  m_extremes = computeRates(p, m_list, model, m_workspace);
   if (!std::isfinite(m_extremes.maxDensity) || !std::isfinite(m_extremes.maxAcceleration))
     throw std::runtime_error("SPH: the solution became non-finite at t = " + std::to_string(time) +
                              " s (time step too large for the sound speed?)");

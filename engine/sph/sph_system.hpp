@@ -53,6 +53,7 @@ private:
   void setBodyVelocities();
 
   NeighbourList m_list;
+  RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<double> m_x0, m_y0, m_z0;
   std::size_t m_builds = 0;
