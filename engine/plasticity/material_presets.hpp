@@ -27,6 +27,22 @@ inline MaterialPreset au4g2024T351() {
   return p;
 }
 
+/// AU4G 2024-T351 with the values seed 002 gives itself: density, E, ν of its Table 1 (ρ = 2780
+/// kg/m³, σ_y = 325 MPa, which the Johnson & Cook fit above meets at 0.2 % plastic strain: 317
+/// MPa) and the delayed-damage parameters of its Table 6 (Suffis 2004): ε_p^s = 0.03,
+/// ε_p^c = 0.25, D_c = 0.23, τ_c = 0.1 µs, a = 2. The tank-impact scenario's default plate.
+inline MaterialPreset au4g2024T351Seed() {
+  MaterialPreset p = au4g2024T351();
+  p.name = "au4g_2024_t351_seed";
+  p.density = 2780.0;
+  p.damage.thresholdPlasticStrain = 0.03;
+  p.damage.criticalPlasticStrain = 0.25;
+  p.damage.criticalDamage = 0.23;
+  p.damage.delayTime = 1.0e-7;
+  p.damage.delaySharpness = 2.0;
+  return p;
+}
+
 /// Cylinder steel: the seed's grade table is lost; 4340 steel of Johnson & Cook (1983)
 /// (A, B, n, density, G = 77.5 GPa → E = 200 GPa with ν = 0.29) stands in.
 inline MaterialPreset steel4340() {
@@ -43,7 +59,7 @@ inline MaterialPreset steel4340() {
   return p;
 }
 
-/// "au4g_2024_t351" or "steel_4340"; throws SpecError(field) otherwise.
+/// "au4g_2024_t351", "au4g_2024_t351_seed" or "steel_4340"; throws SpecError(field) otherwise.
 MaterialPreset materialPreset(const std::string& name, const std::string& field);
 
 }  // namespace rupture

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "shell/wendland_kernel.hpp"
@@ -78,6 +79,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   m_stressR.assign(n, {});
   m_shearQ.assign(n, {0.0, 0.0});
   m_fractured.assign(n, 0);
+  m_fractureTime.assign(n, std::numeric_limits<double>::quiet_NaN());
   m_hasGradient.assign(n, 0);
   const std::size_t layers = m_rule.xi.size();
   m_plasticStrainTensor.assign(n * layers, {0.0, 0.0, 0.0});
@@ -460,6 +462,10 @@ void SphShell::fractureNode(std::size_t i) {
     s.damage = std::max(s.damage, m_params.damageLaw.criticalDamage);
     s.fractured = true;
   }
+  if (!m_fractured[i]) {
+    m_fractureTime[i] = m_time;
+    m_fractureOrder.push_back(i);
+  }
   m_fractured[i] = 1;
   cutLinksOf(i);
   rebuildAfterCuts();
@@ -494,12 +500,25 @@ bool segmentsCross(const std::array<double, 2>& p, const std::array<double, 2>& 
 }  // namespace
 
 void SphShell::cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b) {
-  for (std::size_t i = 0; i < m_reference.size(); ++i)
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
-      if (m_active[p] && segmentsCross(m_reference[i], m_reference[m_neighbour[p]], a, b)) {
-        m_active[p] = 0;
-        m_active[m_reverse[p]] = 0;
-      }
+  cutAlongSegments({{a, b}});
+}
+
+void SphShell::cutAlongSegments(const std::vector<std::array<std::array<double, 2>, 2>>& segments) {
+  const double reach = 2.0 * m_params.smoothingRatio * m_spacing;  // the longest link
+  for (const auto& [a, b] : segments) {
+    // Only nodes within a link's length of the segment's bounding box can own a crossing link.
+    const double xmin = std::min(a[0], b[0]) - reach, xmax = std::max(a[0], b[0]) + reach;
+    const double ymin = std::min(a[1], b[1]) - reach, ymax = std::max(a[1], b[1]) + reach;
+    for (std::size_t i = 0; i < m_reference.size(); ++i) {
+      const auto& X = m_reference[i];
+      if (X[0] < xmin || X[0] > xmax || X[1] < ymin || X[1] > ymax) continue;
+      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p)
+        if (m_active[p] && segmentsCross(X, m_reference[m_neighbour[p]], a, b)) {
+          m_active[p] = 0;
+          m_active[m_reverse[p]] = 0;
+        }
+    }
+  }
   rebuildAfterCuts();
 }
 

@@ -89,10 +89,16 @@ public:
   /// Sets the damage of every layer of node i to D_c and applies the fracture rule (tests, and
   /// pre-cracks given as a set of failed stress points).
   void fractureNode(std::size_t i);
+  /// Time (s) at the start of the step in which node i fractured; NaN while it is intact.
+  double fractureTime(std::size_t i) const { return m_fractureTime[i]; }
+  /// The fractured nodes in the order they failed (the crack paths' history).
+  const std::vector<std::size_t>& fractureOrder() const { return m_fractureOrder; }
   /// Pre-crack: cuts every link whose reference segment strictly crosses the segment [a, b] of
   /// the reference plane (m), then rebuilds the corrected gradients (free crack lips follow). Place
   /// a crack between node rows: a link that only touches the segment at a node is kept.
   void cutAlongSegment(const std::array<double, 2>& a, const std::array<double, 2>& b);
+  /// cutAlongSegment for several segments (a polyline, a hole's edge) with one rebuild.
+  void cutAlongSegments(const std::vector<std::array<std::array<double, 2>, 2>>& segments);
   /// Number of active links whose reference segment strictly crosses [a, b] (each pair once).
   std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
   /// Kinetic energy of translation and of the director rotation (J).
@@ -116,6 +122,8 @@ private:
   std::vector<std::array<double, 2>> m_reference;
   std::vector<double> m_volume, m_area, m_mass, m_inertia;
   std::vector<std::uint8_t> m_clamped, m_fractured, m_hasGradient;
+  std::vector<double> m_fractureTime;
+  std::vector<std::size_t> m_fractureOrder;
   std::vector<ShellVec3> m_position, m_velocity, m_normal, m_spin, m_force, m_directorForce, m_external;
   std::vector<std::array<double, 6>> m_gradX, m_gradN;  ///< A_α, G_α (α-major: a0,a1,a2, b0,b1,b2)
   std::vector<std::array<double, 6>> m_stressP, m_stressR;  ///< conjugates of A_α and G_α

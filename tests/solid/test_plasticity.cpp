@@ -168,7 +168,7 @@ namespace rupture {
 namespace {
 
 TEST(MaterialPresets, PresetsAreValidAndNamed) {
-  for (const char* name : {"au4g_2024_t351", "steel_4340"}) {
+  for (const char* name : {"au4g_2024_t351", "au4g_2024_t351_seed", "steel_4340"}) {
     const MaterialPreset p = materialPreset(name, "material");
     EXPECT_STREQ(p.name, name);
     EXPECT_NO_THROW(validateElasticPlastic(p.material, "material"));

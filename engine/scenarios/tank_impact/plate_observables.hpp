@@ -9,19 +9,27 @@
 
 namespace rupture {
 
-/// Mean downward deflection (m, positive towards −z) of the intact nodes on the ring of the given
-/// radius (nodes within half a spacing of it).
+/// Downward deflection (m, positive towards −z) at the given radius: the mean deflection of the
+/// intact nodes of each ring of the disc (rings at r_k = k Δ), interpolated linearly between the
+/// two rings that bracket the radius (the nearest ring within Δ/2 where only one has intact nodes).
+/// NaN where no ring with intact nodes lies within Δ of the radius (inside the hole).
 double deflectionAtRadius(const SphShell& shell, const PlateGeometry& geometry, double radius);
 
-/// Opening angle (rad) of a U tongue: the angle between the tongue's mean plane (its nodes inside
-/// the U) and the reference plane, about the U's base line. 0 for other shapes.
+/// Opening angle (rad) of a U tongue about its hinge (PlateGeometry::hinge, the uncut side of the
+/// U), positive when the tongue swings down (−z): the rotation that best maps the tongue's intact
+/// nodes from their reference to their current positions in the plane normal to the hinge,
+/// α = atan2(−Σ d_i w_i, Σ d_i u_i), d_i the reference distance from the hinge, u_i and w_i the
+/// current in-plane and vertical distances (exact for a rigid rotation, any angle up to 180°).
+/// 0 for other shapes.
 double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, const PlateSpec& plate);
 
-/// Length (m) of the cracks the impact opened: fractured nodes' cells, as segments, beyond the
-/// pre-cracks (each fractured node counts its spacing).
+/// Length (m) of the cracks the impact opened, beyond the pre-cracks (cuts, not fractured nodes):
+/// Σ √V_i over the fractured nodes, each cracked cell counting its side (a one-cell-wide band of
+/// length ℓ holds about ℓ/Δ cells of area Δ²).
 double crackedLength(const SphShell& shell, const PlateGeometry& geometry);
 
-/// Reference positions (m) of the fractured nodes, in the order they failed — the crack paths.
+/// Reference positions (m) of the fractured nodes, in the order they failed (SphShell::fractureOrder)
+/// — the crack paths.
 std::vector<std::array<double, 2>> crackPath(const SphShell& shell, const PlateGeometry& geometry);
 
 }  // namespace rupture

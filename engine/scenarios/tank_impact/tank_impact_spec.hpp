@@ -6,8 +6,8 @@
 // Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md. SI units.
 //
 // Frame: the tank axis is z; the plate's mid-surface is the plane z = 0 (its reference frame is
-// the shell's: x, y in the plane, normal +z); the water fills 0 < z < water_height above it; the
-// jet leaves downwards (z < 0).
+// the shell's: x, y in the plane, normal +z); the water fills t/2 <= z <= t/2 + water_height,
+// from the plate's upper face (t its thickness) to the piston; the jet leaves downwards (z < 0).
 #include <array>
 #include <string>
 #include <vector>
@@ -39,7 +39,7 @@ struct PrecrackSpec {
 };
 
 struct PlateSpec {
-  std::string materialPreset = "au4g_2024_t351";
+  std::string materialPreset = "au4g_2024_t351_seed";  ///< seed Tables 1 and 6 (material_presets.hpp)
   ShellParameters shell;      ///< thickness, density, material, damage law, layers … (preset, then overrides)
   double diameter = 0.08;     ///< clamped spot-face diameter (m); defaults to the tank's inner diameter
   double spacing = 0.0;       ///< node spacing Δ (m); default: the fluid spacing
@@ -67,7 +67,10 @@ struct TankImpactSpec {
   ImpactorSpec impactor;
   PlateSpec plate;
   ContactSpec contact;
-  std::array<double, 3> gauge{0.0, 0.0, 0.0};  ///< pressure gauge position (m); default: on the axis, 10 mm above the plate
+  /// Pressure gauge position (m). Default: the seed's sensor on the cylinder's underside, read in
+  /// the water next to the wall: r = R − 5 mm (x axis), 10 mm above the plate's upper face (at
+  /// most H/2 above it): z = t/2 + min(10 mm, H/2).
+  std::array<double, 3> gauge{0.035, 0.0, 0.011};
   std::vector<std::array<double, 3>> probes;   ///< further pressure probes (m)
   io::FluidRunSpec run;
   double estimatedParticles = 0;  ///< fluid, wall and plate particles the run will hold

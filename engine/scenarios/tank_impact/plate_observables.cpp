@@ -1,0 +1,68 @@
+#include "scenarios/tank_impact/plate_observables.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace rupture {
+
+double deflectionAtRadius(const SphShell& shell, const PlateGeometry& geometry, double radius) {
+  const ShellNodes& nodes = geometry.nodes;
+  const double d = nodes.spacing;
+  std::map<long, std::pair<double, int>> rings;  // ring index → (sum of −z, intact nodes)
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (shell.fractured(i)) continue;
+    auto& ring = rings[std::lround(std::hypot(nodes.x[i], nodes.y[i]) / d)];
+    ring.first -= shell.deflection(i);
+    ++ring.second;
+  }
+  auto mean = [&](long k) {
+    const auto it = rings.find(k);
+    return it == rings.end() ? std::numeric_limits<double>::quiet_NaN() : it->second.first / it->second.second;
+  };
+  const long k0 = static_cast<long>(std::floor(radius / d));
+  const double f = radius / d - static_cast<double>(k0);
+  const double w0 = mean(k0), w1 = mean(k0 + 1);
+  if (!std::isnan(w0) && !std::isnan(w1)) return (1.0 - f) * w0 + f * w1;
+  if (!std::isnan(w0) && f <= 0.5) return w0;
+  if (!std::isnan(w1) && f >= 0.5) return w1;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, const PlateSpec& plate) {
+  if (plate.precrack.shape != PrecrackShape::U || geometry.tongueNodes.empty()) return 0.0;
+  const auto& a = geometry.hinge.a;
+  const auto& b = geometry.hinge.b;
+  const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+  // In-plane unit normal of the hinge, pointing into the tongue.
+  double mx = -(b[1] - a[1]) / len, my = (b[0] - a[0]) / len;
+  double side = 0.0;
+  for (std::size_t i : geometry.tongueNodes) side += (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
+  if (side < 0.0) { mx = -mx; my = -my; }
+  double along = 0.0, down = 0.0;
+  for (std::size_t i : geometry.tongueNodes) {
+    if (shell.fractured(i)) continue;
+    const double di = (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
+    const auto& x = shell.positions()[i];
+    const double ui = (x[0] - a[0]) * mx + (x[1] - a[1]) * my, wi = x[2];
+    along += di * ui;
+    down -= di * wi;
+  }
+  return std::atan2(down, along);
+}
+
+double crackedLength(const SphShell& shell, const PlateGeometry& geometry) {
+  double length = 0.0;
+  for (std::size_t i = 0; i < geometry.nodes.size(); ++i)
+    if (shell.fractured(i)) length += std::sqrt(geometry.nodes.kernelVolume[i]);
+  return length;
+}
+
+std::vector<std::array<double, 2>> crackPath(const SphShell& shell, const PlateGeometry& geometry) {
+  std::vector<std::array<double, 2>> path;
+  path.reserve(shell.fractureOrder().size());
+  for (std::size_t i : shell.fractureOrder()) path.push_back({geometry.nodes.x[i], geometry.nodes.y[i]});
+  return path;
+}
+
+}  // namespace rupture
