@@ -26,12 +26,15 @@ TankLattice buildTankLattice(sph::SphSystem& s, const TankLatticeParams& q) {
   const int top = g.nH + 3 * layers;  // the cylinder goes on above the piston
   const int n = g.nR + layers;
   std::size_t crossSection = 0;
-  for (int k = 0; k < top; ++k)
+  // The cylinder goes down `layers` layers past the water's lower face, around the plate's clamped
+  // rim, so that no water squeezes out between the wall and the plate.
+  for (int k = -layers; k < top; ++k)
     for (int j = -n; j < n; ++j)
       for (int i = -n; i < n; ++i) {
         const double x = (i + 0.5) * dx, y = (j + 0.5) * dx, z = g.bottom + (k + 0.5) * dx;
         const double r2 = x * x + y * y;
         if (r2 >= Rw * Rw) continue;
+        if (k < 0 && r2 < R * R) continue;
         if (r2 >= R * R) s.particles.add(x, y, z, mass, hydrostatic(z), kTankWall);
         else if (k < g.nH) {
           s.particles.add(x, y, z, mass, hydrostatic(z), sph::kFluid);

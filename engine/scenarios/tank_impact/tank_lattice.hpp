@@ -1,7 +1,8 @@
 #pragma once
 // The tank-impact fluid particles on a lattice of spacing dx centred on the tank axis (z up): the
 // water column from the plate's upper face z0 = t/2 to z0 + H (hydrostatic densities), the
-// cylinder's wall (`wall_layers` rings of fixed boundary particles from z0 up past the piston) and
+// cylinder's wall (`wall_layers` rings of fixed boundary particles from `wall_layers` layers below
+// z0, around the plate's clamped rim, up past the piston) and
 // the piston (`wall_layers` layers on top of the column, free, guided along −z). There is no
 // bottom: the plate (an SphShell) closes the tube through the fluid–shell contact (engine/fsi).
 // The pattern of buildPistonColumn, with the rigid bottom replaced by the plate.
