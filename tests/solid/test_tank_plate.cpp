@@ -158,6 +158,43 @@ TEST(TankPlate, UTongueUnderPressureDeflectsMoreThanTheIntactPlate) {
   EXPECT_GT(tongueOpeningAngle(su, gu, cut), 0.0);
 }
 
+/// Kirchhoff deflection w(r) of an annular plate b <= r <= a under uniform pressure q, clamped at
+/// r = a and free at r = b (M_r = Q_r = 0): w = q r⁴/(64 D) + C1 + C2 r² + C3 ln r + C4 r² ln r.
+double annularPlateDeflection(double r, double a, double b, double q, double D, double nu) {
+  const double C4 = -q * b * b / (8.0 * D);  // Q_r(b) = −D (q b/(2D) + 4 C4/b) = 0
+  // w'(a) = 0 and M_r(b) = 0 for C2, C3.
+  const double r1 = -(q * a * a * a / (16.0 * D) + C4 * (2.0 * a * std::log(a) + a));
+  const double r2 = -((3.0 + nu) * q * b * b / (16.0 * D) + C4 * (2.0 * std::log(b) * (1.0 + nu) + 3.0 + nu));
+  const double m11 = 2.0 * a, m12 = 1.0 / a, m21 = 2.0 * (1.0 + nu), m22 = (nu - 1.0) / (b * b);
+  const double det = m11 * m22 - m12 * m21;
+  const double C2 = (r1 * m22 - m12 * r2) / det, C3 = (m11 * r2 - m21 * r1) / det;
+  const double C1 = -(q * std::pow(a, 4) / (64.0 * D) + C2 * a * a + C3 * std::log(a) + C4 * a * a * std::log(a));
+  return q * std::pow(r, 4) / (64.0 * D) + C1 + C2 * r * r + C3 * std::log(r) + C4 * r * r * std::log(r);
+}
+
+// The hole's edge is a free edge: a plate with a 20 mm hole under uniform pressure deflects as
+// the clamped-free annular Kirchhoff plate (elastic, quasi-static), at the hole's edge and at the
+// seed's gauge radius (D_ext + d)/4. Material bridging the hole would stiffen the edge.
+TEST(TankPlate, PlateWithAHoleDeflectsAsAClampedFreeAnnulus) {
+  const double pressure = -1.0e5;
+  PlateSpec plate = plateWith(PrecrackShape::Hole, 0.002);
+  plate.shell.dampingRate = 4.0e4;
+  const PlateGeometry g = plateGeometry(plate);
+  SphShell shell = buildPlate(plate, g);
+  shell.setPressure(pressure);
+  const double dt = shell.stableTimeStep();
+  shell.advance(static_cast<int>(0.8e-3 / dt), dt, Cancellation{});
+  const double nu = plate.shell.material.poissonRatio;
+  const double D = plate.shell.material.youngModulus * std::pow(plate.shell.thickness, 3) / (12.0 * (1.0 - nu * nu));
+  const double a = 0.04, b = 0.010;
+  const double wEdge = annularPlateDeflection(b, a, b, std::fabs(pressure), D, nu);
+  const double wGauge = annularPlateDeflection(0.025, a, b, std::fabs(pressure), D, nu);
+  EXPECT_NEAR(deflectionAtRadius(shell, g, b), wEdge, 0.1 * wEdge);
+  EXPECT_NEAR(deflectionAtRadius(shell, g, 0.025), wGauge, 0.1 * wEdge);
+  // The free edge sinks further than the intact plate at the same radius, p a⁴/(64 D)(1 − b²/a²)².
+  EXPECT_GT(deflectionAtRadius(shell, g, b), std::fabs(pressure) * std::pow(a, 4) / (64.0 * D) * std::pow(1.0 - b * b / (a * a), 2));
+}
+
 TEST(TankPlate, BadGeometryNamesTheField) {
   auto fieldOf = [](const PlateSpec& p) {
     try {
