@@ -1,6 +1,7 @@
 #include "fsi/fluid_shell_coupling.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "fsi/master_slave_contact.hpp"
@@ -35,14 +36,21 @@ void FluidShellCoupling::step(double dt) {
     const auto& I = m_last.impulse[n];
     m_shell.setExternalForce(n, {I[0] / dt, I[1] / dt, I[2] / dt});
   }
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   const double shellStep = m_shell.stableTimeStep();
   m_subcycles = std::max(1, static_cast<int>(std::ceil(dt / shellStep * (1.0 - 1e-12))));
   const double sub = dt / m_subcycles;
   for (int k = 0; k < m_subcycles; ++k) m_shell.step(sub);
   m_shellSteps += static_cast<std::size_t>(m_subcycles);
+  const auto shellDone = Clock::now();
   // 2. The fluid; 3. the contact at t + dt.
   m_fluid.step(dt);
+  const auto fluidDone = Clock::now();
   resolveContact(dt);
+  m_timings.shell += std::chrono::duration<double>(shellDone - start).count();
+  m_timings.fluid += std::chrono::duration<double>(fluidDone - shellDone).count();
+  m_timings.contact += std::chrono::duration<double>(Clock::now() - fluidDone).count();
 }
 
 }  // namespace rupture::fsi

@@ -43,6 +43,10 @@ public:
   std::size_t contactPairs() const { return m_last.pairs; }
   int lastSubcycles() const { return m_subcycles; }
   std::size_t shellSteps() const { return m_shellSteps; }
+  /// Wall-clock seconds spent so far in the fluid's steps, the shell's sub-cycles and the contact
+  /// (the benchmark's split, bench/README.md).
+  struct Timings { double fluid = 0, shell = 0, contact = 0; };
+  const Timings& timings() const { return m_timings; }
 
 private:
   sph::SphSystem& m_fluid;
@@ -55,6 +59,7 @@ private:
   std::array<double, 3> m_plateForce{0, 0, 0}, m_freePlateForce{0, 0, 0};
   int m_subcycles = 0;
   std::size_t m_shellSteps = 0;
+  Timings m_timings;
 };
 
 }  // namespace rupture::fsi

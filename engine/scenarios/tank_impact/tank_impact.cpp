@@ -232,6 +232,9 @@ RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPa
       {"carriage_mass", spec.impactor.mass},
       {"plate_nodes", static_cast<std::int64_t>(plate.size())},
       {"shell_steps", static_cast<std::int64_t>(coupling.shellSteps())},
+      {"fluid_time_s", coupling.timings().fluid},
+      {"shell_time_s", coupling.timings().shell},
+      {"contact_time_s", coupling.timings().contact},
       {"contact_method", contactMethodName(spec.contact.method)}};
   const std::map<std::string, std::string> units = unitMap(tankImpactSummaryFields(), 3);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, g.fluidParticles, spec.soundSpeed},

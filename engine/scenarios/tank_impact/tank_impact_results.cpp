@@ -27,6 +27,9 @@ const ResultFields& tankImpactSummaryFields() {
       {"carriage_mass", "kg", "Carriage mass", "M"},
       {"plate_nodes", "1", "Plate nodes", "Nodes of the SPH shell (hole nodes excluded)"},
       {"shell_steps", "1", "Shell steps", "Shell time steps (sub-cycled inside the fluid steps)"},
+      {"fluid_time_s", "s", "Fluid wall time", "Wall-clock time of the fluid's steps"},
+      {"shell_time_s", "s", "Shell wall time", "Wall-clock time of the shell's sub-cycles"},
+      {"contact_time_s", "s", "Contact wall time", "Wall-clock time of the fluid-shell contact"},
       {"contact_method", "", "Contact method", "Fluid-structure contact: pinball or master_slave"},
   });
   return fields;
