@@ -3,6 +3,7 @@
 #include "cli/cli.hpp"
 #include "w1_benchmark.hpp"
 #include "w2_benchmark.hpp"
+#include "tank_impact_benchmark.hpp"
 #include "w3_benchmark.hpp"
 
 namespace rupture::cli {
@@ -37,6 +38,14 @@ int benchW2(const Args& args) {
   return 0;
 }
 
+/// rupture bench TANK [--threads N] [--steps N]: the tank-impact FXA5 workload (bench/README.md).
+int benchTank(const Args& args) {
+  bench::TankImpactOptions options;
+  if (int code = readThreadsAndSteps(args, "TANK", options.threads, options.steps)) return code;
+  std::cout << bench::runTankImpactBenchmark(options).dump() << std::endl;
+  return 0;
+}
+
 /// rupture bench W3 [--threads N] [--steps N]: the SPH workload (bench/README.md).
 int benchW3(const Args& args) {
   bench::W3Options options;
@@ -49,10 +58,11 @@ int benchW3(const Args& args) {
 
 int benchCommand(const Args& args) {
   if (!args.empty() && args[0] == "W3") return benchW3(args);
+  if (!args.empty() && args[0] == "TANK") return benchTank(args);
   if (!args.empty() && args[0] == "W2") return benchW2(args);
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
-                      "'; allowed: W1, W2, W3");
+                      "'; allowed: W1, W2, W3, TANK");
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");

@@ -20,6 +20,7 @@ commands:
   bench W1 [--threads N] [--particles N] [--steps N]
   bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
+  bench TANK [--threads N] [--steps N]  (tank-impact FXA5, fluid and shell timed apart)
                                           run a benchmark, print one JSON line
 
 exit codes: 0 done, 1 failure, 2 invalid input

@@ -23,8 +23,13 @@ void FluidRecorder::appendRow(const std::vector<double>& values, const std::vect
 }
 
 void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::string& trigger) {
+  writeSnapshot(system, trigger, StructurePoints{});
+}
+
+void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::string& trigger,
+                                  const StructurePoints& structure) {
   const sph::FluidParticles& p = system.particles;
-  const std::size_t n = p.size();
+  const std::size_t n = p.size(), m = structure.size(), total = n + m;
   char name[32];
   std::snprintf(name, sizeof name, "/snapshots/%06zu", m_snapshots);
   const std::string base = name;
@@ -42,11 +47,27 @@ void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::strin
   for (std::size_t k = 0; k < n; ++k) pressure[k] = system.model.eos.pressure(rho[k]);
   std::vector<std::int32_t> body(n);
   for (std::size_t k = 0; k < n; ++k) body[p.id[k]] = p.body[k];
-  f.writeDataset(base + "/position", interleave(x, y, z), {n, 3}, "m");
-  f.writeDataset(base + "/velocity", interleave(vx, vy, vz), {n, 3}, "m/s");
-  f.writeDataset(base + "/density", rho, {n}, "kg/m^3");
-  f.writeDataset(base + "/pressure", pressure, {n}, "Pa");
-  f.writeDataset(base + "/body", body, {n}, "1");
+  std::vector<double> position = interleave(x, y, z), velocity = interleave(vx, vy, vz);
+  if (m > 0) {
+    position.insert(position.end(), structure.position.begin(), structure.position.end());
+    velocity.insert(velocity.end(), structure.velocity.begin(), structure.velocity.end());
+    rho.insert(rho.end(), structure.density.begin(), structure.density.end());
+    pressure.resize(total, 0.0);
+    body.insert(body.end(), structure.body.begin(), structure.body.end());
+  }
+  f.writeDataset(base + "/position", position, {total, 3}, "m");
+  f.writeDataset(base + "/velocity", velocity, {total, 3}, "m/s");
+  f.writeDataset(base + "/density", rho, {total}, "kg/m^3");
+  f.writeDataset(base + "/pressure", pressure, {total}, "Pa");
+  f.writeDataset(base + "/body", body, {total}, "1");
+  if (m > 0) {
+    std::vector<double> damage(n, 0.0);
+    damage.insert(damage.end(), structure.damage.begin(), structure.damage.end());
+    std::vector<std::int32_t> fractured(n, 0);
+    fractured.insert(fractured.end(), structure.fractured.begin(), structure.fractured.end());
+    f.writeDataset(base + "/damage", damage, {total}, "1");
+    f.writeDataset(base + "/fractured", fractured, {total}, "1");
+  }
   ++m_snapshots;
 }
 

@@ -7,6 +7,7 @@
 //     (m/s), density {n} (kg/m³), pressure {n} (Pa), body {n} (int32: −1 fluid, else body index),
 //     every particle (fluid and boundary) in creation order, so row k is the same particle in
 //     every snapshot.
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,16 @@
 #include "sph/sph_system.hpp"
 
 namespace rupture::io {
+
+/// Points of a structure written in the same snapshot after the particles (the tank's plate
+/// nodes), so that one point cloud shows both: interleaved position and velocity {m,3}, and per
+/// point density (kg/m³), body index, damage (1) and fractured (0/1).
+struct StructurePoints {
+  std::vector<double> position, velocity;
+  std::vector<double> density, damage;
+  std::vector<std::int32_t> body, fractured;
+  std::size_t size() const { return body.size(); }
+};
 
 class FluidRecorder {
 public:
@@ -32,6 +43,11 @@ public:
   }
   void appendRow(const std::vector<double>& values, const std::vector<double>& probePressures);
   void writeSnapshot(const sph::SphSystem& system, const std::string& trigger);
+  /// The same with a structure's points appended (rows n .. n + m − 1), and damage {n + m} and
+  /// fractured {n + m} (0 for the particles) besides the fluid fields (pressure 0 on the structure).
+  void writeSnapshot(const sph::SphSystem& system, const std::string& trigger, const StructurePoints& structure);
+  /// The file, for datasets a scenario adds (crack paths).
+  Hdf5File& file() { return m_result.file(); }
   std::size_t rows() const { return m_rows.size(); }
   /// Writes /series and renames the file into place.
   void finish(bool completed);

@@ -26,18 +26,19 @@ ResultFields commonSummary() {
   };
 }
 
-ResultFields withCommon(ResultFields own) {
-  for (ResultField& f : commonSummary()) own.push_back(std::move(f));
-  return own;
-}
 
 const ResultField kProbePressure = {"probe_pressure_*", "Pa", "Probe pressure",
                                     "Kernel-averaged pressure at probe k (its position in the dataset's \"position\" attribute)"};
 
 }  // namespace
 
+ResultFields withFluidCommonSummary(ResultFields own) {
+  for (ResultField& f : commonSummary()) own.push_back(std::move(f));
+  return own;
+}
+
 const ResultFields& damBreakSummaryFields() {
-  static const ResultFields fields = withCommon({
+  static const ResultFields fields = withFluidCommonSummary({
       {"front_position_final", "m", "Final front position", "x of the leading fluid particle's edge at the end"},
       {"peak_pressure", "Pa", "Peak probe pressure", "Largest pressure at any probe (null without probes)"},
       {"kinetic_energy_final", "J", "Final kinetic energy", "Kinetic energy of the fluid at the end", "J/m"},
@@ -63,7 +64,7 @@ const ResultFields& damBreakSeriesFields() {
 }
 
 const ResultFields& pistonColumnSummaryFields() {
-  static const ResultFields fields = withCommon({
+  static const ResultFields fields = withFluidCommonSummary({
       {"peak_pressure", "Pa", "Peak probe pressure", "Largest pressure at any probe (null without probes)"},
       {"peak_bottom_pressure", "Pa", "Peak bottom pressure", "Largest mean pressure on the column's bottom"},
       {"first_peak_bottom_pressure", "Pa", "First bottom-pressure peak", "Largest bottom pressure within the first wave transit"},

@@ -6,6 +6,9 @@
 
 namespace rupture {
 
+/// The scalars finishFluidRun adds to every SPH run's summary, after the scenario's own.
+ResultFields withFluidCommonSummary(ResultFields own);
+
 const ResultFields& damBreakSummaryFields();
 const ResultFields& damBreakSeriesFields();
 const ResultFields& pistonColumnSummaryFields();

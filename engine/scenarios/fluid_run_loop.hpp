@@ -23,10 +23,11 @@ struct FluidLoopOutcome {
 };
 
 /// row(): append one series row from the current state; snapshot(trigger): write a snapshot;
-/// afterStep(dt): observe every step (peaks between rows).
-template <class Row, class Snapshot, class AfterStep>
+/// afterStep(dt): observe every step (peaks between rows); advance(dt): the step itself (the
+/// fluid's own, or a coupled step that also moves a structure).
+template <class Row, class Snapshot, class AfterStep, class Advance>
 FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
-                              Snapshot&& snapshot, AfterStep&& afterStep) {
+                              Snapshot&& snapshot, AfterStep&& afterStep, Advance&& advance) {
   using Clock = std::chrono::steady_clock;
   FluidLoopOutcome out;
   const double interval = run.outputIntervalOrDefault();
@@ -50,7 +51,7 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     const double left = run.endTime - s.time;
     if (dt > left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
-    s.step(dt);
+    advance(dt);
     out.minTimeStep = std::min(out.minTimeStep, dt);
     out.maxTimeStep = std::max(out.maxTimeStep, dt);
     afterStep(dt);
@@ -67,6 +68,12 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
   }
   if (lastRowStep != s.steps) row();  // the last state is always a row
   return out;
+}
+
+template <class Row, class Snapshot, class AfterStep>
+FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
+                              Snapshot&& snapshot, AfterStep&& afterStep) {
+  return runFluidLoop(s, run, control, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
 }
 
 /// What a fluid run tracked while it ran, for the summary every SPH scenario reports.

@@ -14,10 +14,12 @@ Scenario elasticPropertiesScenario();
 Scenario damBreakScenario();      // scenarios/dam_break/
 Scenario pistonColumnScenario();   // scenarios/piston_column/
 Scenario impactScenario();         // scenarios/impact/
+Scenario tankImpactScenario();     // scenarios/tank_impact/
 
 const std::vector<Scenario>& scenarioRegistry() {
   static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario(),
-                                                 damBreakScenario(), pistonColumnScenario(), impactScenario()};
+                                                 damBreakScenario(), pistonColumnScenario(), impactScenario(),
+                                                 tankImpactScenario()};
   return registry;
 }
 

@@ -81,6 +81,10 @@ public:
   /// Largest damage over the layers of a node.
   double maxDamage(std::size_t i) const;
   bool fractured(std::size_t i) const { return m_fractured[i] != 0; }
+  /// Translational mass of node i (kg): ρ t ω_i (0 for clamped nodes outside the plate).
+  double mass(std::size_t i) const { return m_mass[i]; }
+  /// Clamped nodes keep their position: a contact on them loads the clamp, not the plate.
+  bool clamped(std::size_t i) const { return m_clamped[i] != 0; }
   std::size_t fracturedCount() const;
   /// Sets the damage of every layer of node i to D_c and applies the fracture rule (tests, and
   /// pre-cracks given as a set of failed stress points).

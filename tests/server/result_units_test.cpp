@@ -54,6 +54,13 @@ const std::map<std::string, Json>& tinySpecs() {
         {"resolution", {{"spacing", 0.005}}},
         {"probes", {{0.0, 0.005}}},
         {"run", {{"end_time", 5e-5}}}}},
+      {"tank-impact",
+       {{"scenario", "tank-impact"},
+        {"tank", {{"inner_diameter", 0.04}, {"water_height", 0.03}}},
+        {"impactor", {{"mass", 5.0}, {"speed", 2.0}}},
+        {"plate", {{"thickness", 0.002}, {"spacing", 0.004}, {"precrack", {{"shape", "hole"}, {"hole_diameter", 0.012}}}}},
+        {"resolution", {{"spacing", 0.005}}},
+        {"run", {{"end_time", 2e-5}}}}},
   };
   return specs;
 }

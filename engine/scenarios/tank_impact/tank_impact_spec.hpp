@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fsi/contact_method.hpp"  // ContactMethod (engine/fsi owns it: the contact code selects on it)
 #include "io/fluid_spec.hpp"
 #include "shell/shell_parameters.hpp"
 
@@ -43,12 +44,6 @@ struct PlateSpec {
   double diameter = 0.08;     ///< clamped spot-face diameter (m); defaults to the tank's inner diameter
   double spacing = 0.0;       ///< node spacing Δ (m); default: the fluid spacing
   PrecrackSpec precrack;
-};
-
-/// Fluid–structure contact between water particles and plate nodes (seed §5.2, eq. 7).
-enum class ContactMethod {
-  Pinball,     ///< sphere–sphere interpenetration check; impulse cancelling the normal relative speed
-  MasterSlave  ///< fluid particles (slaves) kept on the plate's surface (master), free to slide
 };
 
 struct ContactSpec {

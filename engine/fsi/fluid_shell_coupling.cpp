@@ -1,0 +1,56 @@
+#include "fsi/fluid_shell_coupling.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "fsi/master_slave_contact.hpp"
+#include "fsi/pinball_contact.hpp"
+
+namespace rupture::fsi {
+
+FluidShellCoupling::FluidShellCoupling(sph::SphSystem& fluid, SphShell& shell, ContactMethod method,
+                                       const ContactGeometry& geometry)
+    : m_fluid(fluid), m_shell(shell), m_method(method), m_geometry(geometry) {
+  m_last.impulse.assign(shell.size(), {0.0, 0.0, 0.0});
+}
+
+const ContactOutcome& FluidShellCoupling::resolveContact(double dt) {
+  m_grid.build(m_shell, m_geometry.reach());
+  m_last = m_method == ContactMethod::Pinball
+               ? resolvePinballContact(m_fluid.particles, m_shell, m_grid, m_geometry, dt)
+               : resolveMasterSlaveContact(m_fluid.particles, m_shell, m_grid, m_geometry, dt);
+  m_lastDt = dt;
+  m_plateForce = m_freePlateForce = {0.0, 0.0, 0.0};
+  for (std::size_t n = 0; n < m_shell.size(); ++n)
+    for (int a = 0; a < 3; ++a) {
+      m_plateForce[a] += m_last.impulse[n][a] / dt;
+      if (!m_shell.clamped(n)) m_freePlateForce[a] += m_last.impulse[n][a] / dt;
+    }
+  return m_last;
+}
+
+void FluidShellCoupling::step(double dt) {
+  // 1. The shell to t + dt under the impulses of the last contact, spread over this step.
+  for (std::size_t n = 0; n < m_shell.size(); ++n) {
+    const auto& I = m_last.impulse[n];
+    m_shell.setExternalForce(n, {I[0] / dt, I[1] / dt, I[2] / dt});
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const double shellStep = m_shell.stableTimeStep();
+  m_subcycles = std::max(1, static_cast<int>(std::ceil(dt / shellStep * (1.0 - 1e-12))));
+  const double sub = dt / m_subcycles;
+  for (int k = 0; k < m_subcycles; ++k) m_shell.step(sub);
+  m_shellSteps += static_cast<std::size_t>(m_subcycles);
+  const auto shellDone = Clock::now();
+  // 2. The fluid; 3. the contact at t + dt.
+  m_fluid.step(dt);
+  const auto fluidDone = Clock::now();
+  resolveContact(dt);
+  m_timings.shell += std::chrono::duration<double>(shellDone - start).count();
+  m_timings.fluid += std::chrono::duration<double>(fluidDone - shellDone).count();
+  m_timings.contact += std::chrono::duration<double>(Clock::now() - fluidDone).count();
+}
+
+}  // namespace rupture::fsi

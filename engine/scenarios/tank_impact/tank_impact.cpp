@@ -1,0 +1,264 @@
+// The tank-impact scenario (seed 002 §2, issue 11): the piston-column set-up with its rigid bottom
+// replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
+// fluid–shell contact of engine/fsi (pinball or master–slave). The carriage and piston are one
+// free rigid body of mass M hitting the column at V; the water goes through the hole or the
+// opened cracks. Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md; contact:
+// docs/fsi-contact.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "fsi/fluid_shell_coupling.hpp"
+#include "io/fluid_recorder.hpp"
+#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/run_support.hpp"
+#include "scenarios/scenario.hpp"
+#include "scenarios/tank_impact/plate_geometry.hpp"
+#include "scenarios/tank_impact/plate_observables.hpp"
+#include "scenarios/tank_impact/tank_impact_results.hpp"
+#include "scenarios/tank_impact/tank_impact_spec.hpp"
+#include "scenarios/tank_impact/tank_lattice.hpp"
+
+namespace rupture {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Body index the plate nodes carry in snapshots (after the cylinder and the piston).
+constexpr std::int32_t kPlateBody = 2;
+
+std::vector<std::pair<std::string, std::string>> seriesColumns() {
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const ResultField& f : tankImpactSeriesFields())
+    if (f.name.back() != '*') columns.emplace_back(f.name, f.unit);
+  return columns;
+}
+
+/// Which fluid particles are below the plate: under the lowest intact node of their radial band
+/// by more than t/2 + r_f (a band without nodes, the hole, takes its nearest outer band's level).
+class BelowPlate {
+public:
+  BelowPlate(double radius, double spacing, double standOff)
+      : m_band(spacing), m_standOff(standOff), m_level(static_cast<std::size_t>(radius / spacing) + 2) {}
+
+  void update(const SphShell& shell) {
+    std::fill(m_level.begin(), m_level.end(), std::numeric_limits<double>::infinity());
+    const auto& x = shell.positions();
+    for (std::size_t n = 0; n < shell.size(); ++n) {
+      if (shell.fractured(n)) continue;
+      const std::size_t b = std::min(m_level.size() - 1, static_cast<std::size_t>(std::hypot(x[n][0], x[n][1]) / m_band));
+      m_level[b] = std::min(m_level[b], x[n][2]);
+    }
+    double outer = 0.0;  // beyond the plate: the clamp's level
+    for (std::size_t b = m_level.size(); b-- > 0;) {
+      if (std::isfinite(m_level[b])) outer = m_level[b];
+      else m_level[b] = outer;
+    }
+  }
+
+  bool below(double x, double y, double z) const {
+    const std::size_t b = std::min(m_level.size() - 1, static_cast<std::size_t>(std::hypot(x, y) / m_band));
+    return z < m_level[b] - m_standOff;
+  }
+
+private:
+  double m_band, m_standOff;
+  std::vector<double> m_level;
+};
+
+io::StructurePoints plateSnapshot(const SphShell& shell, double density) {
+  io::StructurePoints out;
+  for (std::size_t n = 0; n < shell.size(); ++n) {
+    for (int a = 0; a < 3; ++a) {
+      out.position.push_back(shell.positions()[n][a]);
+      out.velocity.push_back(shell.velocities()[n][a]);
+    }
+    out.density.push_back(density);
+    out.damage.push_back(shell.maxDamage(n));
+    out.body.push_back(kPlateBody);
+    out.fractured.push_back(shell.fractured(n) ? 1 : 0);
+  }
+  return out;
+}
+
+RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+  const auto wallStart = Clock::now();
+  const TankImpactSpec spec = parseTankImpactSpec(json);
+  control.progress.store(0.0);
+  const double t = spec.plate.shell.thickness, dx = spec.resolution.spacing;
+
+  // Water, cylinder and piston.
+  sph::SphSystem s;
+  s.model = io::fluidModel(spec.fluid, spec.resolution, 3, spec.soundSpeed, spec.gravity);
+  TankLatticeParams lattice;
+  lattice.spacing = dx;
+  lattice.radius = 0.5 * spec.innerDiameter;
+  lattice.height = spec.waterHeight;
+  lattice.bottom = 0.5 * t;
+  lattice.wallLayers = spec.resolution.wallLayers;
+  lattice.pistonMass = spec.impactor.mass;
+  lattice.pistonSpeed = spec.impactor.speed;
+  lattice.gravity = spec.gravity;
+  const TankLattice g = buildTankLattice(s, lattice);
+  s.initialise();
+  const sph::RigidBody& piston = s.bodies[kTankPiston];
+
+  // The plate and the contact.
+  const PlateGeometry geometry = plateGeometry(spec.plate);
+  SphShell plate = buildPlate(spec.plate, geometry);
+  const double nodeSpacing = geometry.nodes.spacing;
+  const fsi::ContactGeometry contact = fsi::contactGeometry(dx, t, nodeSpacing);
+  fsi::FluidShellCoupling coupling(s, plate, spec.contact.method, contact);
+  const std::size_t initiallyFractured = plate.fracturedCount();
+  const double holeDiameter = 2.0 * geometry.holeRadius;
+  const double deflectionRadius = 0.25 * (spec.plate.diameter + holeDiameter);
+  const bool uShape = spec.plate.precrack.shape == PrecrackShape::U;
+  BelowPlate belowPlate(0.5 * spec.plate.diameter + nodeSpacing, nodeSpacing, contact.standOff());
+
+  logStage(control, "tank impact: " + std::to_string(g.fluidParticles) + " fluid and " +
+                        std::to_string(s.particles.size() - g.fluidParticles) + " boundary particles, " +
+                        std::to_string(plate.size()) + " plate nodes, " + contactMethodName(spec.contact.method) +
+                        " contact, carriage " + formatNumber(spec.impactor.mass) + " kg at " +
+                        formatNumber(spec.impactor.speed) + " m/s");
+
+  std::vector<std::string> probePositions;
+  for (const auto& point : io::probesJson(spec.probes, 3)) probePositions.push_back(point.dump());
+  io::FluidRecorder recorder(resultPath, "tank-impact", seriesColumns(), probePositions);
+  recorder.writeSpec(toJson(spec), json);
+  recorder.writeAttributes("/geometry",
+                           {{"inner_diameter", 2 * g.R()}, {"water_height", g.H()}, {"section_area", g.area},
+                            {"spacing", dx}, {"smoothing_length", s.model.h()}, {"wall_layers", spec.resolution.wallLayers},
+                            {"plate_thickness", t}, {"plate_spacing", nodeSpacing}, {"plate_nodes", plate.size()},
+                            {"hole_diameter", holeDiameter}, {"contact_stand_off", contact.standOff()},
+                            {"contact_cell_radius", contact.cellRadius}, {"plate_body", kPlateBody},
+                            {"vertical_axis", "z"}},
+                           {{"inner_diameter", "m"}, {"water_height", "m"}, {"section_area", "m^2"}, {"spacing", "m"},
+                            {"smoothing_length", "m"}, {"wall_layers", "1"}, {"plate_thickness", "m"},
+                            {"plate_spacing", "m"}, {"plate_nodes", "1"}, {"hole_diameter", "m"},
+                            {"contact_stand_off", "m"}, {"contact_cell_radius", "m"}, {"plate_body", "1"}});
+
+  const double rho0 = s.model.eos.referenceDensity;
+  const double firstWindow = 2.5 * g.H() / spec.soundSpeed;
+  const double mass0 = s.fluidMass();
+  auto gauge = [&] { return s.probePressure(spec.gauge[0], spec.gauge[1], spec.gauge[2]); };
+  double peakGauge = gauge(), firstPeak = peakGauge, firstPeakTime = 0, peakProbe = 0, maxDensityError = 0;
+  double maxJet = 0, lastJet = 0, maxDeflection = 0, lastStep = 0;
+  double timeToFracture = std::numeric_limits<double>::quiet_NaN();
+  bool anyJet = false;
+  std::int64_t outsideMax = 0, belowCount = 0;
+  std::vector<double> probes(spec.probes.size());
+  auto row = [&] {
+    const sph::FluidParticles& p = s.particles;
+    belowPlate.update(plate);
+    double densityError = 0, momentum = 0, mass = 0;
+    std::int64_t below = 0, outside = 0;
+    const double R = g.R() + 0.5 * dx, top = g.bottom + g.H() - piston.displacement + 0.5 * dx;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!p.isFluid(k)) continue;
+      densityError = std::max(densityError, std::fabs(p.rho[k] / rho0 - 1.0));
+      if (belowPlate.below(p.x[k], p.y[k], p.z[k])) {
+        ++below;
+        momentum -= p.mass[k] * p.vz[k];
+        mass += p.mass[k];
+      } else if (std::hypot(p.x[k], p.y[k]) > R || p.z[k] > top) {
+        ++outside;  // through the cylinder or the piston
+      }
+    }
+    const double jet = mass > 0 ? momentum / mass : 0.0;
+    if (mass > 0) {
+      anyJet = true;
+      maxJet = std::max(maxJet, jet);
+      lastJet = jet;
+    }
+    belowCount = below;
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
+      peakProbe = std::max(peakProbe, probes[k]);
+    }
+    maxDensityError = std::max(maxDensityError, densityError);
+    outsideMax = std::max(outsideMax, outside);
+    const double deflection = deflectionAtRadius(plate, geometry, deflectionRadius);
+    maxDeflection = std::max(maxDeflection, deflection);
+    recorder.appendRow({s.time, gauge(), piston.displacement, piston.speed, jet, deflection,
+                        uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0, crackedLength(plate, geometry),
+                        static_cast<double>(below), -coupling.plateForce()[2], s.fluidMass(), densityError, lastStep},
+                       probes);
+  };
+  auto afterStep = [&](double dt) {
+    lastStep = dt;
+    const double pg = gauge();
+    peakGauge = std::max(peakGauge, pg);
+    if (s.time <= firstWindow && pg > firstPeak) {
+      firstPeak = pg;
+      firstPeakTime = s.time;
+    }
+    if (std::isnan(timeToFracture) && plate.fracturedCount() > initiallyFractured) timeToFracture = s.time;
+  };
+  auto snapshot = [&](const std::string& trigger) {
+    recorder.writeSnapshot(s, trigger, plateSnapshot(plate, spec.plate.shell.density));
+  };
+  auto advance = [&](double dt) { coupling.step(dt); };
+  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep, advance);
+  snapshot("final");
+
+  // The crack paths: reference positions of the fractured nodes in the order they failed.
+  const std::vector<std::array<double, 2>> path = crackPath(plate, geometry);
+  std::vector<double> flat;
+  for (const auto& q : path) flat.insert(flat.end(), q.begin(), q.end());
+  recorder.file().writeDataset("/crack_path", flat, {path.size(), 2}, "m");
+
+  auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json summary = {
+      {"first_pressure_peak", firstPeak},
+      {"time_of_first_peak", firstPeakTime},
+      {"peak_gauge_pressure", peakGauge},
+      {"peak_pressure", nullUnless(!spec.probes.empty(), peakProbe)},
+      {"acoustic_pressure", rho0 * spec.soundSpeed * spec.impactor.speed},
+      {"max_jet_speed", nullUnless(anyJet, maxJet)},
+      {"final_jet_speed", nullUnless(anyJet && belowCount > 0, lastJet)},
+      {"max_deflection", maxDeflection},
+      {"deflection_radius", deflectionRadius},
+      {"final_tongue_angle", nullUnless(uShape, uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0)},
+      {"time_to_fracture", nullUnless(!std::isnan(timeToFracture), timeToFracture)},
+      {"cracked_length", crackedLength(plate, geometry)},
+      {"fractured_nodes", static_cast<std::int64_t>(plate.fracturedCount() - initiallyFractured)},
+      {"fluid_below_final", belowCount},
+      {"carriage_initial_speed", spec.impactor.speed},
+      {"carriage_final_speed", piston.speed},
+      {"carriage_final_displacement", piston.displacement},
+      {"carriage_mass", spec.impactor.mass},
+      {"plate_nodes", static_cast<std::int64_t>(plate.size())},
+      {"shell_steps", static_cast<std::int64_t>(coupling.shellSteps())},
+      {"fluid_time_s", coupling.timings().fluid},
+      {"shell_time_s", coupling.timings().shell},
+      {"contact_time_s", coupling.timings().contact},
+      {"contact_method", contactMethodName(spec.contact.method)}};
+  const std::map<std::string, std::string> units = unitMap(tankImpactSummaryFields(), 3);
+  return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, g.fluidParticles, spec.soundSpeed},
+                        std::move(summary), units, control, wallStart);
+}
+
+}  // namespace
+
+Scenario tankImpactScenario() {
+  Scenario s;
+  s.info.name = "tank-impact";
+  s.info.title = "Water-filled tank closed by a plate, hit through a piston (SPH water, SPH shell, contact)";
+  s.info.description =
+      "Seed 002's drop test: a water column in a rigid cylinder of diameter D, closed at the bottom by an aluminium "
+      "plate (SPH Mindlin-Reissner shell, plasticity and Lemaitre-Chaboche damage, clamped at its rim; optional hole "
+      "and pre-cracks), hit through a piston by a carriage of mass M at speed V. Water and plate interact by pinball "
+      "or master-slave contact; the water leaves through the hole and opened cracks. Outputs the gauge pressure, "
+      "carriage motion, jet speed, plate deflection, tongue angle, cracked length and crack paths, with snapshots.";
+  s.info.summary = tankImpactSummaryFields();
+  s.info.series = tankImpactSeriesFields();
+  s.validate = [](const nlohmann::json& spec) { parseTankImpactSpec(spec); };
+  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parseTankImpactSpec(spec).estimatedParticles); };
+  s.run = runTankImpact;
+  return s;
+}
+
+}  // namespace rupture

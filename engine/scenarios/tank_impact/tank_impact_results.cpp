@@ -1,0 +1,59 @@
+// tank-impact results with SI units, labels and descriptions (see rupture/result_fields.hpp).
+#include "scenarios/tank_impact/tank_impact_results.hpp"
+
+#include "scenarios/fluid_results.hpp"
+
+namespace rupture {
+
+const ResultFields& tankImpactSummaryFields() {
+  static const ResultFields fields = withFluidCommonSummary({
+      {"first_pressure_peak", "Pa", "First pressure peak", "Largest gauge pressure within the first wave transit (t <= 2.5 H/c0)"},
+      {"time_of_first_peak", "s", "Time of first peak", "Time of the first gauge-pressure peak"},
+      {"peak_gauge_pressure", "Pa", "Peak gauge pressure", "Largest gauge pressure over the run"},
+      {"peak_pressure", "Pa", "Peak probe pressure", "Largest pressure at any further probe (null without probes)"},
+      {"acoustic_pressure", "Pa", "Acoustic pressure", "rho0 c0 V: the linear-acoustics pressure of the impact"},
+      {"max_jet_speed", "m/s", "Max jet speed", "Largest mean axial (downward) speed of the water below the plate (null if none went through)"},
+      {"final_jet_speed", "m/s", "Final jet speed", "Mean axial speed of the water below the plate at the end (null if none)"},
+      {"max_deflection", "m", "Max deflection", "Largest downward deflection of the plate at (D + d)/4 from the centre"},
+      {"deflection_radius", "m", "Deflection radius", "(D + d)/4: where the deflection is read (d: hole diameter, 0 without)"},
+      {"final_tongue_angle", "rad", "Final tongue angle", "Opening angle of the U tongue at the end (null for other pre-cracks)"},
+      {"time_to_fracture", "s", "Time to fracture", "First fracture of a stress point beyond the pre-cracks (null if none)"},
+      {"cracked_length", "m", "Cracked length", "Length of the cracks the impact opened beyond the pre-cracks, at the end"},
+      {"fractured_nodes", "1", "Fractured nodes", "Plate nodes fractured by the impact at the end"},
+      {"fluid_below_final", "1", "Fluid below the plate", "Fluid particles below the plate at the end"},
+      {"carriage_initial_speed", "m/s", "Carriage initial speed", "V"},
+      {"carriage_final_speed", "m/s", "Carriage final speed", "Speed of the carriage and piston at the end"},
+      {"carriage_final_displacement", "m", "Carriage final displacement", "Displacement of the carriage and piston at the end"},
+      {"carriage_mass", "kg", "Carriage mass", "M"},
+      {"plate_nodes", "1", "Plate nodes", "Nodes of the SPH shell (hole nodes excluded)"},
+      {"shell_steps", "1", "Shell steps", "Shell time steps (sub-cycled inside the fluid steps)"},
+      {"fluid_time_s", "s", "Fluid wall time", "Wall-clock time of the fluid's steps"},
+      {"shell_time_s", "s", "Shell wall time", "Wall-clock time of the shell's sub-cycles"},
+      {"contact_time_s", "s", "Contact wall time", "Wall-clock time of the fluid-shell contact"},
+      {"contact_method", "", "Contact method", "Fluid-structure contact: pinball or master_slave"},
+  });
+  return fields;
+}
+
+const ResultFields& tankImpactSeriesFields() {
+  static const ResultFields fields = {
+      {"time", "s", "Time", "Simulated time"},
+      {"gauge_pressure", "Pa", "Gauge pressure", "Kernel-averaged water pressure at the gauge"},
+      {"carriage_displacement", "m", "Carriage displacement", "Displacement of the carriage and piston (downwards)"},
+      {"carriage_speed", "m/s", "Carriage speed", "Speed of the carriage and piston (downwards)"},
+      {"jet_speed", "m/s", "Jet speed", "Mean axial (downward) speed of the water below the plate (0 if none)"},
+      {"deflection", "m", "Deflection", "Downward deflection of the plate at (D + d)/4 from the centre"},
+      {"tongue_angle", "rad", "Tongue angle", "Opening angle of the U tongue (0 for other pre-cracks)"},
+      {"cracked_length", "m", "Cracked length", "Length of the cracks the impact opened beyond the pre-cracks"},
+      {"fluid_below", "1", "Fluid below the plate", "Fluid particles below the plate"},
+      {"plate_force", "N", "Plate force", "Downward force of the water on the plate (contact), clamp included"},
+      {"fluid_mass", "kg", "Fluid mass", "Total fluid mass"},
+      {"max_density_error", "1", "Max density error", "Largest |rho/rho0 - 1| over fluid particles"},
+      {"time_step", "s", "Time step", "Fluid time step of the last step"},
+      {"probe_pressure_*", "Pa", "Probe pressure",
+       "Kernel-averaged pressure at probe k (its position in the dataset's \"position\" attribute)"},
+  };
+  return fields;
+}
+
+}  // namespace rupture
