@@ -88,11 +88,13 @@ nlohmann::json runW1(const W1Options& options) {
       *std::max_element(s.bonds.failureMeasure.begin(), s.bonds.failureMeasure.end());
   const double dt = kSafety * s.criticalTimeStep();
 
+  const double cpuStart = processCpuSeconds();
   const auto start = std::chrono::steady_clock::now();
   for (int step = 0; step < options.steps; ++step) s.step(dt);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double cpuSeconds = processCpuSeconds() - cpuStart;
 
-  nlohmann::json report = bondedBenchReport("W1", s, options.steps, options.threads, seconds);
+  nlohmann::json report = bondedBenchReport("W1", s, options.steps, options.threads, seconds, cpuSeconds);
   report["time_step"] = dt;
   report["initial_peak_equivalent_stress"] = initialPeakStress;
   return report;

@@ -138,6 +138,21 @@ void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretc
   }
 }
 
+/// Stores each bond's loads on the current configuration without breaking any: the force on j of
+/// the intact ones (0 for broken bonds) and every bond's failure measure, as evaluateBonds leaves
+/// them. For paths that do not store per-bond loads each step (core/central_bond_loop.hpp).
+template <class Law, class Criterion>
+void storeBondLoads(const Law& law, const Criterion& criterion, const ParticleStore& p, const BondStore& bonds) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
+#pragma omp parallel for schedule(static) if (worthParallel(bonds.size()))
+  for (std::ptrdiff_t b = 0; b < n; ++b) {
+    const BondResponse r = law.response(bondGeometry<Law>(p, bonds, b));
+    const double now = bonds.intact[b];
+    bonds.fjx[b] = now * r.fjx; bonds.fjy[b] = now * r.fjy; bonds.fjz[b] = now * r.fjz;
+    bonds.failureMeasure[b] = criterion.measure(r);
+  }
+}
+
 /// Elastic energy stored in the intact bonds (J).
 template <class Law>
 double bondEnergy(const Law& law, const ParticleStore& p, const BondStore& bonds) {

@@ -21,11 +21,14 @@ struct BondStore {
   std::vector<double> threshold;       ///< failure threshold, in the criterion's unit (+inf: unbreakable)
   std::vector<double> strength;        ///< factor on the threshold (1; +inf: never breaks), e.g. regions
 
-  // Written by the force kernel each step: force on j (force on i is its opposite), torques on i, j.
-  std::vector<double> fjx, fjy, fjz;
+  // Written by the force kernel: force on j (force on i is its opposite), torques on i, j, and the
+  // failure measure. The central-force loop (core/central_bond_loop.hpp) does not store them each
+  // step; read them through BondedSystem::bondLoads(), which fills them on demand through a const
+  // system (hence mutable: a cache of the current configuration's loads).
+  mutable std::vector<double> fjx, fjy, fjz;
   std::vector<double> tix, tiy, tiz;
   std::vector<double> tjx, tjy, tjz;
-  std::vector<double> failureMeasure;    ///< the criterion's measure at the last evaluation (its unit)
+  mutable std::vector<double> failureMeasure;  ///< the criterion's measure at the last evaluation (its unit)
   std::vector<double> failureThreshold;  ///< threshold × strength, refreshed by finalize (criterion's unit)
 
   // Particle -> bond incidence (CSR), built once after the bonds: entries are 2·b + end (0: i, 1: j).

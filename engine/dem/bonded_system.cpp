@@ -8,6 +8,7 @@
 
 #include "core/parallel.hpp"
 #include "core/bond_loop.hpp"
+#include "core/central_bond_loop.hpp"
 
 namespace rupture {
 
@@ -20,6 +21,9 @@ void BondedSystem::initialize() {
   }
   bonds.finalize(particles.size());
   m_minStretch.assign(particles.size(), 0.0);
+  m_minStretchNext.assign(particles.size(), 0.0);
+  m_centralCurrent = false;
+  m_loadsStale = false;
   m_wasIntact.assign(bonds.size(), 0);
   for (std::size_t b = 0; b < bonds.size(); ++b) m_wasIntact[b] = bonds.intact[b] > 0.5;
   m_bondedVolume.assign(particles.size(), 0.0);
@@ -60,12 +64,7 @@ void BondedSystem::handOverBrokenBonds() {
     for (std::ptrdiff_t b = 0; b < n; ++b)
       if (m_wasIntact[b] && bonds.intact[b] < 0.5) mine.push_back(b);
   }
-  for (const auto& list : found)
-    for (std::size_t b : list) {
-      m_wasIntact[b] = 0;
-      recordDamage(b);
-      contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
-    }
+  for (const auto& list : found) recordBrokenBonds(list);
 }
 
 double BondedSystem::partnerVolume(std::int32_t k) const {
@@ -80,10 +79,53 @@ void BondedSystem::recordDamage(std::size_t b) {
   m_damage[j] = m_brokenVolume[j] / m_bondedVolume[j];
 }
 
+void BondedSystem::recordBrokenBonds(const std::vector<std::size_t>& broken) {
+  for (std::size_t b : broken) {
+    m_wasIntact[b] = 0;
+    recordDamage(b);
+    contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
+  }
+}
+
+const BondStore& BondedSystem::bondLoads() const {
+  if (m_loadsStale) {
+    visitModel([&](const auto& law, const auto& criterion) { storeBondLoads(law, criterion, particles, bonds); });
+    m_loadsStale = false;
+  }
+  return bonds;
+}
+
 void BondedSystem::computeLoads() {
   visitModel([&](const auto& law, const auto& criterion) {
     using Law = std::decay_t<decltype(law)>;
     using Criterion = std::decay_t<decltype(criterion)>;
+    if constexpr (!Law::kRotational) {
+      if (centralLoop && bondDamping <= 0) {
+        if (!m_centralCurrent) {
+          m_central.build(bonds);
+          m_centralCurrent = true;
+        }
+        m_broken.clear();
+        bool nodal = false;
+        if constexpr (Criterion::kNodalShift) {
+          nodal = criterion.alpha != 0.0;
+          if (nodal) {
+            evaluateCentralBonds<Law, Criterion, true>(law, criterion, particles, bonds, m_central,
+                                                       m_minStretch.data(), m_minStretchNext.data(), m_broken);
+            m_minStretch.swap(m_minStretchNext);
+          }
+        }
+        if (!nodal)
+          evaluateCentralBonds<Law, Criterion, false>(law, criterion, particles, bonds, m_central, nullptr, nullptr,
+                                                      m_broken);
+        brokenLastStep = m_broken.size();
+        recordBrokenBonds(m_broken);
+        m_loadsStale = true;
+        return;
+      }
+    }
+    m_centralCurrent = false;  // this loop breaks bonds the partner list would not know about
+    m_loadsStale = false;
     if (bondDamping > 0 && m_step > 0) {
       const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
                                    m_previousLength.data()};
@@ -221,6 +263,7 @@ std::vector<double> BondedSystem::bondStiffness() const {
 }
 
 double BondedSystem::maxFailureRatio() const {
+  bondLoads();
   double worst = 0;
   for (std::size_t b = 0; b < bonds.size(); ++b)
     if (bonds.intact[b] > 0.5 && std::isfinite(bonds.failureThreshold[b]) && bonds.failureThreshold[b] > 0)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/bond_store.hpp"
+#include "core/central_bond_list.hpp"
 #include "core/particle_store.hpp"
 #include "dem/beam_bond.hpp"
 #include "dem/bond_model.hpp"
@@ -41,6 +42,11 @@ public:
   double bondDamping = 0.0;
   double dampingWaveSpeed = 0.0;
 
+  /// Central-force laws without bond damping run the particle-order loop
+  /// (core/central_bond_loop.hpp); false runs the generic bond loop for every law, with the same
+  /// result bit for bit (kept for comparisons: tests, benchmarks).
+  bool centralLoop = true;
+
   double time = 0.0;          ///< s
   std::size_t steps = 0;
   std::size_t brokenLastStep = 0;
@@ -67,6 +73,11 @@ public:
   /// about linearly with the load before the first break: runs use it to estimate their progress.
   double maxFailureRatio() const;
 
+  /// The bond store with its per-bond loads (fjx, fjy, fjz: force on j; failureMeasure) of the
+  /// current configuration. The central-force loop does not store them each step: this evaluates
+  /// them when they are stale. Read loads through it, not through `bonds` directly.
+  const BondStore& bondLoads() const;
+
   /// Damage index φ of each particle (seed 003, physics-reference §3.6) over its initial bonds,
   /// weighted by the partners' volumes; kept up to date as bonds break (O(broken bonds) per step).
   const std::vector<double>& damageIndex() const { return m_damage; }
@@ -86,6 +97,7 @@ public:
 private:
   void computeLoads();
   void handOverBrokenBonds();
+  void recordBrokenBonds(const std::vector<std::size_t>& broken);  ///< damage index and contact hand-over
   void kick(double halfDt);
   void drift(double dt);
   double partnerVolume(std::int32_t particle) const;  ///< V (m³), or 1 without volumes
@@ -94,8 +106,13 @@ private:
   std::vector<double> m_damage, m_brokenVolume, m_bondedVolume;  ///< φ = broken / bonded partner volume
   std::vector<double> m_previousLength;  ///< bond lengths at the last evaluation, for the damping
   double m_step = 0.0;                   ///< Δt of the step being taken (0 before the first)
-  std::vector<double> m_minStretch;
-  double m_loadTime = 0.0;  ///< time of the configuration the loads are evaluated on  ///< per node, for criteria with a nodal shift (LAMMPS's α)
+  std::vector<double> m_minStretch;      ///< per node, for criteria with a nodal shift (LAMMPS's α)
+  std::vector<double> m_minStretchNext;  ///< the central loop's write buffer, swapped after each pass
+  double m_loadTime = 0.0;  ///< time of the configuration the loads are evaluated on
+  CentralBondList m_central;            ///< full partner list of the central-force loop
+  bool m_centralCurrent = false;        ///< m_central agrees with bonds (no other loop ran since it was built)
+  mutable bool m_loadsStale = false;    ///< bonds.fjx/failureMeasure are older than the last evaluation
+  std::vector<std::size_t> m_broken;    ///< bonds broken in the last evaluation (central loop)
 };
 
 }  // namespace rupture

@@ -44,9 +44,10 @@ StrengthResult measureTensileStrength(const BondedSystem& sample, const SampleSp
   if (cancelled()) return result;
   const double sigmaF = sample.beam.failureStress;
   double worst = 0;  // largest σ_eq / (σ_f × the bond's strength factor) at ε_e
+  const BondStore& loads = s.bondLoads();  // current for every law (central laws store none per step)
   for (std::size_t b = 0; b < s.bonds.size(); ++b)
     if (s.bonds.intact[b] > 0.5 && std::isfinite(s.bonds.strength[b]) && s.bonds.strength[b] > 0)
-      worst = std::max(worst, s.bonds.failureMeasure[b] / (sigmaF * s.bonds.strength[b]));
+      worst = std::max(worst, loads.failureMeasure[b] / (sigmaF * s.bonds.strength[b]));
   if (!(worst > 0)) throw CalibrationError("strength test: no bond is loaded by the tension (cannot break)");
   const double strainE = options.elastic.strain;
   result.crackOnsetStrain = strainE / worst;

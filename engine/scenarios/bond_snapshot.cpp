@@ -17,7 +17,7 @@ void writeBondPairs(io::Hdf5File& file, const BondStore& bonds) {
 }
 
 void writeBondState(io::Hdf5File& file, const std::string& snapshot, const BondedSystem& system) {
-  const BondStore& bonds = system.bonds;
+  const BondStore& bonds = system.bondLoads();
   const std::size_t nb = bonds.size();
   std::vector<std::uint8_t> intact(nb);
   for (std::size_t b = 0; b < nb; ++b) intact[b] = bonds.intact[b] > 0.5 ? 1 : 0;

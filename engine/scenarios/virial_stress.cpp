@@ -6,7 +6,7 @@ namespace rupture {
 
 std::vector<double> virialStress(const BondedSystem& system, double packingFraction, double thickness2d) {
   const ParticleStore& p = system.particles;
-  const BondStore& bonds = system.bonds;
+  const BondStore& bonds = system.bondLoads();
   const std::size_t n = p.size();
   std::vector<double> sigma(9 * n, 0.0);
   // Accumulate Σ_b −½(d ⊗ F_j + F_j ⊗ d) on both ends of each intact bond.

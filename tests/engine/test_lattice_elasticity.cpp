@@ -104,10 +104,11 @@ Measured uniaxialInterior(BondedSystem s, double eps) {
     std::vector<std::uint8_t> in(n, 0);
     for (std::size_t k : interior) in[k] = 1;
     double virial = 0, volume = 0;
-    for (std::size_t b = 0; b < s.bonds.size(); ++b) {
-      const std::int32_t i = s.bonds.i[b], j = s.bonds.j[b];
+    const BondStore& loaded = s.bondLoads();
+    for (std::size_t b = 0; b < loaded.size(); ++b) {
+      const std::int32_t i = loaded.i[b], j = loaded.j[b];
       const double share = 0.5 * (in[i] + in[j]);
-      virial -= share * (p.x[j] - p.x[i]) * s.bonds.fjx[b];  // fjx is the force on j: tension pulls j back
+      virial -= share * (p.x[j] - p.x[i]) * loaded.fjx[b];  // fjx is the force on j: tension pulls j back
     }
     for (std::size_t k : interior) volume += p.volume[k];
     return Measured{(virial / volume) / exx, -lateral / exx, false};

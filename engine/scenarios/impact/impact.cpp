@@ -43,12 +43,13 @@ double loadedArea(const Box& box, const SampleSpec& s) {
 /// Per-particle virial stress with the particle's own volume (tension positive), {n, 3, 3}.
 std::vector<double> particleStress(const BondedSystem& s) {
   const ParticleStore& p = s.particles;
+  const BondStore& bonds = s.bondLoads();
   std::vector<double> sigma(9 * p.size(), 0.0);
-  for (std::size_t b = 0; b < s.bonds.size(); ++b) {
-    if (s.bonds.intact[b] < 0.5) continue;
-    const std::int32_t i = s.bonds.i[b], j = s.bonds.j[b];
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    if (bonds.intact[b] < 0.5) continue;
+    const std::int32_t i = bonds.i[b], j = bonds.j[b];
     const double d[3] = {p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]};
-    const double f[3] = {s.bonds.fjx[b], s.bonds.fjy[b], s.bonds.fjz[b]};
+    const double f[3] = {bonds.fjx[b], bonds.fjy[b], bonds.fjz[b]};
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) {
         const double t = -0.25 * (d[r] * f[c] + f[r] * d[c]);
