@@ -15,8 +15,10 @@ commands:
   validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
   scenarios                               list the scenarios
   schema SCENARIO                         print a scenario's JSON Schema
-  calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--threads N]
-                                          measure (or fit the beams to) macroscopic E and nu
+  calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU]
+            [--target-tensile-strength S] [--threads N]
+                                          measure macroscopic E, nu, tensile strength and onset
+                                          strain, or fit the beams to the targets
   bench W1 [--threads N] [--particles N] [--steps N]
   bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
