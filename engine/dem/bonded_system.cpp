@@ -19,7 +19,8 @@ namespace {
 bool movesInPlane(const ParticleStore& p, const BondStore& bonds) {
   if (p.dimension != 2) return false;
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (p.z[k] != p.z[0] || p.qx[k] != 0.0 || p.qy[k] != 0.0) return false;
+    if (p.z[k] != p.z[0] || p.qx[k] != 0.0 || p.qy[k] != 0.0 || p.vz[k] != 0.0 || p.wx[k] != 0.0 || p.wy[k] != 0.0)
+      return false;
   for (std::size_t b = 0; b < bonds.size(); ++b)
     if (bonds.n0z[b] != 0.0) return false;
   return true;

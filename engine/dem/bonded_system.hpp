@@ -83,8 +83,8 @@ public:
   const std::vector<double>& damageIndex() const { return m_damage; }
 
   /// True when the system moves in the x-y plane (set by initialize): dimension 2, every particle
-  /// at the same z, every orientation a rotation about z and every bond's reference direction in
-  /// the plane. The step then runs the planar forms of the bond loop, kick and drift (only x, y and
+  /// at the same z, every orientation a rotation about z, no velocity out of the plane
+  /// (v_z = ω_x = ω_y = 0) and every bond's reference direction in the plane. The step then runs the planar forms of the bond loop, kick and drift (only x, y and
   /// the rotation about z move; v_z, ω_x, ω_y are not integrated: in 2D their loads are 0).
   bool planarMotion() const { return m_planar; }
 
