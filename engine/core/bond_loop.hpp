@@ -37,7 +37,10 @@ template <class Law>
 /// with a nodal shift) is the smallest bond stretch of each node at the previous evaluation.
 /// With kDamped, each intact bond also carries Silling's local damping (damage/local_damping.hpp).
 /// Returns the number of bonds that broke in this call.
-template <class Law, class Criterion, bool kDamped = false>
+/// With kPlanar (2D systems whose motion stays in the x-y plane, BondedSystem::planarMotion), the
+/// law's planarResponse is used: z, n0_z and the in-plane quaternion parts are not read, and only
+/// fjx, fjy, tiz, tjz are stored (the caller keeps fjz, tix, tiy, tjx, tjy at 0).
+template <class Law, class Criterion, bool kDamped = false, bool kPlanar = false>
 std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const ParticleStore& p, BondStore& bonds,
                           const double* nodalMinStretch, const SillingDamping& damping = {}) {
   // Bind the arrays to local pointers: the loop body is then plain loads, arithmetic and stores.
@@ -63,16 +66,26 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
   for (std::ptrdiff_t b = 0; b < n; ++b) {
     const std::int32_t i = bi[b], j = bj[b];
     BondGeometry g{};
-    g.dx = x[j] - x[i]; g.dy = y[j] - y[i]; g.dz = z[j] - z[i];
+    g.dx = x[j] - x[i]; g.dy = y[j] - y[i];
     g.restLength = L0[b];
-    g.n0x = n0x[b]; g.n0y = n0y[b]; g.n0z = n0z[b];
+    g.n0x = n0x[b]; g.n0y = n0y[b];
     g.radiusI = rad[i]; g.radiusJ = rad[j];
     g.stiffness = kb[b];
-    if constexpr (Law::kRotational) {
-      g.qiw = qw[i]; g.qix = qx[i]; g.qiy = qy[i]; g.qiz = qz[i];
-      g.qjw = qw[j]; g.qjx = qx[j]; g.qjy = qy[j]; g.qjz = qz[j];
+    if constexpr (!kPlanar) {
+      g.dz = z[j] - z[i];
+      g.n0z = n0z[b];
     }
-    BondResponse r = lawCopy.response(g);
+    if constexpr (Law::kRotational) {
+      g.qiw = qw[i]; g.qiz = qz[i];
+      g.qjw = qw[j]; g.qjz = qz[j];
+      if constexpr (!kPlanar) {
+        g.qix = qx[i]; g.qiy = qy[i];
+        g.qjx = qx[j]; g.qjy = qy[j];
+      }
+    }
+    BondResponse r;
+    if constexpr (kPlanar) r = lawCopy.planarResponse(g);
+    else r = lawCopy.response(g);
     if constexpr (kDamped) {
       const double length = std::sqrt(g.dx * g.dx + g.dy * g.dy + g.dz * g.dz);
       const double axial = damper.axialForce(b, i, j, length, lawCopy.stiffness(g).translational, g.restLength);
@@ -88,10 +101,14 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
     broken += static_cast<std::size_t>(was - now);
     intact[b] = now;
     measured[b] = m;
-    fjx[b] = now * r.fjx; fjy[b] = now * r.fjy; fjz[b] = now * r.fjz;
+    fjx[b] = now * r.fjx; fjy[b] = now * r.fjy;
+    if constexpr (!kPlanar) fjz[b] = now * r.fjz;
     if constexpr (Law::kRotational) {
-      tix[b] = now * r.tix; tiy[b] = now * r.tiy; tiz[b] = now * r.tiz;
-      tjx[b] = now * r.tjx; tjy[b] = now * r.tjy; tjz[b] = now * r.tjz;
+      tiz[b] = now * r.tiz; tjz[b] = now * r.tjz;
+      if constexpr (!kPlanar) {
+        tix[b] = now * r.tix; tiy[b] = now * r.tiy;
+        tjx[b] = now * r.tjx; tjy[b] = now * r.tjy;
+      }
     }
   }
   return broken;
@@ -100,8 +117,8 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
 /// Sets each particle's force (and, with kTorques, torque) to the sum of its bonds' loads
 /// (overwrites f and t). With kMinStretch, also the smallest failure measure (the stretch, for the
 /// critical-stretch criterion) of its intact bonds into minStretch; a node without intact bond
-/// keeps its previous value.
-template <bool kTorques, bool kMinStretch>
+/// keeps its previous value. With kPlanar, only f_x, f_y and t_z are summed; f_z, t_x, t_y are set to 0.
+template <bool kTorques, bool kMinStretch, bool kPlanar = false>
 void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretch) {
   const std::int32_t* start = bonds.incidenceStart.data();
   const std::int32_t* inc = bonds.incidence.data();
@@ -116,12 +133,23 @@ void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretc
     double lowest = 1e300;
     for (std::int32_t s = start[k]; s < start[k + 1]; ++s) {
       const std::int32_t e = inc[s], b = e >> 1;
-      const double sign = (e & 1) ? 1.0 : -1.0;  // end j receives F_j, end i receives −F_j
-      fx += sign * fjx[b]; fy += sign * fjy[b]; fz += sign * fjz[b];
-      if constexpr (kTorques) {
-        tx += (e & 1) ? tjx[b] : tix[b];
-        ty += (e & 1) ? tjy[b] : tiy[b];
-        tz += (e & 1) ? tjz[b] : tiz[b];
+      if constexpr (kPlanar) {
+        // Branch-free: the end (e & 1) is random along the list, and a branch on it mispredicts.
+        // Both torques are loaded, then selected; the sign is a ±1 factor (exact).
+        const double sign = 2.0 * static_cast<double>(e & 1) - 1.0;
+        fx += sign * fjx[b]; fy += sign * fjy[b];
+        if constexpr (kTorques) {
+          const double ti = tiz[b], tj = tjz[b];
+          tz += (e & 1) ? tj : ti;
+        }
+      } else {
+        const double sign = (e & 1) ? 1.0 : -1.0;  // end j receives F_j, end i receives −F_j
+        fx += sign * fjx[b]; fy += sign * fjy[b]; fz += sign * fjz[b];
+        if constexpr (kTorques) {
+          tx += (e & 1) ? tjx[b] : tix[b];
+          ty += (e & 1) ? tjy[b] : tiy[b];
+          tz += (e & 1) ? tjz[b] : tiz[b];
+        }
       }
       if constexpr (kMinStretch) lowest = intact[b] > 0.5 ? std::min(lowest, measure[b]) : lowest;
     }

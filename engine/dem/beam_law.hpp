@@ -32,6 +32,18 @@ struct BeamLaw {
     return r;
   }
 
+  /// The same law under planar motion (2D; core/bond_loop.hpp's kPlanar): only F_x, F_y, T_z
+  /// and σ_eq are filled, the rest is 0.
+  [[gnu::always_inline]] BondResponse planarResponse(const BondGeometry& g) const {
+    const PlanarBeamResponse b = planarBeamResponse(params, g.radiusI, g.radiusJ, g.restLength, g.n0x, g.n0y, g.dx,
+                                                    g.dy, g.qiw, g.qiz, g.qjw, g.qjz);
+    BondResponse r{};
+    r.fjx = b.fjx; r.fjy = b.fjy;
+    r.tiz = b.tiz; r.tjz = b.tjz;
+    r.equivalentStress = b.equivalentStress;
+    return r;
+  }
+
   /// physics-reference §1.8: k_tr = max(E S/L0, 12 E I/L0³), k_rot = max(G J/L0, 4 E I/L0).
   BondStiffness stiffness(const BondGeometry& g) const {
     const BeamSection s = BeamSection::of(params, g.radiusI, g.radiusJ);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "core/parallel.hpp"
 #include "core/bond_loop.hpp"
@@ -12,14 +13,33 @@
 
 namespace rupture {
 
+namespace {
+
+/// The planar-motion invariant of BondedSystem::planarMotion.
+bool movesInPlane(const ParticleStore& p, const BondStore& bonds) {
+  if (p.dimension != 2) return false;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.z[k] != p.z[0] || p.qx[k] != 0.0 || p.qy[k] != 0.0 || p.vz[k] != 0.0 || p.wx[k] != 0.0 || p.wy[k] != 0.0)
+      return false;
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    if (bonds.n0z[b] != 0.0) return false;
+  return true;
+}
+
+}  // namespace
+
 void BondedSystem::initialize() {
   m_loadTime = time;
+  m_planar = movesInPlane(particles, bonds);
   if (std::holds_alternative<BeamModel>(model)) {
     // σ_f <= 0 means unbreakable.
     const double sigma = beam.failureStress > 0 ? beam.failureStress : std::numeric_limits<double>::infinity();
     std::fill(bonds.threshold.begin(), bonds.threshold.end(), sigma);
   }
   bonds.finalize(particles.size());
+  if (m_planar) {  // the planar bond loop never writes these: they stay 0
+    for (auto* v : {&bonds.fjz, &bonds.tix, &bonds.tiy, &bonds.tjx, &bonds.tjy}) std::fill(v->begin(), v->end(), 0.0);
+  }
   m_minStretch.assign(particles.size(), 0.0);
   m_minStretchNext.assign(particles.size(), 0.0);
   m_centralCurrent = false;
@@ -126,21 +146,34 @@ void BondedSystem::computeLoads() {
     }
     m_centralCurrent = false;  // this loop breaks bonds the partner list would not know about
     m_loadsStale = false;
-    if (bondDamping > 0 && m_step > 0) {
-      const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
-                                   m_previousLength.data()};
-      brokenLastStep = evaluateBonds<Law, Criterion, true>(law, criterion, particles, bonds, m_minStretch.data(), damping);
-    } else {
-      brokenLastStep = evaluateBonds(law, criterion, particles, bonds, m_minStretch.data());
-    }
-    if (brokenLastStep > 0) handOverBrokenBonds();
-    if constexpr (Criterion::kNodalShift) {
-      if (criterion.alpha != 0.0) {
-        gatherBondLoads<Law::kRotational, true>(bonds, particles, m_minStretch.data());
+    // One dispatch per pass on the planar form (2D), then the loops are templates.
+    auto pass = [&](auto planar) {
+      constexpr bool kPlanar = decltype(planar)::value;
+      if (bondDamping > 0 && m_step > 0) {
+        const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
+                                     m_previousLength.data()};
+        brokenLastStep = evaluateBonds<Law, Criterion, true, kPlanar>(law, criterion, particles, bonds,
+                                                                      m_minStretch.data(), damping);
+      } else {
+        brokenLastStep = evaluateBonds<Law, Criterion, false, kPlanar>(law, criterion, particles, bonds,
+                                                                       m_minStretch.data());
+      }
+      if (brokenLastStep > 0) handOverBrokenBonds();
+      if constexpr (Criterion::kNodalShift) {
+        if (criterion.alpha != 0.0) {
+          gatherBondLoads<Law::kRotational, true, kPlanar>(bonds, particles, m_minStretch.data());
+          return;
+        }
+      }
+      gatherBondLoads<Law::kRotational, false, kPlanar>(bonds, particles, nullptr);
+    };
+    if constexpr (requires(const Law& l, const BondGeometry& g) { l.planarResponse(g); }) {
+      if (m_planar) {
+        pass(std::true_type{});
         return;
       }
     }
-    gatherBondLoads<Law::kRotational, false>(bonds, particles, nullptr);
+    pass(std::false_type{});
   });
   contact.addForces(particles, bonds);
   if (externalLoads) externalLoads(particles, m_loadTime);
@@ -156,7 +189,8 @@ namespace {
 
 // v += (dt/2) F/m on the free degrees of freedom. Written with 0/1 factors instead of branches so
 // that it vectorises; Cundall damping (quasi-static runs only) is a separate instantiation.
-template <bool kDamped>
+// kPlanar: only v_x, v_y, ω_z (the other loads are 0 in 2D, so the others would not change).
+template <bool kDamped, bool kPlanar>
 void kickLoop(ParticleStore& p, double halfDt, double gamma) {
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
   const std::uint8_t* fixed = p.fixedDofs.data();
@@ -183,21 +217,55 @@ void kickLoop(ParticleStore& p, double halfDt, double gamma) {
     const double freeR = (f & kFixRotation) ? 0.0 : b;
     vx[k] += freeX * load(fx[k], vx[k]);
     vy[k] += freeY * load(fy[k], vy[k]);
-    vz[k] += freeZ * load(fz[k], vz[k]);
-    wx[k] += freeR * load(tx[k], wx[k]);
-    wy[k] += freeR * load(ty[k], wy[k]);
+    if constexpr (!kPlanar) {
+      vz[k] += freeZ * load(fz[k], vz[k]);
+      wx[k] += freeR * load(tx[k], wx[k]);
+      wy[k] += freeR * load(ty[k], wy[k]);
+    }
     wz[k] += freeR * load(tz[k], wz[k]);
+  }
+}
+
+// x += dt v and q <- exp(dt/2 ω) q for planar motion: ω = ω_z e_z and q = (w, 0, 0, q_z). The
+// operations of the 3D drift with its zero terms left out, in the same order (the same numbers).
+void driftPlanar(ParticleStore& p, double dt) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  double *x = p.x.data(), *y = p.y.data(), *qw = p.qw.data(), *qz = p.qz.data();
+  const double *vx = p.vx.data(), *vy = p.vy.data(), *wz = p.wz.data();
+#pragma omp parallel for simd schedule(static) if (worthParallel(p.size()))
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    x[k] += dt * vx[k];
+    y[k] += dt * vy[k];
+    const double hz = 0.5 * dt * wz[k];
+    const double h2 = hz * hz;
+    const double c = 1.0 - h2 / 2.0 + h2 * h2 / 24.0;
+    const double s = 1.0 - h2 / 6.0 + h2 * h2 / 120.0;
+    const double dw = c, dz = s * hz;
+    const double w = qw[k], z = qz[k];
+    const double nw = dw * w - dz * z;
+    const double nz = dw * z + dz * w;
+    const double inv = 1.0 / std::sqrt(nw * nw + nz * nz);
+    qw[k] = nw * inv; qz[k] = nz * inv;
   }
 }
 
 }  // namespace
 
 void BondedSystem::kick(double halfDt) {
-  if (localDamping > 0) kickLoop<true>(particles, halfDt, localDamping);
-  else kickLoop<false>(particles, halfDt, 0.0);
+  if (m_planar) {
+    if (localDamping > 0) kickLoop<true, true>(particles, halfDt, localDamping);
+    else kickLoop<false, true>(particles, halfDt, 0.0);
+  } else {
+    if (localDamping > 0) kickLoop<true, false>(particles, halfDt, localDamping);
+    else kickLoop<false, false>(particles, halfDt, 0.0);
+  }
 }
 
 void BondedSystem::drift(double dt) {
+  if (m_planar) {
+    driftPlanar(particles, dt);
+    return;
+  }
   ParticleStore& p = particles;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
 #pragma omp parallel for simd schedule(static) if (worthParallel(p.size()))

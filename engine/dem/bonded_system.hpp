@@ -82,6 +82,12 @@ public:
   /// weighted by the partners' volumes; kept up to date as bonds break (O(broken bonds) per step).
   const std::vector<double>& damageIndex() const { return m_damage; }
 
+  /// True when the system moves in the x-y plane (set by initialize): dimension 2, every particle
+  /// at the same z, every orientation a rotation about z, no velocity out of the plane
+  /// (v_z = ω_x = ω_y = 0) and every bond's reference direction in the plane. The step then runs the planar forms of the bond loop, kick and drift (only x, y and
+  /// the rotation about z move; v_z, ω_x, ω_y are not integrated: in 2D their loads are 0).
+  bool planarMotion() const { return m_planar; }
+
   /// Calls f(law, criterion) with the model's concrete types (the beam law filled from `beam`).
   template <class F>
   decltype(auto) visitModel(F&& f) const {
@@ -113,6 +119,7 @@ private:
   bool m_centralCurrent = false;        ///< m_central agrees with bonds (no other loop ran since it was built)
   mutable bool m_loadsStale = false;    ///< bonds.fjx/failureMeasure are older than the last evaluation
   std::vector<std::size_t> m_broken;    ///< bonds broken in the last evaluation (central loop)
+  bool m_planar = false;                ///< see planarMotion()
 };
 
 }  // namespace rupture
