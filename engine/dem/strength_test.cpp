@@ -52,9 +52,12 @@ StrengthResult measureTensileStrength(const BondedSystem& sample, const SampleSp
   const double strainE = options.elastic.strain;
   result.crackOnsetStrain = strainE / worst;
 
-  // Stage 2: from just below the onset, strain steps with failure and contact on.
+  // Stage 2: from half a step below the onset, strain steps with failure and contact on. The
+  // first state is relaxed and recorded before any step (it is the elastic end of the curve), and
+  // no step lands on ε_onset itself, where rounding alone decides whether the first bond breaks:
+  // the sampled curve then scales with σ_f as the curve itself does.
   const double increment = options.strainIncrement * result.crackOnsetStrain;
-  double strain = result.crackOnsetStrain - increment;
+  double strain = result.crackOnsetStrain - 0.5 * increment;
   scaleDisplacements(s.particles, sample.particles, strain / strainE);
   s.beam.failureStress = sigmaF;
   s.contact.setParameters(sample.contact.parameters());
@@ -72,9 +75,11 @@ StrengthResult measureTensileStrength(const BondedSystem& sample, const SampleSp
   const double initialBonds = static_cast<double>(s.bonds.size());
   const double maxStrain = options.maxStrainFactor * result.crackOnsetStrain;
 
-  while (!cancelled()) {
-    strain += increment;
-    for (std::size_t k = 0; k < n; ++k) s.particles.x[k] += increment * (sample.particles.x[k] - xc);
+  for (bool first = true; !cancelled(); first = false) {
+    if (!first) {
+      strain += increment;
+      for (std::size_t k = 0; k < n; ++k) s.particles.x[k] += increment * (sample.particles.x[k] - xc);
+    }
     ++result.increments;
     // Relax until σ̄ settles with no break over a whole interval.
     double previous = meanFaceStress(s.particles, faces, section);

@@ -7,8 +7,9 @@
 //  1. Elastic: relax at the strain ε_e of the elastic measurement with failure off. Before the first
 //     break the response is linear in ε and every beam's σ_eq (eq. 1) is homogeneous of degree one in
 //     the displacements, so the quasi-static crack-onset strain is exact: ε_onset = ε_e σ_f / max σ_eq.
-//  2. Damage: start from the elastic field scaled to (1 − Δ) ε_onset, then raise the strain by steps
-//     of Δ ε_onset (affine increments of the X positions, Δ = options.strainIncrement), relaxing at each
+//  2. Damage: start from the elastic field scaled to (1 − Δ/2) ε_onset (relaxed and recorded), then
+//     raise the strain by steps of Δ ε_onset (affine increments of the X positions, Δ =
+//     options.strainIncrement; none lands on ε_onset, where rounding decides the first break), relaxing at each
 //     with failure and contact on until the mean face stress σ̄ (seed eq. 4) settles and no bond broke
 //     over a check interval. tensile_strength = the largest settled σ̄; the test stops once σ̄ falls
 //     below stopFraction × that peak, or at maxStrainFactor × ε_onset.
