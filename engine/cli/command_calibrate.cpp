@@ -8,6 +8,7 @@
 
 #include "cli/cli.hpp"
 #include "cli/spec_file.hpp"
+#include "dem/bond_model.hpp"
 #include "dem/calibration.hpp"
 #include "dem/strength_test.hpp"
 #include "io/bonded_spec.hpp"
@@ -73,7 +74,7 @@ int calibrateCommand(const Args& args) {
   try {
     if (haveYoung) {
       const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson);
-      sample.beam = fit.beam;  // the strength below is that of the fitted beams
+      assignBeams(sample, material, fit.beam);  // the strength below is that of the fitted beams
       out["beam"] = {{"young_modulus", fit.beam.youngModulus},
                      {"poisson_ratio", fit.beam.poissonRatio},
                      {"radius_ratio", fit.beam.radiusRatio},

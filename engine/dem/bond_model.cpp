@@ -99,4 +99,13 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
   system.dampingWaveSpeed = m.dampingWaveSpeed;
 }
 
+void assignBeams(BondedSystem& system, const MaterialSpec& material, const BeamParameters& beams) {
+  system.beam = beams;
+  ContactParameters contact = system.contact.parameters();
+  if (material.contactModulusFromBeams) contact.youngModulus = beamContactModulus(beams);
+  if (material.contactPoissonFromBeams) contact.poissonRatio = beams.poissonRatio;
+  system.contact.setParameters(contact);
+  system.dampingWaveSpeed = std::sqrt(beamContactModulus(beams) / material.density);
+}
+
 }  // namespace rupture

@@ -49,6 +49,7 @@ namespace rupture {
 
 struct SampleSpec;
 struct MaterialSpec;
+struct BeamParameters;
 class BondedSystem;
 
 /// Chooses the law and criterion of `material` and sets every bond's constants (stiffness,
@@ -57,5 +58,12 @@ class BondedSystem;
 /// Grain and inclusion placement poll `cancel` (RunCancelled).
 void assignMaterial(BondedSystem& system, const SampleSpec& sample, const MaterialSpec& material,
                     const Cancellation& cancel = {});
+
+/// Gives a built beam sample other beams (a calibration's result) with what follows from them as
+/// the spec would have given it: the contact modulus and Poisson ratio where the spec left them to
+/// their defaults (MaterialSpec::contactModulusFromBeams), and the damping wave speed. Without this,
+/// the strength measured after an elastic fit is that of the old beams' contact law, not the one a
+/// spec with the fitted beams runs with.
+void assignBeams(BondedSystem& system, const MaterialSpec& material, const BeamParameters& beams);
 
 }  // namespace rupture

@@ -105,6 +105,16 @@ struct MaterialSpec {
   /// wave speed √(E/ρ) it is scaled by, E being the model's Young's modulus (m/s).
   double localDamping = 0;
   double dampingWaveSpeed = 0;
+  /// Beams: the spec left material.contact.young_modulus / poisson_ratio to their defaults, which
+  /// follow the beams (beamContactModulus, ν_μ): a calibration that changes the beams changes them.
+  bool contactModulusFromBeams = false;
+  bool contactPoissonFromBeams = false;
 };
+
+/// The default contact modulus of beams: about the macroscopic modulus they give (E_M ∝ E_μ r_μ²,
+/// physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
+inline double beamContactModulus(const BeamParameters& beam) {
+  return beam.youngModulus * beam.radiusRatio * beam.radiusRatio;
+}
 
 }  // namespace rupture

@@ -298,10 +298,9 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     m.beam.bendingFromRelativeRotation =
         beam.choice("bending_stress", {"end_moment", "relative_rotation"}, "end_moment") == "relative_rotation";
     beam.finish();
-    // Default contact modulus ~ the macroscopic modulus the beams give (E_M ∝ E_μ r_μ², see
-    // physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
-    contactModulus = m.beam.youngModulus * m.beam.radiusRatio * m.beam.radiusRatio;
+    contactModulus = beamContactModulus(m.beam);
     contactPoisson = m.beam.poissonRatio;
+    m.contactModulusFromBeams = m.contactPoissonFromBeams = true;
     // Beam stiffness comes from one set of beam parameters, not from a per-bond constant.
     const auto& raw = root.node();
     if (raw.contains("sample") && raw["sample"].is_object() && raw["sample"].contains("inclusions") &&
@@ -330,6 +329,8 @@ MaterialSpec parseMaterial(const SpecReader& root) {
   m.dampingWaveSpeed = std::sqrt(contactModulus / m.density);  // the model's E (beams: E_μ r², as contact)
   if (auto contact = material.optionalObject("contact")) {
     m.contact.enabled = contact->boolean("enabled", true);
+    m.contactModulusFromBeams = m.contactModulusFromBeams && !contact->has("young_modulus");
+    m.contactPoissonFromBeams = m.contactPoissonFromBeams && !contact->has("poisson_ratio");
     m.contact.youngModulus = contact->number("young_modulus", Range::positive(), "Pa", m.contact.youngModulus);
     m.contact.poissonRatio = contact->number("poisson_ratio", {-1.0, 0.5, true, true}, "1", m.contact.poissonRatio);
     m.contact.friction = contact->number("friction", Range::closed(0.0, 2.0), "1", m.contact.friction);

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "dem/bond_model.hpp"
 #include "dem/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
@@ -128,7 +129,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
       fitted = !fit.cancelled;  // a cancelled fit's last test is not of the fitted beams: not reported
       measured = fitted;
       result = fit.achieved;
-      if (fitted) system.beam = fit.beam;  // the strength below is that of the fitted beams
+      if (fitted) assignBeams(system, spec.material, fit.beam);  // the strength below is that of the fitted beams
     } else if (spec.material.model == "beam") {
       measured = true;  // the strength test below measures E and ν on its way
     } else {

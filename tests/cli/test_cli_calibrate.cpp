@@ -2,6 +2,8 @@
 // exit code 2 with the field named for bad specs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cli_runner.hpp"
 
 using rupture::testing::runCli;
@@ -63,6 +65,33 @@ TEST(CliCalibrate, TensileStrengthRoundTrip) {
     EXPECT_NEAR(nlohmann::json::parse(check.out).at("tensile_strength").get<double>(), target, 0.05 * target)
         << "seed " << seed << ", fitted failure stress " << sigmaF;
   }
+}
+
+// With elastic and strength targets together, what the fit reports is what a spec holding the
+// fitted beams gives: the contact law whose defaults follow the beams (E_μ r_μ², ν_μ) follows the
+// fitted ones too, not the beams the spec started from. The sample has a notch along the tension:
+// the pairs across it overlap as packed and touch from the start, so the contact law matters.
+TEST(CliCalibrate, FullFitReportsWhatTheFittedSpecGives) {
+  nlohmann::json spec = smallSpec();
+  spec["sample"]["size"] = {0.1e-6, 0.1e-6};
+  spec["sample"]["notches"] = {{{"start", {0.0, 0.05e-6}}, {"end", {0.05e-6, 0.05e-6}}}};
+  const auto fit = runCli("calibrate " + writeSpec(spec, "fullfit.json") +
+                          " --target-young-modulus 150e9 --target-poisson-ratio 0.35 --target-tensile-strength 80e6");
+  ASSERT_EQ(fit.exitCode, 0) << fit.err;
+  const auto fitted = nlohmann::json::parse(fit.out);
+  const auto& beam = fitted.at("beam");
+  ASSERT_NE(beam.at("young_modulus").get<double>(), 2865e9);  // the fit changed the beams
+  spec["material"]["beam"]["young_modulus"] = beam.at("young_modulus");
+  spec["material"]["beam"]["radius_ratio"] = beam.at("radius_ratio");
+  spec["material"]["beam"]["failure_stress"] = beam.at("failure_stress");
+  const auto check = runCli("calibrate " + writeSpec(spec, "fullfit-check.json"));
+  ASSERT_EQ(check.exitCode, 0) << check.err;
+  const auto measured = nlohmann::json::parse(check.out);
+  const auto& achieved = fitted.at("achieved");
+  for (const char* key : {"young_modulus", "tensile_strength", "crack_onset_strain", "strain_at_peak"})
+    EXPECT_NEAR(measured.at(key).get<double>(), achieved.at(key).get<double>(),
+                1e-9 * std::abs(achieved.at(key).get<double>()))
+        << key;
 }
 
 TEST(CliCalibrate, BadStrengthTargetExitsTwoNamingTheOption) {
