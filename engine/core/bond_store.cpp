@@ -67,6 +67,12 @@ void BondStore::remap(const std::vector<std::int32_t>& newIndex) {
     moveBond(b, m++);
   }
   truncate(m);
+  std::size_t kept = 0;
+  for (const CutPair& pair : cutPairs) {
+    const std::int32_t a = newIndex[pair.i], c = newIndex[pair.j];
+    if (a >= 0 && c >= 0) cutPairs[kept++] = {a, c, pair.restLength};
+  }
+  cutPairs.resize(kept);
 }
 
 void BondStore::filter(const std::vector<std::uint8_t>& keep) {

@@ -34,6 +34,15 @@ struct BondStore {
   // Particle -> bond incidence (CSR), built once after the bonds: entries are 2·b + end (0: i, 1: j).
   std::vector<std::int32_t> incidenceStart, incidence;
 
+  /// A pair whose bond a pre-crack removed (dem/notches.hpp), with the bond's rest length: contact
+  /// touches it at min(R_i + R_j, L0), as a broken bond, so pairs packed overlapping across a notch
+  /// are not pushed apart at the first step. Carried by remap.
+  struct CutPair {
+    std::int32_t i, j;
+    double restLength;  ///< m
+  };
+  std::vector<CutPair> cutPairs;
+
   std::size_t size() const { return i.size(); }
 
   /// Adds a bond between particles a and b in their current configuration (rest state).
@@ -43,7 +52,8 @@ struct BondStore {
   /// last add() and after any change of threshold or strength.
   void finalize(std::size_t particleCount);
 
-  /// Renumbers particle indices after ParticleStore::compact and drops bonds touching removed particles.
+  /// Renumbers particle indices after ParticleStore::compact and drops bonds (and cut pairs) touching
+  /// removed particles.
   void remap(const std::vector<std::int32_t>& newIndex);
 
   /// Keeps only the bonds with keep[b] != 0, in order (call before finalize).

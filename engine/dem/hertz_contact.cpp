@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "core/parallel.hpp"
 
@@ -64,10 +66,32 @@ inline PairLoad pairLoad(const ContactParameters& c, const ParticleStore& p, std
   return out;
 }
 
-// The contact distance of a pair: R_i + R_k, or the rest length of their broken bond if shorter;
-// negative when an intact bond holds the pair (no contact then).
-double contactReach(const ParticleStore& p, const BondStore& bonds, std::int32_t i, std::int32_t k) {
+// The pairs a pre-crack cut (BondStore::cutPairs) and their rest lengths, keyed by both orders.
+using CutLengths = std::unordered_map<std::uint64_t, double>;
+
+std::uint64_t pairKey(std::int32_t i, std::int32_t k) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(k);
+}
+
+CutLengths cutLengths(const BondStore& bonds) {
+  CutLengths out;
+  out.reserve(2 * bonds.cutPairs.size());
+  for (const BondStore::CutPair& c : bonds.cutPairs) {
+    out[pairKey(c.i, c.j)] = c.restLength;
+    out[pairKey(c.j, c.i)] = c.restLength;
+  }
+  return out;
+}
+
+// The contact distance of a pair: R_i + R_k, or the rest length of their broken (or cut) bond if
+// shorter; negative when an intact bond holds the pair (no contact then).
+double contactReach(const ParticleStore& p, const BondStore& bonds, const CutLengths& cut, std::int32_t i,
+                    std::int32_t k) {
   double reach = p.radius[i] + p.radius[k];
+  if (!cut.empty()) {
+    const auto found = cut.find(pairKey(i, k));
+    if (found != cut.end()) reach = std::min(reach, found->second);
+  }
   for (std::int32_t s = bonds.incidenceStart[i]; s < bonds.incidenceStart[i + 1]; ++s) {
     const std::int32_t b = bonds.incidence[s] >> 1;
     if (bonds.i[b] != k && bonds.j[b] != k) continue;
@@ -99,6 +123,7 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
   m_skin = 0.3 * meanRadius;
   m_cells.build(p, 2.0 * maxRadius + m_skin);
 
+  const CutLengths cut = cutLengths(bonds);
   std::vector<std::vector<std::pair<std::int32_t, double>>> perParticle(n);
 #pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
@@ -108,7 +133,7 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
       const double dx = p.x[k] - p.x[a], dy = p.y[k] - p.y[a], dz = p.z[k] - p.z[a];
       const double search = p.radius[a] + p.radius[k] + m_skin;
       if (dx * dx + dy * dy + dz * dz >= search * search) return;
-      const double reach = contactReach(p, bonds, i, k);
+      const double reach = contactReach(p, bonds, cut, i, k);
       if (reach > 0) perParticle[a].push_back({k, reach});
     });
     std::sort(perParticle[a].begin(), perParticle[a].end());  // fixed order: determinism

@@ -33,6 +33,7 @@ std::size_t cutNotches(const std::vector<Notch>& notches, const ParticleStore& p
     for (const Notch& n : notches)
       if (segmentsCross(p.x[i], p.y[i], p.x[j], p.y[j], n.start[0], n.start[1], n.end[0], n.end[1])) {
         keep[b] = 0;
+        bonds.cutPairs.push_back({i, j, bonds.restLength[b]});
         ++removed;
         break;
       }

@@ -14,7 +14,8 @@ namespace rupture {
 /// True when the segments [a, b] and [c, d] of the x-y plane cross (touching counts).
 bool segmentsCross(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy);
 
-/// Removes the bonds crossing any notch (before finalize); returns how many were removed.
+/// Removes the bonds crossing any notch (before finalize), recording each as a cut pair
+/// (BondStore::cutPairs: contact treats it as a broken bond); returns how many were removed.
 std::size_t cutNotches(const std::vector<Notch>& notches, const ParticleStore& particles, BondStore& bonds);
 
 }  // namespace rupture
