@@ -135,6 +135,58 @@ TEST_P(ImpactEveryModel, ANotchedPlateCracksFromItsNotchTip) {
   EXPECT_GT(nearTip, 0.25) << GetParam();
 }
 
+// A traction on the top edge of a free, unnotched plate: by Newton's second law the plate's
+// momentum at time t is the applied force t × σ × L × thickness, whatever the waves inside do.
+// The thickness is the one the sample's masses are built with (sample.thickness on lattices, R_DE
+// on random packings), so the check is Σ m v_y = σ L t_h T with m = ρ_el V.
+TEST_P(ImpactEveryModel, ATractionGivesThePlateItsImpulse) {
+  nlohmann::json spec = notchedPlate(GetParam());
+  spec["sample"].erase("notches");
+  spec["material"].erase("no_failure_regions");
+  const double sigma = 2e6, length = 0.02;
+  spec["loading"] = {{"tractions", {{{"min", {0.0, 0.0095}}, {"max", {0.02, 0.01}}, {"traction", {0.0, sigma}}}}}};
+  spec["run"] = {{"end_time", 3e-6}, {"snapshot_times", {2e-6}}};
+  rupture::testing::ScratchDir dir;
+  RunControl control;
+  const RunOutcome out = runSpec(spec, (dir / "traction.h5").string(), control, 1);
+  ASSERT_TRUE(out.completed);
+  io::Hdf5File file = io::Hdf5File::openReadOnly((dir / "traction.h5").string());
+  const double t = file.readAttributeDouble("/snapshots/000001", "time");
+  const std::vector<double> velocity = file.readDatasetDouble("/snapshots/000001/velocity");
+  const std::vector<double> volume = file.readDatasetDouble("/sample/volume");
+  const bool random = GetParam() == "beam";
+  const double thickness = random ? 1.25e-4 : 2.5e-4;  // R_DE, or the default: the spacing
+  // Element density: ρ on lattices; on a dense random packing, ρ × box volume / Σ V (the dense
+  // sample has the bulk density, dem/sample_builder.hpp).
+  double totalVolume = 0;
+  for (double v : volume) totalVolume += v;
+  const double density = 2440 * (random ? 0.02 * 0.01 * thickness / totalVolume : 1.0);
+  double momentumX = 0, momentumY = 0;
+  for (std::size_t k = 0; k < volume.size(); ++k) {
+    momentumX += density * volume[k] * velocity[3 * k];
+    momentumY += density * volume[k] * velocity[3 * k + 1];
+  }
+  const double impulse = sigma * length * thickness * t;
+  EXPECT_NEAR(momentumY, impulse, 1e-6 * impulse) << GetParam();
+  EXPECT_NEAR(momentumX, 0.0, 1e-6 * impulse) << GetParam();
+}
+
+// An unloaded notched plate stays at rest: the pairs a notch separates touch at their packed
+// distance (as broken bonds do), so those a random packing left overlapping across the notch are
+// not pushed apart by contact at the first step.
+TEST_P(ImpactEveryModel, AnUnloadedNotchedPlateStaysAtRest) {
+  nlohmann::json spec = notchedPlate(GetParam());
+  spec["loading"] = {{"tractions", {{{"min", {0.0, 0.0095}}, {"max", {0.02, 0.01}}, {"traction", {0.0, 0.0}}}}}};
+  spec["run"] = {{"end_time", 3e-6}};
+  rupture::testing::ScratchDir dir;
+  RunControl control;
+  const RunOutcome out = runSpec(spec, (dir / "rest.h5").string(), control, 1);
+  ASSERT_TRUE(out.completed);
+  EXPECT_EQ(out.summary["broken_bonds"].get<double>(), 0) << GetParam();
+  // 1e-15 J: far below the 1e-8 J an element of this plate moving at 1 mm/s would carry.
+  EXPECT_LT(out.summary["kinetic_energy"].get<double>(), 1e-15) << GetParam();
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryModel, ImpactEveryModel, ::testing::Values("beam", "hookean", "born", "pmb"));
 
 }  // namespace

@@ -31,12 +31,13 @@ std::vector<std::int32_t> inside(const ParticleStore& p, const Box& box) {
   return out;
 }
 
-/// Area of the box's largest face inside the sample (m²; 2D: length × thickness).
-double loadedArea(const Box& box, const SampleSpec& s) {
+/// Area of the box's largest face inside the sample (m²; 2D: length × thickness, the thickness the
+/// sample's masses were built with: sample.thickness on lattices, R_DE on random packings).
+double loadedArea(const Box& box, const SampleSpec& s, double thickness) {
   double e[3];
   for (int a = 0; a < 3; ++a)
     e[a] = a < s.dimension ? std::max(0.0, std::min(box.max[a], s.size[a]) - std::max(box.min[a], 0.0)) : 0.0;
-  if (s.dimension == 2) return std::max(e[0], e[1]) * s.thickness;
+  if (s.dimension == 2) return std::max(e[0], e[1]) * thickness;
   return std::max({e[0] * e[1], e[1] * e[2], e[0] * e[2]});
 }
 
@@ -120,7 +121,7 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
   for (const TractionRegion& r : spec.tractions) {
     std::vector<std::int32_t> members = inside(p, r.box);
     if (members.empty()) continue;
-    const double share = loadedArea(r.box, spec.sample) / static_cast<double>(members.size());
+    const double share = loadedArea(r.box, spec.sample, report.thickness) / static_cast<double>(members.size());
     pushed.push_back({members, {r.traction[0] * share, r.traction[1] * share, r.traction[2] * share}});
   }
   std::optional<Projectile> projectile;
