@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -35,16 +36,15 @@ namespace detail {
 /// radius and (with kMinStretch) previous s_min, copied into the chunk buffers. Scalar on purpose:
 /// vectorised, GCC makes these reads 512-bit gathers, which on Zen 5 cost more than the scalar
 /// loads (the arithmetic pass after it is the one that gains from vectors).
-template <bool kMinStretch>
+template <bool kMinStretch, bool kRadii>
 [[gnu::noinline, gnu::optimize("no-tree-vectorize")]] void readPartners(
-    const std::int32_t* partner, int m, int padded, const double* x, const double* y, const double* z, const double* rad,
-    const double* minPrevious, double xk, double yk, double zk, double* dx, double* dy, double* dz, double* rj,
-    double* sj) {
+    const std::int32_t* partner, int m, int padded, const double* packed, const double* rad, double xk, double yk,
+    double zk, double* dx, double* dy, double* dz, double* rj, double* sj) {
   for (int t = 0; t < m; ++t) {
-    const std::int32_t j = partner[t];
-    dx[t] = x[j] - xk; dy[t] = y[j] - yk; dz[t] = z[j] - zk;
-    rj[t] = rad[j];
-    if constexpr (kMinStretch) sj[t] = minPrevious[j];
+    const double* q = packed + 4 * static_cast<std::ptrdiff_t>(partner[t]);  // one cache line
+    dx[t] = q[0] - xk; dy[t] = q[1] - yk; dz[t] = q[2] - zk;
+    if constexpr (kMinStretch) sj[t] = q[3];
+    if constexpr (kRadii) rj[t] = rad[partner[t]];
   }
   // Lanes past the last slot, up to the vector width: a finite, harmless bond (masked out later).
   for (int t = m; t < padded; ++t) {
@@ -52,6 +52,15 @@ template <bool kMinStretch>
     rj[t] = 0.0;
     sj[t] = 0.0;
   }
+}
+
+/// Whether a law reads the element radii (BondGeometry::radiusI/J): unless it says it does not.
+template <class Law>
+constexpr bool readsRadii() {
+  if constexpr (requires { Law::kReadsRadii; })
+    return Law::kReadsRadii;
+  else
+    return true;
 }
 
 /// One slot's law and criterion, returning scalars: called inside `omp simd`, where a BondResponse
@@ -99,6 +108,11 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
   const Law lawCopy = law;
   const Criterion crit = criterion;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  constexpr bool kRadii = detail::readsRadii<Law>();
+  // 32-byte records from a 64-byte boundary: a record never straddles two cache lines.
+  list.packed.resize(4 * p.size() + 8);
+  double* packed = list.packed.data();
+  packed += (64 - reinterpret_cast<std::uintptr_t>(packed) % 64) % 64 / sizeof(double);
   std::vector<std::vector<std::size_t>> found;
 
 #pragma omp parallel if (worthParallel(bonds.size()))
@@ -111,6 +125,12 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
     alignas(64) std::int64_t keepb[kChunk];  // 64-bit like the doubles: one vector width in the loop
 #pragma omp for schedule(static)
     for (std::ptrdiff_t k = 0; k < n; ++k) {
+      double* q = packed + 4 * k;
+      q[0] = x[k]; q[1] = y[k]; q[2] = z[k];
+      q[3] = kMinStretch ? minPrevious[k] : 0.0;
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
       const double xk = x[k], yk = y[k], zk = z[k], rk = rad[k];
       double sk = 0.0;
       if constexpr (kMinStretch) sk = minPrevious[k];
@@ -121,7 +141,15 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
       for (std::int32_t c = first; c < last; c += kChunk) {
         const int m = std::min<std::int32_t>(kChunk, last - c);
         const int padded = (m + kLanes - 1) / kLanes * kLanes;
-        detail::readPartners<kMinStretch>(partner + c, m, padded, x, y, z, rad, minPrevious, xk, yk, zk, dxb, dyb, dzb, rjb, sjb);
+        // The slot streams a chunk ahead: the hardware prefetcher alone leaves the loop waiting on them.
+        for (int t = 0; t < m; t += 8) {
+          __builtin_prefetch(L0 + c + kChunk + t);
+          __builtin_prefetch(kb + c + kChunk + t);
+          __builtin_prefetch(limit + c + kChunk + t);
+          if (t % 16 == 0) __builtin_prefetch(partner + c + kChunk + t);
+        }
+        detail::readPartners<kMinStretch, kRadii>(partner + c, m, padded, packed, rad, xk, yk, zk, dxb, dyb, dzb, rjb,
+                                                  sjb);
         // Whether a bond of the chunk breaks now, as an OR: a `+` reduction of the same flag lost
         // counts here (GCC 12, 512-bit vectors) and left breaking bonds unmarked.
         std::int64_t chunkBreaks = 0;
@@ -131,7 +159,8 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
           // keep nothing.
           const bool inside = t < m;
           double fjx, fjy, fjz, measure, effective;
-          detail::evaluateSlot(lawCopy, crit, dxb[t], dyb[t], dzb[t], inside ? L0[c + t] : 1.0, rk, rjb[t],
+          detail::evaluateSlot(lawCopy, crit, dxb[t], dyb[t], dzb[t], inside ? L0[c + t] : 1.0, kRadii ? rk : 0.0,
+                               kRadii ? rjb[t] : 0.0,
                                inside ? kb[c + t] : 0.0, fjx, fjy, fjz, measure, effective);
           if constexpr (kMinStretch) effective += crit.alpha * std::max(sk, sjb[t]);
           const double threshold = inside ? limit[c + t] : kBroken;
