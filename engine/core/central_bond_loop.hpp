@@ -11,7 +11,9 @@
 // energy and axial force are the same numbers either way and its force the exact negation, so
 // both sides take the same break decision (the nodal shift uses max(s_min,i, s_min,j), symmetric)
 // and the force on k is −F_partner, as the gather gives it; slots are in ascending bond order,
-// the gather's summation order. No atomics: a thread writes only its own particles, and only the
+// the gather's summation order. The simd pass does each slot's arithmetic with the same operations
+// as the scalar law (GCC contracts the same products into FMAs in both; the identity test in
+// tests/engine/test_central_bond_loop.cpp would catch a difference). No atomics: a thread writes only its own particles, and only the
 // side with k = i records a broken bond (bonds.intact, the per-thread broken list).
 #include <omp.h>
 
