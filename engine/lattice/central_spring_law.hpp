@@ -11,6 +11,7 @@ namespace rupture {
 struct CentralSpringLaw {
   static constexpr const char* kName = "central_spring";
   static constexpr bool kRotational = false;
+  static constexpr bool kReadsRadii = false;  // the central loop need not fetch them
 
   [[gnu::always_inline]] BondResponse response(const BondGeometry& g) const {
     const double length = std::sqrt(g.dx * g.dx + g.dy * g.dy + g.dz * g.dz);
