@@ -20,10 +20,16 @@ struct PairConstants {
   double halfAlphaC0, halfBeta;  // ½ α c0, ½ β: the ½ of 1/ρ̄ = ½ (1/ρ_a + 1/ρ_b) folded in
 };
 
+/// Neighbours handled per block of the pair loop: their fields are copied into contiguous arrays
+/// (the gather), the pair terms computed by one vector loop over them, then added to the
+/// neighbours' accumulators by a scalar loop (the scatter). 32 keeps the block's arrays in L1.
+constexpr int kBlock = 32;
+
 /// The pairs of fluid particle i with list[begin, end): each pair once, added to i's sums (`own`)
 /// and to the neighbour's accumulator acc[4 (j − lo) …]: ax, ay, az, dρ/dt. With UniformMass the
 /// sums are per unit mass (the caller multiplies by the mass): 6 multiplications fewer per pair.
-/// Diffuse: add the δ-SPH term (fluid–fluid pairs).
+/// Diffuse: add the δ-SPH term (fluid–fluid pairs). Skin pairs (r ≥ 2h) are computed with F = 0,
+/// so the vector loop has no branch.
 template <bool Diffuse, bool UniformMass>
 [[gnu::always_inline]] inline void pairsOf(std::size_t i, const std::int32_t* __restrict list, int begin, int end,
                                            const Packed* __restrict pk, const double* __restrict rho,
@@ -32,52 +38,54 @@ template <bool Diffuse, bool UniformMass>
   const Packed a = pk[i];
   const double rhoi = rho[i], mi = UniformMass ? 1.0 : mass[i];
   double sax = 0, say = 0, saz = 0, sdrho = 0, smu = maxMu;
-  for (int n = begin; n < end; ++n) {
-    const std::size_t j = static_cast<std::size_t>(list[n]);
-    const Packed& b = pk[j];
-    const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-    const double r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 >= k.support2) continue;  // a skin pair: no contribution
-    const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
-    const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
-    const double F = k.kF * (4.0 * s * s - t * t) / r;
-    const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
-    const double vr = dvx * dx + dvy * dy + dvz * dz;
-    const double mu = k.h * vr / (r2 + k.eta2);
-    // Π only for approaching pairs (μ < 0), as min(μ, 0): a select, not a branch (its sign is random).
-    // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
-    const double approach = mu < 0.0 ? mu : 0.0;
-    const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
-    const double mj = UniformMass ? 1.0 : mass[j];
-    const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
-    const double fx = c * dx, fy = c * dy, fz = c * dz;
-    const double continuity = F * vr;
-    double* __restrict aj = acc + 4 * (j - lo);
-    if constexpr (UniformMass) {
-      sax -= fx;
-      say -= fy;
-      saz -= fz;
-      aj[0] += fx;
-      aj[1] += fy;
-      aj[2] += fz;
-    } else {
+  alignas(64) double ox[kBlock], oy[kBlock], oz[kBlock], od[kBlock];
+  for (int n0 = begin; n0 < end; n0 += kBlock) {
+    const int m = std::min(kBlock, end - n0);
+    const std::int32_t* __restrict nb = list + n0;
+#pragma omp simd reduction(+ : sax, say, saz, sdrho) reduction(max : smu)
+    for (int q = 0; q < m; ++q) {
+      const Packed& b = pk[nb[q]];
+      const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const bool inside = r2 < k.support2;  // a skin pair contributes nothing
+      const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
+      const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
+      const double F = inside ? k.kF * (4.0 * s * s - t * t) / r : 0.0;
+      const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
+      const double vr = dvx * dx + dvy * dy + dvz * dz;
+      const double mu = k.h * vr / (r2 + k.eta2);
+      // Π only for approaching pairs (μ < 0), as min(μ, 0).
+      // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
+      const double approach = mu < 0.0 ? mu : 0.0;
+      const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
+      const double mj = UniformMass ? 1.0 : mass[nb[q]];
+      const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
+      const double fx = c * dx, fy = c * dy, fz = c * dz;
+      const double continuity = F * vr;
       sax -= mj * fx;
       say -= mj * fy;
       saz -= mj * fz;
-      aj[0] += mi * fx;
-      aj[1] += mi * fy;
-      aj[2] += mi * fz;
+      ox[q] = mi * fx;
+      oy[q] = mi * fy;
+      oz[q] = mi * fz;
+      if constexpr (Diffuse) {
+        const double d = ((rhoi - rho[nb[q]]) - (k.kx * dx + k.ky * dy + k.kz * dz)) * F * k.diffusionScale;
+        sdrho += mj * (continuity + d * b.inverseRho);
+        od[q] = mi * (continuity - d * a.inverseRho);
+      } else {
+        sdrho += mj * continuity;
+        od[q] = mi * continuity;
+      }
+      const double amu = inside ? std::fabs(mu) : 0.0;
+      smu = smu > amu ? smu : amu;
     }
-    if constexpr (Diffuse) {
-      const double d = ((rhoi - rho[j]) - (k.kx * dx + k.ky * dy + k.kz * dz)) * F * k.diffusionScale;
-      sdrho += mj * (continuity + d * b.inverseRho);
-      aj[3] += mi * (continuity - d * a.inverseRho);
-    } else {
-      sdrho += mj * continuity;
-      aj[3] += mi * continuity;
+    for (int q = 0; q < m; ++q) {
+      double* __restrict aj = acc + 4 * (static_cast<std::size_t>(nb[q]) - lo);
+      aj[0] += ox[q];
+      aj[1] += oy[q];
+      aj[2] += oz[q];
+      aj[3] += od[q];
     }
-    const double amu = std::fabs(mu);
-    smu = smu > amu ? smu : amu;
   }
   own[0] += sax;
   own[1] += say;
