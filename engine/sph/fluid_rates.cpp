@@ -3,6 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(RUPTURE_SPH_NO_INTRINSICS)
+// GCC 12 reports its own intrinsics' undefined pass-through operands as maybe-uninitialized
+// (a known false positive of GCC 12); the state at the header's lines is what counts.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#define RUPTURE_SPH_AVX512 1
+#endif
+
 #include "core/parallel.hpp"
 
 namespace rupture::sph {
@@ -94,6 +104,153 @@ template <bool Diffuse, bool UniformMass>
   maxMu = smu;
 }
 
+#ifdef RUPTURE_SPH_AVX512
+/// 1/√x (x > 0) from the 14-bit estimate and two Newton steps: 14 → 28 → full double precision
+/// (a few ulp), several times cheaper than vsqrtpd and vdivpd on 512-bit vectors.
+inline __m512d inverseSqrt(__m512d x) {
+  const __m512d half = _mm512_set1_pd(0.5), threeHalves = _mm512_set1_pd(1.5);
+  const __m512d hx = _mm512_mul_pd(half, x);
+  __m512d y = _mm512_rsqrt14_pd(x);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
+  return y;
+}
+
+/// 1/x (x > 0): the 14-bit estimate and two Newton steps.
+inline __m512d inverse(__m512d x) {
+  const __m512d two = _mm512_set1_pd(2.0);
+  __m512d y = _mm512_rcp14_pd(x);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
+  return y;
+}
+
+/// pairsOf on 8 neighbours at a time. The 8 neighbours' 64-byte records are loaded whole and
+/// transposed (8 × 8 doubles, 24 shuffles: cheaper than 8 gathers), the pair terms computed in
+/// vectors (a lane of a partial block or a skin pair gets F = 0), and the 8 results transposed back
+/// into (ax, ay, az, dρ/dt) quadruples added to the neighbours' accumulators, one 256-bit
+/// load-add-store each. The neighbours of one particle are distinct, so the 8 updates of a block
+/// never meet. The sums are deterministic (fixed lane order), whatever the thread count.
+template <bool Diffuse, bool UniformMass>
+[[gnu::always_inline]] inline void pairsOfAvx512(std::size_t i, const std::int32_t* __restrict list, int begin,
+                                                 int end, const Packed* __restrict pk, const double* __restrict rho,
+                                                 const double* __restrict mass, double* __restrict acc, std::size_t lo,
+                                                 const PairConstants& k, double own[4], double& maxMu) {
+  const Packed& a = pk[i];
+  const __m512d ax = _mm512_set1_pd(a.x), ay = _mm512_set1_pd(a.y), az = _mm512_set1_pd(a.z);
+  const __m512d avx = _mm512_set1_pd(a.vx), avy = _mm512_set1_pd(a.vy), avz = _mm512_set1_pd(a.vz);
+  const __m512d ap = _mm512_set1_pd(a.pressureOverRho2), air = _mm512_set1_pd(a.inverseRho);
+  const __m512d support2 = _mm512_set1_pd(k.support2), tiny = _mm512_set1_pd(1e-300);
+  const __m512d h = _mm512_set1_pd(k.h), twoH = _mm512_set1_pd(k.twoH), kF = _mm512_set1_pd(k.kF);
+  const __m512d eta2 = _mm512_set1_pd(k.eta2), four = _mm512_set1_pd(4.0), zero = _mm512_setzero_pd();
+  const __m512d halfBeta = _mm512_set1_pd(k.halfBeta), halfAlphaC0 = _mm512_set1_pd(k.halfAlphaC0);
+  const __m512d mi = _mm512_set1_pd(UniformMass ? 1.0 : mass[i]);
+  // Transposition indices (permutex2var: 0–7 the first operand, 8–15 the second).
+  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  const __m512i quadLow = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+  const __m512i quadHigh = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+  __m512d sax = zero, say = zero, saz = zero, sdrho = zero, smu = zero;
+  alignas(32) std::int32_t jj[8];
+  for (int n0 = begin; n0 < end; n0 += 8) {
+    const int m = std::min(8, end - n0);
+    const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+    const __m256i idx = _mm256_maskz_loadu_epi32(valid, list + n0);  // lanes past the end: particle 0
+    _mm256_store_si256(reinterpret_cast<__m256i*>(jj), idx);
+    // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ]; columns after the transposition.
+    __m512d r[8];
+    for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
+    __m512d t[8];
+    for (int l = 0; l < 4; ++l) {
+      t[2 * l] = _mm512_unpacklo_pd(r[2 * l], r[2 * l + 1]);     // x z vx vz of rows 2l, 2l+1
+      t[2 * l + 1] = _mm512_unpackhi_pd(r[2 * l], r[2 * l + 1]); // y p vy 1/ρ
+    }
+    const __m512d u0 = _mm512_permutex2var_pd(t[0], lowPairs, t[2]);   // x0-3 vx0-3
+    const __m512d u1 = _mm512_permutex2var_pd(t[0], highPairs, t[2]);  // z0-3 vz0-3
+    const __m512d u2 = _mm512_permutex2var_pd(t[1], lowPairs, t[3]);   // y0-3 vy0-3
+    const __m512d u3 = _mm512_permutex2var_pd(t[1], highPairs, t[3]);  // p0-3 ir0-3
+    const __m512d u4 = _mm512_permutex2var_pd(t[4], lowPairs, t[6]);
+    const __m512d u5 = _mm512_permutex2var_pd(t[4], highPairs, t[6]);
+    const __m512d u6 = _mm512_permutex2var_pd(t[5], lowPairs, t[7]);
+    const __m512d u7 = _mm512_permutex2var_pd(t[5], highPairs, t[7]);
+    const __m512d bx = _mm512_shuffle_f64x2(u0, u4, 0x44), bvx = _mm512_shuffle_f64x2(u0, u4, 0xEE);
+    const __m512d bz = _mm512_shuffle_f64x2(u1, u5, 0x44), bvz = _mm512_shuffle_f64x2(u1, u5, 0xEE);
+    const __m512d by = _mm512_shuffle_f64x2(u2, u6, 0x44), bvy = _mm512_shuffle_f64x2(u2, u6, 0xEE);
+    const __m512d bp = _mm512_shuffle_f64x2(u3, u7, 0x44), bir = _mm512_shuffle_f64x2(u3, u7, 0xEE);
+
+    const __m512d dx = _mm512_sub_pd(ax, bx), dy = _mm512_sub_pd(ay, by), dz = _mm512_sub_pd(az, bz);
+    const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
+    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, r2, support2, _CMP_LT_OQ);  // skin pairs: none
+    const __m512d inverseR = inverseSqrt(_mm512_max_pd(r2, tiny));
+    const __m512d rr = _mm512_mul_pd(_mm512_max_pd(r2, tiny), inverseR);
+    const __m512d s = _mm512_max_pd(_mm512_sub_pd(h, rr), zero), tt = _mm512_sub_pd(twoH, rr);
+    const __m512d spline = _mm512_fmsub_pd(_mm512_mul_pd(four, s), s, _mm512_mul_pd(tt, tt));
+    const __m512d F = _mm512_maskz_mul_pd(inside, _mm512_mul_pd(kF, spline), inverseR);
+    const __m512d dvx = _mm512_sub_pd(avx, bvx), dvy = _mm512_sub_pd(avy, bvy), dvz = _mm512_sub_pd(avz, bvz);
+    const __m512d vr = _mm512_fmadd_pd(dvz, dz, _mm512_fmadd_pd(dvy, dy, _mm512_mul_pd(dvx, dx)));
+    const __m512d mu = _mm512_mul_pd(_mm512_mul_pd(h, vr), inverse(_mm512_add_pd(r2, eta2)));
+    const __m512d approach = _mm512_min_pd(mu, zero);
+    const __m512d viscous = _mm512_mul_pd(_mm512_mul_pd(approach, _mm512_fmsub_pd(halfBeta, approach, halfAlphaC0)),
+                                          _mm512_add_pd(air, bir));
+    const __m512d c = _mm512_mul_pd(_mm512_add_pd(_mm512_add_pd(ap, bp), viscous), F);
+    const __m512d fx = _mm512_mul_pd(c, dx), fy = _mm512_mul_pd(c, dy), fz = _mm512_mul_pd(c, dz);
+    const __m512d continuity = _mm512_mul_pd(F, vr);
+    __m512d mj = _mm512_set1_pd(1.0);
+    if constexpr (!UniformMass) mj = _mm512_mask_i32gather_pd(zero, valid, idx, mass, 8);
+    sax = _mm512_fnmadd_pd(mj, fx, sax);
+    say = _mm512_fnmadd_pd(mj, fy, say);
+    saz = _mm512_fnmadd_pd(mj, fz, saz);
+    __m512d od;
+    if constexpr (Diffuse) {
+      const __m512d rhoj = _mm512_mask_i32gather_pd(zero, valid, idx, rho, 8);
+      const __m512d hydrostatic = _mm512_fmadd_pd(_mm512_set1_pd(k.kz), dz,
+                                                  _mm512_fmadd_pd(_mm512_set1_pd(k.ky), dy,
+                                                                  _mm512_mul_pd(_mm512_set1_pd(k.kx), dx)));
+      const __m512d d = _mm512_mul_pd(
+          _mm512_mul_pd(_mm512_sub_pd(_mm512_sub_pd(_mm512_set1_pd(rho[i]), rhoj), hydrostatic), F),
+          _mm512_set1_pd(k.diffusionScale));
+      sdrho = _mm512_fmadd_pd(mj, _mm512_fmadd_pd(d, bir, continuity), sdrho);
+      od = _mm512_fnmadd_pd(d, air, continuity);
+    } else {
+      sdrho = _mm512_fmadd_pd(mj, continuity, sdrho);
+      od = continuity;
+    }
+    smu = _mm512_mask_max_pd(smu, inside, smu, _mm512_abs_pd(mu));
+
+    // Back to one (ax, ay, az, dρ/dt) quadruple per neighbour.
+    __m512d ox = fx, oy = fy, oz = fz;
+    if constexpr (!UniformMass) {
+      ox = _mm512_mul_pd(mi, fx);
+      oy = _mm512_mul_pd(mi, fy);
+      oz = _mm512_mul_pd(mi, fz);
+      od = _mm512_mul_pd(mi, od);
+    }
+    const __m512d q0 = _mm512_unpacklo_pd(ox, oy), q1 = _mm512_unpackhi_pd(ox, oy);  // x y of lanes 0 2 4 6 / 1 3 5 7
+    const __m512d q2 = _mm512_unpacklo_pd(oz, od), q3 = _mm512_unpackhi_pd(oz, od);
+    const __m512d v02 = _mm512_permutex2var_pd(q0, quadLow, q2), v46 = _mm512_permutex2var_pd(q0, quadHigh, q2);
+    const __m512d v13 = _mm512_permutex2var_pd(q1, quadLow, q3), v57 = _mm512_permutex2var_pd(q1, quadHigh, q3);
+    const __m256d out[8] = {_mm512_castpd512_pd256(v02), _mm512_castpd512_pd256(v13),
+                            _mm512_extractf64x4_pd(v02, 1), _mm512_extractf64x4_pd(v13, 1),
+                            _mm512_castpd512_pd256(v46), _mm512_castpd512_pd256(v57),
+                            _mm512_extractf64x4_pd(v46, 1), _mm512_extractf64x4_pd(v57, 1)};
+    auto scatter = [&](int l) {
+      double* aj = acc + 4 * (static_cast<std::size_t>(jj[l]) - lo);
+      _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), out[l]));
+    };
+    if (m == 8) {
+      for (int l = 0; l < 8; ++l) scatter(l);
+    } else {
+      for (int l = 0; l < m; ++l) scatter(l);
+    }
+  }
+  own[0] += _mm512_reduce_add_pd(sax);
+  own[1] += _mm512_reduce_add_pd(say);
+  own[2] += _mm512_reduce_add_pd(saz);
+  own[3] += _mm512_reduce_add_pd(sdrho);
+  maxMu = std::max(maxMu, _mm512_reduce_max_pd(smu));
+}
+#endif
+
 }  // namespace
 
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
@@ -181,9 +338,19 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
         const std::int32_t* nb = list.neighbours(i);
         const int nf = list.fluidCount(i), total = list.count(i);
         double own[4] = {0, 0, 0, 0};
+#ifdef RUPTURE_SPH_AVX512
+        // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks of 8.
+        if (diffuse) {
+          pairsOfAvx512<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
+          pairsOfAvx512<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+        } else {
+          pairsOfAvx512<false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+        }
+#else
         if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+#endif
         double* ai = acc + 4 * (i - ch.lo);
         for (int a = 0; a < 4; ++a) ai[a] += own[a];
       }
