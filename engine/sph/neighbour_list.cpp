@@ -206,7 +206,8 @@ void NeighbourList::compact() {
   m_offset.resize(n + 1);
   m_offset[0] = 0;
   for (std::size_t i = 0; i < n; ++i) m_offset[i + 1] = m_offset[i] + static_cast<std::size_t>(m_count[i]);
-  m_compact.resize(m_offset[n] + 8);  // + 8: a vector load of the last list's tail stays inside
+  // Padded with particle 0: the pair loop loads and prefetches up to kListPadding entries past a list.
+  m_compact.assign(m_offset[n] + kListPadding, 0);
 #pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t i = 0; i < n; ++i)
     std::copy_n(m_index.data() + i * m_stride, m_count[i], m_compact.data() + m_offset[i]);

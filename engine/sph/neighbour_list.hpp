@@ -19,6 +19,9 @@ namespace rupture::sph {
 
 class NeighbourList {
 public:
+  /// Entries after the last list, all 0 (a valid index): loops may read up to this far past a list.
+  static constexpr int kListPadding = 32;
+
   /// Builds the lists of every particle within `cutoff` (m). dimension 2 ignores z.
   void build(const FluidParticles& p, int dimension, double cutoff);
 
