@@ -317,17 +317,20 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   }
   // What the pair loop reads of a particle, packed into one cache line.
   ws.packed.resize(n);
-#pragma omp parallel for schedule(static) if (worthParallel(n))
+  // Equal masses (every lattice-built set): one load fewer per pair. Checked here, in parallel.
+  double minMass = n > 0 ? p.mass[0] : 0.0, maxMass = minMass;
+#pragma omp parallel for schedule(static) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
+    minMass = std::min(minMass, p.mass[a]);
+    maxMass = std::max(maxMass, p.mass[a]);
     p.inverseRho[a] = 1.0 / p.rhoEst[a];
     p.pressureOverRho2[a] = p.pressure[a] * p.inverseRho[a] * p.inverseRho[a];
     ws.packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, p.pressureOverRho2[a],
                     p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, p.inverseRho[a]};
   }
 
-  // Equal masses (every lattice-built set): one load fewer per pair.
-  k.uniformMass = n > 0 ? p.mass[0] : 0.0;
-  const bool uniform = std::all_of(p.mass.begin(), p.mass.end(), [&](double m) { return m == k.uniformMass; });
+  k.uniformMass = minMass;
+  const bool uniform = minMass == maxMass;
 
   // Each chunk sums its pairs into its own buffer (the particles it touches).
   const std::vector<NeighbourList::Chunk>& chunks = list.chunks();
