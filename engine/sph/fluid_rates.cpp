@@ -107,7 +107,7 @@ template <bool Diffuse, bool UniformMass>
 #ifdef RUPTURE_SPH_AVX512
 /// How far ahead in the neighbour list the AVX-512 loop prefetches (entries).
 constexpr int kPrefetch = 16;
-static_assert(kPrefetch + 8 <= NeighbourList::kListPadding, "the prefetch reads past a list's end");
+static_assert(kPrefetch + 8 <= NeighbourList::kListPadding, "the loop reads up to kPrefetch + 8 entries past a list");
 
 /// 1/√x (x > 0) from the 14-bit estimate and two Newton steps: 14 → 28 → full double precision
 /// (a few ulp), several times cheaper than vsqrtpd and vdivpd on 512-bit vectors.
@@ -155,11 +155,13 @@ template <bool Diffuse, bool UniformMass>
   const __m512i quadLow = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
   const __m512i quadHigh = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
   __m512d sax = zero, say = zero, saz = zero, sdrho = zero, smu = zero;
-  alignas(32) std::int32_t jj[8];
   for (int n0 = begin; n0 < end; n0 += 8) {
     const int m = std::min(8, end - n0);
     const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
-    const __m256i idx = _mm256_maskz_loadu_epi32(valid, list + n0);  // lanes past the end: particle 0
+    // Lanes past the end read the next list's entries (or the padding): valid particles, their F
+    // masked to 0 and their scatter skipped.
+    const std::int32_t* jj = list + n0;
+    const __m256i idx = _mm256_maskz_loadu_epi32(valid, jj);  // for the gathers of ρ_b and m_b
     // The records and accumulators of the neighbours kPrefetch entries ahead (they may be the next
     // particle's: the lists lie back to back, padded at the end, neighbour_list.hpp): a
     // neighbour's record is mostly in L3 (the cell-ordered sweep reuses it ~3 MB later).
@@ -168,7 +170,6 @@ template <bool Diffuse, bool UniformMass>
       __builtin_prefetch(&pk[ahead], 0, 3);
       __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
     }
-    _mm256_store_si256(reinterpret_cast<__m256i*>(jj), idx);
     // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ]; columns after the transposition.
     __m512d r[8];
     for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
