@@ -3,6 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(RUPTURE_SPH_NO_INTRINSICS)
+// GCC 12 reports its own intrinsics' undefined pass-through operands as maybe-uninitialized
+// (a known false positive of GCC 12); the state at the header's lines is what counts.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#define RUPTURE_SPH_AVX512 1
+#endif
+
 #include "core/parallel.hpp"
 
 namespace rupture::sph {
@@ -20,10 +30,16 @@ struct PairConstants {
   double halfAlphaC0, halfBeta;  // ½ α c0, ½ β: the ½ of 1/ρ̄ = ½ (1/ρ_a + 1/ρ_b) folded in
 };
 
+/// Neighbours handled per block of the pair loop: their fields are copied into contiguous arrays
+/// (the gather), the pair terms computed by one vector loop over them, then added to the
+/// neighbours' accumulators by a scalar loop (the scatter). 32 keeps the block's arrays in L1.
+constexpr int kBlock = 32;
+
 /// The pairs of fluid particle i with list[begin, end): each pair once, added to i's sums (`own`)
 /// and to the neighbour's accumulator acc[4 (j − lo) …]: ax, ay, az, dρ/dt. With UniformMass the
 /// sums are per unit mass (the caller multiplies by the mass): 6 multiplications fewer per pair.
-/// Diffuse: add the δ-SPH term (fluid–fluid pairs).
+/// Diffuse: add the δ-SPH term (fluid–fluid pairs). Skin pairs (r ≥ 2h) are computed with F = 0,
+/// so the vector loop has no branch.
 template <bool Diffuse, bool UniformMass>
 [[gnu::always_inline]] inline void pairsOf(std::size_t i, const std::int32_t* __restrict list, int begin, int end,
                                            const Packed* __restrict pk, const double* __restrict rho,
@@ -32,52 +48,54 @@ template <bool Diffuse, bool UniformMass>
   const Packed a = pk[i];
   const double rhoi = rho[i], mi = UniformMass ? 1.0 : mass[i];
   double sax = 0, say = 0, saz = 0, sdrho = 0, smu = maxMu;
-  for (int n = begin; n < end; ++n) {
-    const std::size_t j = static_cast<std::size_t>(list[n]);
-    const Packed& b = pk[j];
-    const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-    const double r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 >= k.support2) continue;  // a skin pair: no contribution
-    const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
-    const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
-    const double F = k.kF * (4.0 * s * s - t * t) / r;
-    const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
-    const double vr = dvx * dx + dvy * dy + dvz * dz;
-    const double mu = k.h * vr / (r2 + k.eta2);
-    // Π only for approaching pairs (μ < 0), as min(μ, 0): a select, not a branch (its sign is random).
-    // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
-    const double approach = mu < 0.0 ? mu : 0.0;
-    const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
-    const double mj = UniformMass ? 1.0 : mass[j];
-    const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
-    const double fx = c * dx, fy = c * dy, fz = c * dz;
-    const double continuity = F * vr;
-    double* __restrict aj = acc + 4 * (j - lo);
-    if constexpr (UniformMass) {
-      sax -= fx;
-      say -= fy;
-      saz -= fz;
-      aj[0] += fx;
-      aj[1] += fy;
-      aj[2] += fz;
-    } else {
+  alignas(64) double ox[kBlock], oy[kBlock], oz[kBlock], od[kBlock];
+  for (int n0 = begin; n0 < end; n0 += kBlock) {
+    const int m = std::min(kBlock, end - n0);
+    const std::int32_t* __restrict nb = list + n0;
+#pragma omp simd reduction(+ : sax, say, saz, sdrho) reduction(max : smu)
+    for (int q = 0; q < m; ++q) {
+      const Packed& b = pk[nb[q]];
+      const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const bool inside = r2 < k.support2;  // a skin pair contributes nothing
+      const double r = std::sqrt(r2 > 1e-300 ? r2 : 1e-300);
+      const double s = k.h - r > 0.0 ? k.h - r : 0.0, t = k.twoH - r;
+      const double F = inside ? k.kF * (4.0 * s * s - t * t) / r : 0.0;
+      const double dvx = a.vx - b.vx, dvy = a.vy - b.vy, dvz = a.vz - b.vz;
+      const double vr = dvx * dx + dvy * dy + dvz * dz;
+      const double mu = k.h * vr / (r2 + k.eta2);
+      // Π only for approaching pairs (μ < 0), as min(μ, 0).
+      // 1/ρ̄ as the mean of 1/ρ: equal to 2/(ρ_a + ρ_b) to O((Δρ/ρ)²), 1e-4 here, without a division.
+      const double approach = mu < 0.0 ? mu : 0.0;
+      const double viscous = approach * (k.halfBeta * approach - k.halfAlphaC0) * (a.inverseRho + b.inverseRho);
+      const double mj = UniformMass ? 1.0 : mass[nb[q]];
+      const double c = (a.pressureOverRho2 + b.pressureOverRho2 + viscous) * F;
+      const double fx = c * dx, fy = c * dy, fz = c * dz;
+      const double continuity = F * vr;
       sax -= mj * fx;
       say -= mj * fy;
       saz -= mj * fz;
-      aj[0] += mi * fx;
-      aj[1] += mi * fy;
-      aj[2] += mi * fz;
+      ox[q] = mi * fx;
+      oy[q] = mi * fy;
+      oz[q] = mi * fz;
+      if constexpr (Diffuse) {
+        const double d = ((rhoi - rho[nb[q]]) - (k.kx * dx + k.ky * dy + k.kz * dz)) * F * k.diffusionScale;
+        sdrho += mj * (continuity + d * b.inverseRho);
+        od[q] = mi * (continuity - d * a.inverseRho);
+      } else {
+        sdrho += mj * continuity;
+        od[q] = mi * continuity;
+      }
+      const double amu = inside ? std::fabs(mu) : 0.0;
+      smu = smu > amu ? smu : amu;
     }
-    if constexpr (Diffuse) {
-      const double d = ((rhoi - rho[j]) - (k.kx * dx + k.ky * dy + k.kz * dz)) * F * k.diffusionScale;
-      sdrho += mj * (continuity + d * b.inverseRho);
-      aj[3] += mi * (continuity - d * a.inverseRho);
-    } else {
-      sdrho += mj * continuity;
-      aj[3] += mi * continuity;
+    for (int q = 0; q < m; ++q) {
+      double* __restrict aj = acc + 4 * (static_cast<std::size_t>(nb[q]) - lo);
+      aj[0] += ox[q];
+      aj[1] += oy[q];
+      aj[2] += oz[q];
+      aj[3] += od[q];
     }
-    const double amu = std::fabs(mu);
-    smu = smu > amu ? smu : amu;
   }
   own[0] += sax;
   own[1] += say;
@@ -85,6 +103,166 @@ template <bool Diffuse, bool UniformMass>
   own[3] += sdrho;
   maxMu = smu;
 }
+
+#ifdef RUPTURE_SPH_AVX512
+/// How far ahead in the neighbour list the AVX-512 loop prefetches (entries).
+constexpr int kPrefetch = 16;
+static_assert(kPrefetch + 8 <= NeighbourList::kListPadding, "the loop reads up to kPrefetch + 8 entries past a list");
+
+/// 1/√x (x > 0) from the 14-bit estimate and two Newton steps: 14 → 28 → full double precision
+/// (a few ulp), several times cheaper than vsqrtpd and vdivpd on 512-bit vectors.
+inline __m512d inverseSqrt(__m512d x) {
+  const __m512d half = _mm512_set1_pd(0.5), threeHalves = _mm512_set1_pd(1.5);
+  const __m512d hx = _mm512_mul_pd(half, x);
+  __m512d y = _mm512_rsqrt14_pd(x);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
+  return y;
+}
+
+/// 1/x (x > 0): the 14-bit estimate and two Newton steps.
+inline __m512d inverse(__m512d x) {
+  const __m512d two = _mm512_set1_pd(2.0);
+  __m512d y = _mm512_rcp14_pd(x);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
+  return y;
+}
+
+/// pairsOf on 8 neighbours at a time. The 8 neighbours' 64-byte records are loaded whole and
+/// transposed (8 × 8 doubles, 24 shuffles: cheaper than 8 gathers), the pair terms computed in
+/// vectors (a lane of a partial block or a skin pair gets F = 0), and the 8 results transposed back
+/// into (ax, ay, az, dρ/dt) quadruples added to the neighbours' accumulators, one 256-bit
+/// load-add-store each. The neighbours of one particle are distinct, so the 8 updates of a block
+/// never meet. The sums are deterministic (fixed lane order), whatever the thread count.
+template <bool Diffuse, bool UniformMass>
+[[gnu::always_inline]] inline void pairsOfAvx512(std::size_t i, const std::int32_t* __restrict list, int begin,
+                                                 int end, const Packed* __restrict pk, const double* __restrict rho,
+                                                 const double* __restrict mass, double* __restrict acc, std::size_t lo,
+                                                 const PairConstants& k, double own[4], double& maxMu) {
+  const Packed& a = pk[i];
+  const __m512d ax = _mm512_set1_pd(a.x), ay = _mm512_set1_pd(a.y), az = _mm512_set1_pd(a.z);
+  const __m512d avx = _mm512_set1_pd(a.vx), avy = _mm512_set1_pd(a.vy), avz = _mm512_set1_pd(a.vz);
+  const __m512d ap = _mm512_set1_pd(a.pressureOverRho2), air = _mm512_set1_pd(a.inverseRho);
+  const __m512d support2 = _mm512_set1_pd(k.support2), tiny = _mm512_set1_pd(1e-300);
+  const __m512d h = _mm512_set1_pd(k.h), twoH = _mm512_set1_pd(k.twoH), kF = _mm512_set1_pd(k.kF);
+  const __m512d eta2 = _mm512_set1_pd(k.eta2), four = _mm512_set1_pd(4.0), zero = _mm512_setzero_pd();
+  const __m512d halfBeta = _mm512_set1_pd(k.halfBeta), halfAlphaC0 = _mm512_set1_pd(k.halfAlphaC0);
+  const __m512d mi = _mm512_set1_pd(UniformMass ? 1.0 : mass[i]);
+  // Transposition indices (permutex2var: 0–7 the first operand, 8–15 the second).
+  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  const __m512i quadLow = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+  const __m512i quadHigh = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+  __m512d sax = zero, say = zero, saz = zero, sdrho = zero, smu = zero;
+  for (int n0 = begin; n0 < end; n0 += 8) {
+    const int m = std::min(8, end - n0);
+    const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+    // Lanes past the end read the next list's entries (or the padding): valid particles, their F
+    // masked to 0 and their scatter skipped.
+    const std::int32_t* jj = list + n0;
+    const __m256i idx = _mm256_maskz_loadu_epi32(valid, jj);  // for the gathers of ρ_b and m_b
+    // The records and accumulators of the neighbours kPrefetch entries ahead (they may be the next
+    // particle's: the lists lie back to back, padded at the end, neighbour_list.hpp): a
+    // neighbour's record is mostly in L3 (the cell-ordered sweep reuses it ~3 MB later).
+    for (int l = 0; l < 8; ++l) {
+      const std::int32_t ahead = list[n0 + kPrefetch + l];
+      __builtin_prefetch(&pk[ahead], 0, 3);
+      __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
+    }
+    // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ]; columns after the transposition.
+    __m512d r[8];
+    for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
+    __m512d t[8];
+    for (int l = 0; l < 4; ++l) {
+      t[2 * l] = _mm512_unpacklo_pd(r[2 * l], r[2 * l + 1]);     // x z vx vz of rows 2l, 2l+1
+      t[2 * l + 1] = _mm512_unpackhi_pd(r[2 * l], r[2 * l + 1]); // y p vy 1/ρ
+    }
+    const __m512d u0 = _mm512_permutex2var_pd(t[0], lowPairs, t[2]);   // x0-3 vx0-3
+    const __m512d u1 = _mm512_permutex2var_pd(t[0], highPairs, t[2]);  // z0-3 vz0-3
+    const __m512d u2 = _mm512_permutex2var_pd(t[1], lowPairs, t[3]);   // y0-3 vy0-3
+    const __m512d u3 = _mm512_permutex2var_pd(t[1], highPairs, t[3]);  // p0-3 ir0-3
+    const __m512d u4 = _mm512_permutex2var_pd(t[4], lowPairs, t[6]);
+    const __m512d u5 = _mm512_permutex2var_pd(t[4], highPairs, t[6]);
+    const __m512d u6 = _mm512_permutex2var_pd(t[5], lowPairs, t[7]);
+    const __m512d u7 = _mm512_permutex2var_pd(t[5], highPairs, t[7]);
+    const __m512d bx = _mm512_shuffle_f64x2(u0, u4, 0x44), bvx = _mm512_shuffle_f64x2(u0, u4, 0xEE);
+    const __m512d bz = _mm512_shuffle_f64x2(u1, u5, 0x44), bvz = _mm512_shuffle_f64x2(u1, u5, 0xEE);
+    const __m512d by = _mm512_shuffle_f64x2(u2, u6, 0x44), bvy = _mm512_shuffle_f64x2(u2, u6, 0xEE);
+    const __m512d bp = _mm512_shuffle_f64x2(u3, u7, 0x44), bir = _mm512_shuffle_f64x2(u3, u7, 0xEE);
+
+    const __m512d dx = _mm512_sub_pd(ax, bx), dy = _mm512_sub_pd(ay, by), dz = _mm512_sub_pd(az, bz);
+    const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
+    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, r2, support2, _CMP_LT_OQ);  // skin pairs: none
+    const __m512d inverseR = inverseSqrt(_mm512_max_pd(r2, tiny));
+    const __m512d rr = _mm512_mul_pd(_mm512_max_pd(r2, tiny), inverseR);
+    const __m512d s = _mm512_max_pd(_mm512_sub_pd(h, rr), zero), tt = _mm512_sub_pd(twoH, rr);
+    const __m512d spline = _mm512_fmsub_pd(_mm512_mul_pd(four, s), s, _mm512_mul_pd(tt, tt));
+    const __m512d F = _mm512_maskz_mul_pd(inside, _mm512_mul_pd(kF, spline), inverseR);
+    const __m512d dvx = _mm512_sub_pd(avx, bvx), dvy = _mm512_sub_pd(avy, bvy), dvz = _mm512_sub_pd(avz, bvz);
+    const __m512d vr = _mm512_fmadd_pd(dvz, dz, _mm512_fmadd_pd(dvy, dy, _mm512_mul_pd(dvx, dx)));
+    const __m512d mu = _mm512_mul_pd(_mm512_mul_pd(h, vr), inverse(_mm512_add_pd(r2, eta2)));
+    const __m512d approach = _mm512_min_pd(mu, zero);
+    const __m512d viscous = _mm512_mul_pd(_mm512_mul_pd(approach, _mm512_fmsub_pd(halfBeta, approach, halfAlphaC0)),
+                                          _mm512_add_pd(air, bir));
+    const __m512d c = _mm512_mul_pd(_mm512_add_pd(_mm512_add_pd(ap, bp), viscous), F);
+    const __m512d fx = _mm512_mul_pd(c, dx), fy = _mm512_mul_pd(c, dy), fz = _mm512_mul_pd(c, dz);
+    const __m512d continuity = _mm512_mul_pd(F, vr);
+    __m512d mj = _mm512_set1_pd(1.0);
+    if constexpr (!UniformMass) mj = _mm512_mask_i32gather_pd(zero, valid, idx, mass, 8);
+    sax = _mm512_fnmadd_pd(mj, fx, sax);
+    say = _mm512_fnmadd_pd(mj, fy, say);
+    saz = _mm512_fnmadd_pd(mj, fz, saz);
+    __m512d od;
+    if constexpr (Diffuse) {
+      const __m512d rhoj = _mm512_mask_i32gather_pd(zero, valid, idx, rho, 8);
+      const __m512d hydrostatic = _mm512_fmadd_pd(_mm512_set1_pd(k.kz), dz,
+                                                  _mm512_fmadd_pd(_mm512_set1_pd(k.ky), dy,
+                                                                  _mm512_mul_pd(_mm512_set1_pd(k.kx), dx)));
+      const __m512d d = _mm512_mul_pd(
+          _mm512_mul_pd(_mm512_sub_pd(_mm512_sub_pd(_mm512_set1_pd(rho[i]), rhoj), hydrostatic), F),
+          _mm512_set1_pd(k.diffusionScale));
+      sdrho = _mm512_fmadd_pd(mj, _mm512_fmadd_pd(d, bir, continuity), sdrho);
+      od = _mm512_fnmadd_pd(d, air, continuity);
+    } else {
+      sdrho = _mm512_fmadd_pd(mj, continuity, sdrho);
+      od = continuity;
+    }
+    smu = _mm512_mask_max_pd(smu, inside, smu, _mm512_abs_pd(mu));
+
+    // Back to one (ax, ay, az, dρ/dt) quadruple per neighbour.
+    __m512d ox = fx, oy = fy, oz = fz;
+    if constexpr (!UniformMass) {
+      ox = _mm512_mul_pd(mi, fx);
+      oy = _mm512_mul_pd(mi, fy);
+      oz = _mm512_mul_pd(mi, fz);
+      od = _mm512_mul_pd(mi, od);
+    }
+    const __m512d q0 = _mm512_unpacklo_pd(ox, oy), q1 = _mm512_unpackhi_pd(ox, oy);  // x y of lanes 0 2 4 6 / 1 3 5 7
+    const __m512d q2 = _mm512_unpacklo_pd(oz, od), q3 = _mm512_unpackhi_pd(oz, od);
+    const __m512d v02 = _mm512_permutex2var_pd(q0, quadLow, q2), v46 = _mm512_permutex2var_pd(q0, quadHigh, q2);
+    const __m512d v13 = _mm512_permutex2var_pd(q1, quadLow, q3), v57 = _mm512_permutex2var_pd(q1, quadHigh, q3);
+    const __m256d out[8] = {_mm512_castpd512_pd256(v02), _mm512_castpd512_pd256(v13),
+                            _mm512_extractf64x4_pd(v02, 1), _mm512_extractf64x4_pd(v13, 1),
+                            _mm512_castpd512_pd256(v46), _mm512_castpd512_pd256(v57),
+                            _mm512_extractf64x4_pd(v46, 1), _mm512_extractf64x4_pd(v57, 1)};
+    auto scatter = [&](int l) {
+      double* aj = acc + 4 * (static_cast<std::size_t>(jj[l]) - lo);
+      _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), out[l]));
+    };
+    if (m == 8) {
+      for (int l = 0; l < 8; ++l) scatter(l);
+    } else {
+      for (int l = 0; l < m; ++l) scatter(l);
+    }
+  }
+  own[0] += _mm512_reduce_add_pd(sax);
+  own[1] += _mm512_reduce_add_pd(say);
+  own[2] += _mm512_reduce_add_pd(saz);
+  own[3] += _mm512_reduce_add_pd(sdrho);
+  maxMu = std::max(maxMu, _mm512_reduce_max_pd(smu));
+}
+#endif
 
 }  // namespace
 
@@ -140,17 +318,20 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   }
   // What the pair loop reads of a particle, packed into one cache line.
   ws.packed.resize(n);
-#pragma omp parallel for schedule(static) if (worthParallel(n))
+  // Equal masses (every lattice-built set): one load fewer per pair. Checked here, in parallel.
+  double minMass = n > 0 ? p.mass[0] : 0.0, maxMass = minMass;
+#pragma omp parallel for schedule(static) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
+    minMass = std::min(minMass, p.mass[a]);
+    maxMass = std::max(maxMass, p.mass[a]);
     p.inverseRho[a] = 1.0 / p.rhoEst[a];
     p.pressureOverRho2[a] = p.pressure[a] * p.inverseRho[a] * p.inverseRho[a];
     ws.packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, p.pressureOverRho2[a],
                     p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, p.inverseRho[a]};
   }
 
-  // Equal masses (every lattice-built set): one load fewer per pair.
-  k.uniformMass = n > 0 ? p.mass[0] : 0.0;
-  const bool uniform = std::all_of(p.mass.begin(), p.mass.end(), [&](double m) { return m == k.uniformMass; });
+  k.uniformMass = minMass;
+  const bool uniform = minMass == maxMass;
 
   // Each chunk sums its pairs into its own buffer (the particles it touches).
   const std::vector<NeighbourList::Chunk>& chunks = list.chunks();
@@ -173,9 +354,19 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
         const std::int32_t* nb = list.neighbours(i);
         const int nf = list.fluidCount(i), total = list.count(i);
         double own[4] = {0, 0, 0, 0};
+#ifdef RUPTURE_SPH_AVX512
+        // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks of 8.
+        if (diffuse) {
+          pairsOfAvx512<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
+          pairsOfAvx512<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+        } else {
+          pairsOfAvx512<false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+        }
+#else
         if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+#endif
         double* ai = acc + 4 * (i - ch.lo);
         for (int a = 0; a < 4; ++a) ai[a] += own[a];
       }
@@ -185,29 +376,39 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   if (uniform) chunkLoop.template operator()<true>();
   else chunkLoop.template operator()<false>();
 
-  // The chunks' buffers added in chunk order: the same sums for any thread count.
+  // The chunks' buffers added in chunk order: the same sums for any thread count. By spans of
+  // particles, each chunk's overlap with the span added as one contiguous (vectorised) run.
   const double massScale = uniform ? k.uniformMass : 1.0;
   double maxAcc2 = 0, maxRho = 0;
+  constexpr std::size_t kSpan = 512;
+  const std::size_t spans = (n + kSpan - 1) / kSpan;
 #pragma omp parallel for schedule(static) reduction(max : maxAcc2, maxRho) if (worthParallel(n))
-  for (std::size_t a = 0; a < n; ++a) {
-    double s[4] = {0, 0, 0, 0};
+  for (std::size_t b = 0; b < spans; ++b) {
+    const std::size_t a0 = b * kSpan, a1 = std::min(n, a0 + kSpan);
+    alignas(64) double s[4 * kSpan];
+    std::fill(s, s + 4 * (a1 - a0), 0.0);
     for (std::size_t c = 0; c < chunks.size(); ++c) {
       const NeighbourList::Chunk& ch = chunks[c];
-      if (ch.touched() == 0 || a < ch.lo || a > ch.hi) continue;
-      const double* v = ws.sums.data() + offset[c] + 4 * (a - ch.lo);
-      for (int m = 0; m < 4; ++m) s[m] += v[m];
+      if (ch.touched() == 0) continue;
+      const std::size_t from = std::max(a0, ch.lo), to = std::min(a1, ch.hi + 1);
+      if (from >= to) continue;
+      const double* __restrict v = ws.sums.data() + offset[c] + 4 * (from - ch.lo);
+      double* __restrict d = s + 4 * (from - a0);
+      for (std::size_t m = 0; m < 4 * (to - from); ++m) d[m] += v[m];
     }
-    for (int m = 0; m < 4; ++m) s[m] *= massScale;
-    p.ax[a] = s[0];
-    p.ay[a] = s[1];
-    p.az[a] = s[2];
-    if (p.body[a] == kFluid) {
-      p.drho[a] = s[3];
-      const double fx = s[0] + gx, fy = s[1] + gy, fz = s[2] + gz;
-      maxAcc2 = std::max(maxAcc2, fx * fx + fy * fy + fz * fz);
-      maxRho = std::max(maxRho, p.rhoEst[a]);
-    } else {
-      p.drho[a] = 0;  // boundary densities are extrapolated, not integrated
+    for (std::size_t a = a0; a < a1; ++a) {
+      const double* t = s + 4 * (a - a0);
+      p.ax[a] = massScale * t[0];
+      p.ay[a] = massScale * t[1];
+      p.az[a] = massScale * t[2];
+      if (p.body[a] == kFluid) {
+        p.drho[a] = massScale * t[3];
+        const double fx = p.ax[a] + gx, fy = p.ay[a] + gy, fz = p.az[a] + gz;
+        maxAcc2 = std::max(maxAcc2, fx * fx + fy * fy + fz * fz);
+        maxRho = std::max(maxRho, p.rhoEst[a]);
+      } else {
+        p.drho[a] = 0;  // boundary densities are extrapolated, not integrated
+      }
     }
   }
   return {maxMu, std::sqrt(maxAcc2), maxRho};

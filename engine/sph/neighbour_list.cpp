@@ -197,7 +197,20 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
     if (overflow == 0) break;
     m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
   }
+  compact();
   splitIntoChunks();
+}
+
+void NeighbourList::compact() {
+  const std::size_t n = m_count.size();
+  m_offset.resize(n + 1);
+  m_offset[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) m_offset[i + 1] = m_offset[i] + static_cast<std::size_t>(m_count[i]);
+  // Padded with particle 0: the pair loop loads and prefetches up to kListPadding entries past a list.
+  m_compact.assign(m_offset[n] + kListPadding, 0);
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t i = 0; i < n; ++i)
+    std::copy_n(m_index.data() + i * m_stride, m_count[i], m_compact.data() + m_offset[i]);
 }
 
 void NeighbourList::splitIntoChunks() {

@@ -55,6 +55,7 @@ private:
   NeighbourList m_list;
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
+  std::vector<double> m_blockForces;  ///< bodyForces scratch: 3 per block of members
   std::vector<double> m_x0, m_y0, m_z0;
   std::size_t m_builds = 0;
 };
