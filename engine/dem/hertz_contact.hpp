@@ -5,9 +5,10 @@
 //   F_n = (4/3) E* √R* δ^{3/2} + c_n δ̇,   c_n = 2 ζ √(m* k_n),  k_n = 2 E* √(R* δ)  (tangent stiffness)
 //   F_t = −min(μ F_n, c_n |v_t|) v_t/|v_t|   (Coulomb limit, viscous regularisation: no history)
 // The normal force never pulls (F_n >= 0). Energy stored: (8/15) E* √R* δ^{5/2}.
-// A pair whose bond broke touches at min(R_i + R_k, L0): packings leave bonded pairs slightly
-// overlapping, and measuring the overlap from R_i + R_k would push them apart with a force of the
-// order of the bond's strength at the very step it breaks.
+// A pair whose bond broke, or was cut by a pre-crack (BondStore::cutPairs), touches at
+// min(R_i + R_k, L0): packings leave bonded pairs slightly overlapping, and measuring the overlap
+// from R_i + R_k would push them apart with a force of the order of the bond's strength at the
+// very step it breaks (or, across a notch, at the first step).
 // Neighbour search: cell list and a Verlet list with a skin, rebuilt when a particle has moved more
 // than half the skin; pairs whose bond breaks between rebuilds join the list at once.
 #include <cstdint>

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "io/hdf5_file.hpp"
+#include "rupture/spec_error.hpp"
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
 #include "support/test_support.hpp"
@@ -194,6 +195,31 @@ INSTANTIATE_TEST_SUITE_P(EveryModel, ImpactEveryModel, ::testing::Values("beam",
 
 namespace rupture::test {
 namespace {
+
+// A loading box that holds no particle of the built sample would load nothing: the run stops
+// before writing anything, with an error naming the region.
+TEST(ImpactRun, ALoadingBoxWithNoParticleNamesItsField) {
+  for (const char* list : {"tractions", "velocity_regions"}) {
+    nlohmann::json spec = notchedPlate("pmb");
+    nlohmann::json region = {{"min", {0.03, 0.0}}, {"max", {0.04, 0.001}}};  // right of the 20 mm plate
+    if (std::string(list) == "tractions") region["traction"] = {0.0, 1e6};
+    else region["velocity"] = {0.0, 1.0};
+    spec["loading"] = {{"velocity_regions", spec["loading"]["velocity_regions"]}};
+    spec["loading"][list].push_back(region);
+    const std::size_t index = spec["loading"][list].size() - 1;
+    rupture::testing::ScratchDir dir;
+    RunControl control;
+    try {
+      runSpec(spec, (dir / "empty.h5").string(), control, 1);
+      ADD_FAILURE() << list << ": no error";
+    } catch (const SpecError& e) {
+      EXPECT_EQ(e.field(), "loading." + std::string(list) + "[" + std::to_string(index) + "]");
+      EXPECT_NE(std::string(e.what()).find("at least one particle"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5.part"));
+  }
+}
 
 TEST(ImpactRun, CancelledBeforeTheSampleIsBuiltLeavesASpecAndSummaryOnly) {
   // Issue 7's contract for every bonded scenario: a run cancelled while its sample is built stops

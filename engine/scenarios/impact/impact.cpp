@@ -15,6 +15,7 @@
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
 #include "scenarios/run_support.hpp"
+#include "rupture/spec_error.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace rupture {
@@ -29,6 +30,17 @@ std::vector<std::int32_t> inside(const ParticleStore& p, const Box& box) {
   for (std::size_t k = 0; k < p.size(); ++k)
     if (box.contains(p.x[k], p.y[k], p.z[k])) out.push_back(static_cast<std::int32_t>(k));
   return out;
+}
+
+/// A loading box that holds no particle of the built sample would load nothing: an input error.
+SpecError emptyRegion(const std::string& list, std::size_t index, const Box& box, int d) {
+  std::string value = "{\"min\": [";
+  for (int a = 0; a < d; ++a) value += (a ? ", " : "") + formatNumber(box.min[a]);
+  value += "], \"max\": [";
+  for (int a = 0; a < d; ++a) value += (a ? ", " : "") + formatNumber(box.max[a]);
+  value += "]}";
+  return SpecError(list + "[" + std::to_string(index) + "]", value,
+                   "a box holding at least one particle centre of the built sample (m)");
 }
 
 /// Area of the box's largest face inside the sample (m²; 2D: length × thickness, the thickness the
@@ -104,8 +116,10 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
 
   // Imposed velocities: a linear ramp to the region's velocity over its ramp time.
   std::vector<std::pair<std::vector<std::int32_t>, const VelocityRegion*>> driven;
-  for (const VelocityRegion& r : spec.velocityRegions) {
+  for (std::size_t i = 0; i < spec.velocityRegions.size(); ++i) {
+    const VelocityRegion& r = spec.velocityRegions[i];
     driven.push_back({inside(p, r.box), &r});
+    if (driven.back().first.empty()) throw emptyRegion("loading.velocity_regions", i, r.box, d);
     for (std::int32_t k : driven.back().first) p.fixedDofs[k] |= kFixX | kFixY | kFixZ;
   }
   system.prescribe = [&driven](ParticleStore& ps, double t) {
@@ -118,9 +132,10 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
   };
   // Tractions: the traction times the loaded area, shared equally by the region's particles.
   std::vector<std::pair<std::vector<std::int32_t>, std::array<double, 3>>> pushed;
-  for (const TractionRegion& r : spec.tractions) {
+  for (std::size_t i = 0; i < spec.tractions.size(); ++i) {
+    const TractionRegion& r = spec.tractions[i];
     std::vector<std::int32_t> members = inside(p, r.box);
-    if (members.empty()) continue;
+    if (members.empty()) throw emptyRegion("loading.tractions", i, r.box, d);
     const double share = loadedArea(r.box, spec.sample, report.thickness) / static_cast<double>(members.size());
     pushed.push_back({members, {r.traction[0] * share, r.traction[1] * share, r.traction[2] * share}});
   }
