@@ -50,7 +50,9 @@ private:
   void rebuildLists();
   void refreshMembers();
   void bodyForces();
-  void setBodyVelocities();
+  /// Sets the members' velocities from their body's speed; fixedToo: also those of fixed bodies
+  /// (their zero velocities never change after initialise).
+  void setBodyVelocities(bool fixedToo);
 
   NeighbourList m_list;
   RateWorkspace m_workspace;
