@@ -35,7 +35,7 @@ struct RateWorkspace {
     double x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
   };
   std::vector<Packed> packed;
-  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
+  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt; all 0 between calls
 };
 
 /// Sets the boundary particles' pressure and rhoEst (extrapolated), every particle's pressure,

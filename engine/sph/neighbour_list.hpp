@@ -59,7 +59,7 @@ private:
 
   void splitIntoChunks();
   void compact();
-  std::vector<std::int32_t> m_cellStart, m_sorted, m_fluidBefore;
+  std::vector<std::int32_t> m_cellStart, m_sorted, m_fluidBefore, m_cell, m_cursor;
   std::vector<double> m_sx, m_sy, m_sz;
   std::vector<char> m_sFluid;
 };

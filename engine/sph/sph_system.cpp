@@ -71,8 +71,9 @@ void SphSystem::bodyForces() {
   }
 }
 
-void SphSystem::setBodyVelocities() {
+void SphSystem::setBodyVelocities(bool fixedToo) {
   for (const RigidBody& b : bodies) {
+    if (b.motion == BodyMotion::Fixed && !fixedToo) continue;  // zero since initialise
     const double vx = b.speed * b.axis[0], vy = b.speed * b.axis[1], vz = b.speed * b.axis[2];
     const std::int32_t* ids = b.members.data();
 #pragma omp parallel for schedule(static) if (worthParallel(b.members.size()))
@@ -93,7 +94,7 @@ void SphSystem::initialise() {
       throw std::invalid_argument("SphSystem: free body '" + b.name + "' needs a mass > 0");
   }
   refreshMembers();
-  setBodyVelocities();
+  setBodyVelocities(true);
   particles.vxEst = particles.vx;
   particles.vyEst = particles.vy;
   particles.vzEst = particles.vz;
@@ -111,8 +112,10 @@ void SphSystem::step(double dt) {
   const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
 
   // 1. Half kick of v and ρ with the rates at t; drift of x with the half-step velocity; estimates
-  //    of v and ρ at t + dt for the pair loop.
-#pragma omp parallel for schedule(static) if (worthParallel(n))
+  //    of v and ρ at t + dt for the pair loop. The largest move since the last list build is taken
+  //    here and in the bodies' loop below, not by a pass of its own.
+  double maxMove2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : maxMove2) if (worthParallel(n))
   for (std::size_t k = 0; k < n; ++k) {
     if (p.body[k] == kFluid) {
       const double ax = p.ax[k] + gx, ay = p.ay[k] + gy, az = p.az[k] + gz;
@@ -121,10 +124,14 @@ void SphSystem::step(double dt) {
       p.x[k] += dt * p.vx[k]; p.y[k] += dt * p.vy[k]; p.z[k] += dt * p.vz[k];
       p.vxEst[k] = p.vx[k] + half * ax; p.vyEst[k] = p.vy[k] + half * ay; p.vzEst[k] = p.vz[k] + half * az;
       p.rhoEst[k] = p.rho[k] + half * p.drho[k];
+      const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
+      maxMove2 = std::max(maxMove2, dx * dx + dy * dy + dz * dz);
     }  // boundary densities are extrapolated from the fluid in computeRates
   }
-  // 2. Bodies: the same kick–drift for their one degree of freedom.
+  // 2. Bodies: the same kick–drift for their one degree of freedom. A fixed body's members keep
+  //    their place and zero velocities (set by initialise), and have not moved since the last build.
   for (RigidBody& b : bodies) {
+    if (b.motion == BodyMotion::Fixed) continue;
     double estimate = 0;
     if (b.motion == BodyMotion::Free) {
       const double acc = bodyAcceleration(b, model);
@@ -137,24 +144,22 @@ void SphSystem::step(double dt) {
     const double dx = dt * b.speed;
     b.displacement += dx;
     const std::int32_t* ids = b.members.data();
-#pragma omp parallel for schedule(static) if (worthParallel(b.members.size()))
+    double bodyMove2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : bodyMove2) if (worthParallel(b.members.size()))
     for (std::size_t q = 0; q < b.members.size(); ++q) {
       const std::int32_t k = ids[q];
       p.x[k] += dx * b.axis[0]; p.y[k] += dx * b.axis[1]; p.z[k] += dx * b.axis[2];
       p.vxEst[k] = estimate * b.axis[0]; p.vyEst[k] = estimate * b.axis[1]; p.vzEst[k] = estimate * b.axis[2];
+      const double mx = p.x[k] - m_x0[k], my = p.y[k] - m_y0[k], mz = p.z[k] - m_z0[k];
+      bodyMove2 = std::max(bodyMove2, mx * mx + my * my + mz * mz);
     }
+    maxMove2 = std::max(maxMove2, bodyMove2);
   }
   time += dt;
   ++steps;
 
   // 3. Neighbour lists, when some particle has moved more than half the skin since the last build.
   const double skin = model.kernel().support() * skinFraction;
-  double maxMove2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : maxMove2) if (worthParallel(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
-    maxMove2 = std::max(maxMove2, dx * dx + dy * dy + dz * dz);
-  }
   if (maxMove2 > 0.25 * skin * skin) rebuildLists();
 
   // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
@@ -182,7 +187,7 @@ void SphSystem::step(double dt) {
     if (b.motion == BodyMotion::Free) b.speed += half * bodyAcceleration(b, model);
     else if (b.motion == BodyMotion::Prescribed) b.speed = b.history.at(time);
   }
-  setBodyVelocities();
+  setBodyVelocities(false);
 }
 
 double SphSystem::stableTimeStep(double courant) const {
