@@ -105,14 +105,17 @@ double contactReach(const ParticleStore& p, const BondStore& bonds, const CutLen
 
 bool HertzContact::needsRebuild(const ParticleStore& p) const {
   if (!m_listValid || m_x0.size() != p.size()) return true;
-  const double limit2 = 0.25 * m_skin * m_skin;
-  bool moved = false;
-#pragma omp parallel for reduction(|| : moved) schedule(static) if (worthParallel(p.size()))
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
-    moved = moved || (dx * dx + dy * dy + dz * dz > limit2);
+  // The largest squared displacement: a max reduction vectorises, a short-circuit "any" does not.
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data();
+  const double *x0 = m_x0.data(), *y0 = m_y0.data(), *z0 = m_z0.data();
+  double largest = 0;
+#pragma omp parallel for simd reduction(max : largest) schedule(static) if (worthParallel(p.size()))
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const double dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
+    largest = std::max(largest, dx * dx + dy * dy + dz * dz);
   }
-  return moved;
+  return largest > 0.25 * m_skin * m_skin;
 }
 
 void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
