@@ -181,14 +181,21 @@ void storeBondLoads(const Law& law, const Criterion& criterion, const ParticleSt
   }
 }
 
-/// Elastic energy stored in the intact bonds (J).
-template <class Law>
+/// Elastic energy stored in the intact bonds (J). With kPlanar (as in evaluateBonds), the law's
+/// planarEnergy where it has one.
+template <class Law, bool kPlanar = false>
 double bondEnergy(const Law& law, const ParticleStore& p, const BondStore& bonds) {
   double e = 0;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
-#pragma omp parallel for reduction(+ : e) schedule(static) if (worthParallel(bonds.size()))
-  for (std::ptrdiff_t b = 0; b < n; ++b)
-    if (bonds.intact[b] > 0.5) e += law.response(bondGeometry<Law>(p, bonds, b)).energy;
+  // A select instead of a branch, so that the loop vectorises (a broken bond's response is computed
+  // and dropped; it is not multiplied by 0, which could turn an infinite one into NaN).
+#pragma omp parallel for simd reduction(+ : e) schedule(static) if (worthParallel(bonds.size()))
+  for (std::ptrdiff_t b = 0; b < n; ++b) {
+    double energy;
+    if constexpr (kPlanar) energy = law.planarEnergy(bondGeometry<Law>(p, bonds, b));
+    else energy = law.response(bondGeometry<Law>(p, bonds, b)).energy;
+    e += bonds.intact[b] > 0.5 ? energy : 0.0;
+  }
   return e;
 }
 

@@ -229,4 +229,26 @@ struct PlanarBeamResponse {
   return r;
 }
 
+/// The elastic energy U of beamResponse under planar motion (twist 0, bending rotations about z),
+/// with the zero terms left out in the same order: the same number, for the energy records of 2D
+/// runs without the 3D response's quaternion algebra.
+[[gnu::always_inline]] inline double planarBeamEnergy(const BeamParameters& p, double radiusI, double radiusJ,
+                                                      double restLength, double n0x, double n0y, double dx, double dy,
+                                                      double qiw, double qiz, double qjw, double qjz) {
+  const BeamSection sec = BeamSection::of(p, radiusI, radiusJ);
+  const double invL0 = 1.0 / restLength;
+  const double kAxial = p.youngModulus * sec.area * invL0;
+  const double kBend = 2.0 * p.youngModulus * sec.secondMoment * invL0;
+  const double length = std::sqrt(dx * dx + dy * dy);
+  const double invL = 1.0 / length;
+  const double nx = dx * invL, ny = dy * invL;
+  double aix, aiy, ajx, ajy;
+  rotateInPlane(qiw, qiz, n0x, n0y, aix, aiy);
+  rotateInPlane(qjw, qjz, n0x, n0y, ajx, ajy);
+  const double piz = bendingRotationInPlane(nx, ny, aix, aiy);
+  const double pjz = bendingRotationInPlane(nx, ny, ajx, ajy);
+  const double stretch = length - restLength;
+  return 0.5 * kAxial * stretch * stretch + kBend * (piz * piz + piz * pjz + pjz * pjz);
+}
+
 }  // namespace rupture

@@ -44,6 +44,12 @@ struct BeamLaw {
     return r;
   }
 
+  /// The elastic energy of planarResponse's configuration (response(g).energy, the same number).
+  [[gnu::always_inline]] double planarEnergy(const BondGeometry& g) const {
+    return planarBeamEnergy(params, g.radiusI, g.radiusJ, g.restLength, g.n0x, g.n0y, g.dx, g.dy, g.qiw, g.qiz,
+                            g.qjw, g.qjz);
+  }
+
   /// physics-reference §1.8: k_tr = max(E S/L0, 12 E I/L0³), k_rot = max(G J/L0, 4 E I/L0).
   BondStiffness stiffness(const BondGeometry& g) const {
     const BeamSection s = BeamSection::of(params, g.radiusI, g.radiusJ);

@@ -350,7 +350,13 @@ double BondedSystem::kineticEnergy() const {
 }
 
 double BondedSystem::bondEnergy() const {
-  return visitModel([&](const auto& law, const auto&) { return rupture::bondEnergy(law, particles, bonds); });
+  return visitModel([&](const auto& law, const auto&) {
+    using Law = std::decay_t<decltype(law)>;
+    if constexpr (requires(const Law& l, const BondGeometry& g) { l.planarEnergy(g); }) {
+      if (m_planar) return rupture::bondEnergy<Law, true>(law, particles, bonds);
+    }
+    return rupture::bondEnergy(law, particles, bonds);
+  });
 }
 
 double BondedSystem::elasticEnergy() const { return bondEnergy() + contact.energy(particles); }

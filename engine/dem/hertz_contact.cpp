@@ -103,16 +103,36 @@ double contactReach(const ParticleStore& p, const BondStore& bonds, const CutLen
 
 }  // namespace
 
-bool HertzContact::needsRebuild(const ParticleStore& p) const {
-  if (!m_listValid || m_x0.size() != p.size()) return true;
-  const double limit2 = 0.25 * m_skin * m_skin;
-  bool moved = false;
-#pragma omp parallel for reduction(|| : moved) schedule(static) if (worthParallel(p.size()))
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
-    moved = moved || (dx * dx + dy * dy + dz * dz > limit2);
+double HertzContact::largestDisplacement(const ParticleStore& p) const {
+  // The largest squared displacement: a max reduction vectorises, a short-circuit "any" does not.
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data();
+  const double *x0 = m_x0.data(), *y0 = m_y0.data(), *z0 = m_z0.data();
+  double largest = 0;
+#pragma omp parallel for simd reduction(max : largest) schedule(static) if (worthParallel(p.size()))
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const double dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
+    largest = std::max(largest, dx * dx + dy * dy + dz * dz);
   }
-  return moved;
+  return std::sqrt(largest);
+}
+
+void HertzContact::selectActive(double level) {
+  // Slack for the rounding of the distances (1e-9 of the gap scale): never drops a pair that touches.
+  const double limit = 2.0 * level * (1.0 + 1e-9) + 1e-9 * m_skin;
+  const std::size_t n = m_start.empty() ? 0 : m_start.size() - 1;
+  m_activeStart.assign(n + 1, 0);
+  m_activeNeighbors.clear();
+  m_activeReach.clear();
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s)
+      if (m_gap0[s] < limit) {
+        m_activeNeighbors.push_back(m_neighbors[s]);
+        m_activeReach.push_back(m_reach[s]);
+      }
+    m_activeStart[a + 1] = static_cast<std::int32_t>(m_activeNeighbors.size());
+  }
+  m_activeLevel = level;
 }
 
 void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
@@ -147,21 +167,37 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
       m_neighbors[m_start[a] + e] = perParticle[a][e].first;
       m_reach[m_start[a] + e] = perParticle[a][e].second;
     }
+  m_gap0.resize(m_start[n]);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s) {
+      const std::int32_t k = m_neighbors[s];
+      const double dx = p.x[k] - p.x[a], dy = p.y[k] - p.y[a], dz = p.z[k] - p.z[a];
+      m_gap0[s] = std::sqrt(dx * dx + dy * dy + dz * dz) - m_reach[s];
+    }
   m_x0 = p.x; m_y0 = p.y; m_z0 = p.z;
   m_brokenPairs.clear();
   m_listValid = true;
+  m_activeLevel = -1;
 }
 
 void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
   if (!m_params.enabled || p.size() == 0) return;
-  if (needsRebuild(p)) rebuild(p, bonds);
+  double moved = 0;
+  if (m_listValid && m_x0.size() == p.size()) moved = largestDisplacement(p);
+  if (!m_listValid || m_x0.size() != p.size() || moved > 0.5 * m_skin) {
+    rebuild(p, bonds);
+    moved = 0;
+  }
+  // Re-select in steps of an eighth of the skin: at most four selections per rebuild.
+  if (moved > m_activeLevel) selectActive(std::min(moved + 0.125 * m_skin, 0.5 * m_skin));
   const std::size_t n = p.size();
   // Full list: each particle sums the loads it receives; no two threads write the same particle.
   // Contacts cluster where fragments are: dynamic chunks balance the threads.
 #pragma omp parallel for schedule(dynamic, 2048) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
-    for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s) {
-      const PairLoad l = pairLoad(m_params, p, static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
+    for (std::int32_t s = m_activeStart[a]; s < m_activeStart[a + 1]; ++s) {
+      const PairLoad l =
+          pairLoad(m_params, p, static_cast<std::int32_t>(a), m_activeNeighbors[s], m_activeReach[s]);
       if (!l.active) continue;
       p.fx[a] += l.fx; p.fy[a] += l.fy; p.fz[a] += l.fz;
       p.tx[a] += l.tix; p.ty[a] += l.tiy; p.tz[a] += l.tiz;

@@ -10,7 +10,8 @@
 // from R_i + R_k would push them apart with a force of the order of the bond's strength at the
 // very step it breaks (or, across a notch, at the first step).
 // Neighbour search: cell list and a Verlet list with a skin, rebuilt when a particle has moved more
-// than half the skin; pairs whose bond breaks between rebuilds join the list at once.
+// than half the skin; pairs whose bond breaks between rebuilds join the list at once. Each step
+// visits only the listed pairs that the displacements since the rebuild could have brought into touch.
 #include <cstdint>
 #include <vector>
 
@@ -47,7 +48,8 @@ public:
 
 private:
   void rebuild(const ParticleStore& p, const BondStore& bonds);
-  bool needsRebuild(const ParticleStore& p) const;
+  double largestDisplacement(const ParticleStore& p) const;
+  void selectActive(double level);
 
   ContactParameters m_params;
   bool m_listValid = false;
@@ -55,7 +57,13 @@ private:
   CellList m_cells;
   std::vector<std::int32_t> m_start, m_neighbors;     // full list: both (i, k) and (k, i)
   std::vector<double> m_reach;                        // contact distance of each listed pair (m)
+  std::vector<double> m_gap0;                         // centre distance − reach of each listed pair at the rebuild (m)
   std::vector<double> m_x0, m_y0, m_z0;               // positions at the last rebuild
+  // The listed pairs that can touch while no particle moved more than m_activeLevel since the rebuild
+  // (gap0 < 2 level): a pair's distance shrinks by at most the two displacements. Same order as the list.
+  double m_activeLevel = -1;
+  std::vector<std::int32_t> m_activeStart, m_activeNeighbors;
+  std::vector<double> m_activeReach;
   struct Pair { std::int32_t i, j; double restLength; };
   std::vector<Pair> m_brokenPairs;                    // since the last rebuild
 };
