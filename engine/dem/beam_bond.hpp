@@ -190,34 +190,52 @@ struct PlanarBeamResponse {
   return cz * (angle / (s > 1e-300 ? s : 1e-300));
 }
 
+/// The planar beam's state, shared by its loads and its energy: stiffnesses, chord and the two end
+/// rotations about z relative to the chord.
+struct PlanarBeamState {
+  BeamSection section;
+  double kAxial, kBend;  ///< E S / L0 (N/m), 2 E I / L0 (N·m)
+  double length, invL;   ///< current chord length (m) and its inverse
+  double nx, ny;         ///< chord direction
+  double piz, pjz;       ///< bending rotations of ends i and j (rad)
+};
+
+[[gnu::always_inline]] inline PlanarBeamState planarBeamState(const BeamParameters& p, double radiusI, double radiusJ,
+                                                              double restLength, double n0x, double n0y, double dx,
+                                                              double dy, double qiw, double qiz, double qjw,
+                                                              double qjz) {
+  PlanarBeamState st;
+  st.section = BeamSection::of(p, radiusI, radiusJ);
+  const double invL0 = 1.0 / restLength;
+  st.kAxial = p.youngModulus * st.section.area * invL0;
+  st.kBend = 2.0 * p.youngModulus * st.section.secondMoment * invL0;
+  st.length = std::sqrt(dx * dx + dy * dy);
+  st.invL = 1.0 / st.length;
+  st.nx = dx * st.invL;
+  st.ny = dy * st.invL;
+  double aix, aiy, ajx, ajy;
+  rotateInPlane(qiw, qiz, n0x, n0y, aix, aiy);
+  rotateInPlane(qjw, qjz, n0x, n0y, ajx, ajy);
+  st.piz = bendingRotationInPlane(st.nx, st.ny, aix, aiy);
+  st.pjz = bendingRotationInPlane(st.nx, st.ny, ajx, ajy);
+  return st;
+}
+
 [[gnu::always_inline]] inline PlanarBeamResponse planarBeamResponse(const BeamParameters& p, double radiusI,
                                                                      double radiusJ, double restLength, double n0x,
                                                                      double n0y, double dx, double dy, double qiw,
                                                                      double qiz, double qjw, double qjz) {
-  const BeamSection sec = BeamSection::of(p, radiusI, radiusJ);
-  const double invL0 = 1.0 / restLength;
-  const double kAxial = p.youngModulus * sec.area * invL0;
-  const double kBend = 2.0 * p.youngModulus * sec.secondMoment * invL0;
-
-  const double length = std::sqrt(dx * dx + dy * dy);
-  const double invL = 1.0 / length;
-  const double nx = dx * invL, ny = dy * invL;
-
-  double aix, aiy, ajx, ajy;
-  rotateInPlane(qiw, qiz, n0x, n0y, aix, aiy);
-  rotateInPlane(qjw, qjz, n0x, n0y, ajx, ajy);
-  const double piz = bendingRotationInPlane(nx, ny, aix, aiy);
-  const double pjz = bendingRotationInPlane(nx, ny, ajx, ajy);
-
-  const double axialForce = kAxial * (length - restLength);
-  const double sumZ = piz + pjz;
-  const double shear = 3.0 * kBend * invL;
+  const PlanarBeamState st = planarBeamState(p, radiusI, radiusJ, restLength, n0x, n0y, dx, dy, qiw, qiz, qjw, qjz);
+  const BeamSection& sec = st.section;
+  const double axialForce = st.kAxial * (st.length - restLength);
+  const double sumZ = st.piz + st.pjz;
+  const double shear = 3.0 * st.kBend * st.invL;
 
   PlanarBeamResponse r;
-  r.fjx = -axialForce * nx - shear * (sumZ * ny);
-  r.fjy = -axialForce * ny + shear * (sumZ * nx);
-  r.tiz = -kBend * (2.0 * piz + pjz);
-  r.tjz = -kBend * (piz + 2.0 * pjz);
+  r.fjx = -axialForce * st.nx - shear * (sumZ * st.ny);
+  r.fjy = -axialForce * st.ny + shear * (sumZ * st.nx);
+  r.tiz = -st.kBend * (2.0 * st.piz + st.pjz);
+  r.tjz = -st.kBend * (st.piz + 2.0 * st.pjz);
 
   const double momentI2 = r.tiz * r.tiz, momentJ2 = r.tjz * r.tjz;
   const double hz = r.tjz - r.tiz;
@@ -230,25 +248,14 @@ struct PlanarBeamResponse {
 }
 
 /// The elastic energy U of beamResponse under planar motion (twist 0, bending rotations about z),
-/// with the zero terms left out in the same order: the same number, for the energy records of 2D
-/// runs without the 3D response's quaternion algebra.
+/// with the zero terms left out: the same number to rounding, for the energy records of 2D runs
+/// without the 3D response's quaternion algebra.
 [[gnu::always_inline]] inline double planarBeamEnergy(const BeamParameters& p, double radiusI, double radiusJ,
                                                       double restLength, double n0x, double n0y, double dx, double dy,
                                                       double qiw, double qiz, double qjw, double qjz) {
-  const BeamSection sec = BeamSection::of(p, radiusI, radiusJ);
-  const double invL0 = 1.0 / restLength;
-  const double kAxial = p.youngModulus * sec.area * invL0;
-  const double kBend = 2.0 * p.youngModulus * sec.secondMoment * invL0;
-  const double length = std::sqrt(dx * dx + dy * dy);
-  const double invL = 1.0 / length;
-  const double nx = dx * invL, ny = dy * invL;
-  double aix, aiy, ajx, ajy;
-  rotateInPlane(qiw, qiz, n0x, n0y, aix, aiy);
-  rotateInPlane(qjw, qjz, n0x, n0y, ajx, ajy);
-  const double piz = bendingRotationInPlane(nx, ny, aix, aiy);
-  const double pjz = bendingRotationInPlane(nx, ny, ajx, ajy);
-  const double stretch = length - restLength;
-  return 0.5 * kAxial * stretch * stretch + kBend * (piz * piz + piz * pjz + pjz * pjz);
+  const PlanarBeamState st = planarBeamState(p, radiusI, radiusJ, restLength, n0x, n0y, dx, dy, qiw, qiz, qjw, qjz);
+  const double stretch = st.length - restLength;
+  return 0.5 * st.kAxial * stretch * stretch + st.kBend * (st.piz * st.piz + st.piz * st.pjz + st.pjz * st.pjz);
 }
 
 }  // namespace rupture

@@ -53,6 +53,8 @@ TEST(PlanarBeam, SameLoadsAsTheThreeDimensionalLawOnInPlaneData) {
       expectClose(planar.tiz, full.tiz, moment, "T_iz");
       expectClose(planar.tjz, full.tjz, moment, "T_jz");
       expectClose(planar.equivalentStress, full.equivalentStress, std::fabs(full.equivalentStress), "sigma_eq");
+      const double energy = planarBeamEnergy(p, r, r, L0, n0x, n0y, dx, dy, qiw, qiz, qjw, qjz);
+      expectClose(energy, full.energy, std::fabs(full.energy), "U");
     }
   }
 }
