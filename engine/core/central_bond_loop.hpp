@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -34,25 +35,29 @@ namespace rupture {
 
 namespace detail {
 
-/// The first pass of a chunk: for each of its `m` slots, the partner's offset from (xk, yk, zk),
-/// radius and (with kMinStretch) previous s_min, copied into the chunk buffers. Scalar on purpose:
-/// vectorised, GCC makes these reads 512-bit gathers, which on Zen 5 cost more than the scalar
-/// loads (the arithmetic pass after it is the one that gains from vectors).
-template <bool kMinStretch, bool kRadii>
+/// The first pass of a chunk: for each of its `m` slots, the partner's packed record (x, y, z,
+/// previous s_min) and, in the compact form (kCompact), its kind's record (rest length, stiffness,
+/// threshold), each copied whole (32 bytes: one load, one store) into the chunk buffers, plus the
+/// partner's radius when the law reads it. Scalar on purpose: vectorised, GCC makes these reads
+/// 512-bit gathers, which on Zen 5 cost more than the scalar loads; and whole-record copies
+/// because this pass is bound by its stores (the arithmetic pass unpacks the records in vectors).
+template <bool kRadii, bool kCompact>
 [[gnu::noinline, gnu::optimize("no-tree-vectorize")]] void readPartners(
-    const std::int32_t* partner, int m, int padded, const double* packed, const double* rad, double xk, double yk,
-    double zk, double* dx, double* dy, double* dz, double* rj, double* sj) {
+    const std::int32_t* partner, const std::uint16_t* kind, const CentralBondList::Kind* kinds, int m, int padded,
+    const double* packed, const double* rad, double xk, double yk, double zk, double* rec, double* rj,
+    double* kindRec) {
   for (int t = 0; t < m; ++t) {
-    const double* q = packed + 4 * static_cast<std::ptrdiff_t>(partner[t]);  // one cache line
-    dx[t] = q[0] - xk; dy[t] = q[1] - yk; dz[t] = q[2] - zk;
-    if constexpr (kMinStretch) sj[t] = q[3];
+    std::memcpy(rec + 4 * t, packed + 4 * static_cast<std::ptrdiff_t>(partner[t]), 4 * sizeof(double));
     if constexpr (kRadii) rj[t] = rad[partner[t]];
+    if constexpr (kCompact) std::memcpy(kindRec + 4 * t, &kinds[kind[t]], 4 * sizeof(double));  // in L1
   }
   // Lanes past the last slot, up to the vector width: a finite, harmless bond (masked out later).
   for (int t = m; t < padded; ++t) {
-    dx[t] = 1.0; dy[t] = 0.0; dz[t] = 0.0;
+    rec[4 * t] = xk + 1.0; rec[4 * t + 1] = yk; rec[4 * t + 2] = zk; rec[4 * t + 3] = 0.0;
     rj[t] = 0.0;
-    sj[t] = 0.0;
+    if constexpr (kCompact) {
+      kindRec[4 * t] = 1.0; kindRec[4 * t + 1] = 0.0; kindRec[4 * t + 2] = 0.0; kindRec[4 * t + 3] = 0.0;
+    }
   }
 }
 
@@ -92,7 +97,7 @@ template <class Law, class Criterion>
 /// (its `minPrevious` value when it has none), reading the previous evaluation's from
 /// `minPrevious`. The bonds that broke are set broken in `bonds.intact` and appended to `broken`
 /// in ascending bond order. Per-bond loads (bonds.fjx, failureMeasure) are not written.
-template <class Law, class Criterion, bool kMinStretch>
+template <class Law, class Criterion, bool kMinStretch, bool kCompact>
 void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleStore& p, BondStore& bonds,
                           CentralBondList& list, const double* minPrevious, double* minNext,
                           std::vector<std::size_t>& broken) {
@@ -104,6 +109,8 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
   const std::int32_t* partner = list.partner.data();
   const double *L0 = list.restLength.data(), *kb = list.stiffness.data();
   double* limit = list.limit.data();
+  std::uint16_t* kind = list.kind.data();
+  const CentralBondList::Kind* kinds = list.kinds.data();
   double* intact = bonds.intact.data();
   const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data(), *rad = p.radius.data();
   double *fxOut = p.fx.data(), *fyOut = p.fy.data(), *fzOut = p.fz.data();
@@ -122,8 +129,9 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
 #pragma omp single
     found.resize(omp_get_num_threads());
     std::vector<std::size_t>& mine = found[omp_get_thread_num()];
-    alignas(64) double dxb[kChunk], dyb[kChunk], dzb[kChunk], rjb[kChunk], sjb[kChunk];
+    alignas(64) double recb[4 * kChunk], rjb[kChunk];
     alignas(64) double fxb[kChunk], fyb[kChunk], fzb[kChunk];
+    alignas(64) double kindb[4 * kChunk];  // the compact form's kind records
     alignas(64) std::int64_t keepb[kChunk];  // 64-bit like the doubles: one vector width in the loop
 #pragma omp for schedule(static)
     for (std::ptrdiff_t k = 0; k < n; ++k) {
@@ -145,13 +153,17 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
         const int padded = (m + kLanes - 1) / kLanes * kLanes;
         // The slot streams a chunk ahead: the hardware prefetcher alone leaves the loop waiting on them.
         for (int t = 0; t < m; t += 8) {
-          __builtin_prefetch(L0 + c + kChunk + t);
-          __builtin_prefetch(kb + c + kChunk + t);
-          __builtin_prefetch(limit + c + kChunk + t);
+          if constexpr (kCompact) {
+            if (t % 32 == 0) __builtin_prefetch(kind + c + kChunk + t);
+          } else {
+            __builtin_prefetch(L0 + c + kChunk + t);
+            __builtin_prefetch(kb + c + kChunk + t);
+            __builtin_prefetch(limit + c + kChunk + t);
+          }
           if (t % 16 == 0) __builtin_prefetch(partner + c + kChunk + t);
         }
-        detail::readPartners<kMinStretch, kRadii>(partner + c, m, padded, packed, rad, xk, yk, zk, dxb, dyb, dzb, rjb,
-                                                  sjb);
+        detail::readPartners<kRadii, kCompact>(partner + c, kCompact ? kind + c : nullptr, kinds, m, padded, packed,
+                                               rad, xk, yk, zk, recb, rjb, kindb);
         // Whether a bond of the chunk breaks now, as an OR: a `+` reduction of the same flag lost
         // counts here (GCC 12, 512-bit vectors) and left breaking bonds unmarked.
         std::int64_t chunkBreaks = 0;
@@ -160,12 +172,21 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
           // A whole number of vectors, no scalar remainder: the lanes past m read no slot data and
           // keep nothing.
           const bool inside = t < m;
+          // The chunk's rest length, stiffness and threshold: the kind records (compact form) or
+          // the slot streams (full form).
+          double restLength, stiffness, threshold;
+          if constexpr (kCompact) {
+            restLength = kindb[4 * t]; stiffness = kindb[4 * t + 1]; threshold = inside ? kindb[4 * t + 2] : kBroken;
+          } else {
+            restLength = inside ? L0[c + t] : 1.0;
+            stiffness = inside ? kb[c + t] : 0.0;
+            threshold = inside ? limit[c + t] : kBroken;
+          }
           double fjx, fjy, fjz, measure, effective;
-          detail::evaluateSlot(lawCopy, crit, dxb[t], dyb[t], dzb[t], inside ? L0[c + t] : 1.0, kRadii ? rk : 0.0,
-                               kRadii ? rjb[t] : 0.0,
-                               inside ? kb[c + t] : 0.0, fjx, fjy, fjz, measure, effective);
-          if constexpr (kMinStretch) effective += crit.alpha * std::max(sk, sjb[t]);
-          const double threshold = inside ? limit[c + t] : kBroken;
+          detail::evaluateSlot(lawCopy, crit, recb[4 * t] - xk, recb[4 * t + 1] - yk, recb[4 * t + 2] - zk,
+                               restLength, kRadii ? rk : 0.0, kRadii ? rjb[t] : 0.0, stiffness, fjx, fjy, fjz,
+                               measure, effective);
+          if constexpr (kMinStretch) effective += crit.alpha * std::max(sk, recb[4 * t + 3]);
           const bool keep = effective < threshold;
           chunkBreaks |= static_cast<std::int64_t>(!keep) & static_cast<std::int64_t>(threshold != kBroken);
           keepb[t] = keep ? 1 : 0;
@@ -179,8 +200,11 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
         if (chunkBreaks > 0) {
           for (int t = 0; t < m; ++t) {
             const std::int32_t s = c + t;
-            if (keepb[t] || limit[s] == kBroken) continue;
-            limit[s] = kBroken;
+            if (keepb[t] || (kCompact ? kindb[4 * t + 2] : limit[s]) == kBroken) continue;
+            if constexpr (kCompact)
+              kind[s] = CentralBondList::kBrokenKind;
+            else
+              limit[s] = kBroken;
             // Only the side with k = i records the bond: once, by one thread.
             const std::int32_t e = inc[s], b = e >> 1;
             if ((e & 1) == 0) {

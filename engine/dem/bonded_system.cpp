@@ -122,22 +122,29 @@ void BondedSystem::computeLoads() {
     if constexpr (!Law::kRotational) {
       if (centralLoop && bondDamping <= 0) {
         if (!m_centralCurrent) {
-          m_central.build(bonds);
+          m_central.build(bonds, compactCentralList);
           m_centralCurrent = true;
         }
         m_broken.clear();
-        bool nodal = false;
-        if constexpr (Criterion::kNodalShift) {
-          nodal = criterion.alpha != 0.0;
-          if (nodal) {
-            evaluateCentralBonds<Law, Criterion, true>(law, criterion, particles, bonds, m_central,
-                                                       m_minStretch.data(), m_minStretchNext.data(), m_broken);
-            m_minStretch.swap(m_minStretchNext);
+        // One instantiation per storage form of the partner list and per use of the nodal shift.
+        auto central = [&](auto compact) {
+          constexpr bool kCompact = decltype(compact)::value;
+          if constexpr (Criterion::kNodalShift) {
+            if (criterion.alpha != 0.0) {
+              evaluateCentralBonds<Law, Criterion, true, kCompact>(law, criterion, particles, bonds, m_central,
+                                                                   m_minStretch.data(), m_minStretchNext.data(),
+                                                                   m_broken);
+              m_minStretch.swap(m_minStretchNext);
+              return;
+            }
           }
-        }
-        if (!nodal)
-          evaluateCentralBonds<Law, Criterion, false>(law, criterion, particles, bonds, m_central, nullptr, nullptr,
-                                                      m_broken);
+          evaluateCentralBonds<Law, Criterion, false, kCompact>(law, criterion, particles, bonds, m_central, nullptr,
+                                                                nullptr, m_broken);
+        };
+        if (m_central.compact)
+          central(std::true_type{});
+        else
+          central(std::false_type{});
         brokenLastStep = m_broken.size();
         recordBrokenBonds(m_broken);
         m_loadsStale = true;

@@ -46,6 +46,9 @@ public:
   /// (core/central_bond_loop.hpp); false runs the generic bond loop for every law, with the same
   /// result bit for bit (kept for comparisons: tests, benchmarks).
   bool centralLoop = true;
+  /// The central loop's partner list in its compact form (a table of the distinct bond values,
+  /// core/central_bond_list.hpp) when the bonds allow it; false forces the full form (tests).
+  bool compactCentralList = true;
 
   double time = 0.0;          ///< s
   std::size_t steps = 0;

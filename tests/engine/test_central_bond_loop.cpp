@@ -2,7 +2,8 @@
 // (core/bond_loop.hpp) on a PMB block torn apart by an initial velocity field, with the
 // compression term α (nodal s_min) and with the critical-energy criterion: the same bonds break,
 // the same trajectory bit for bit, the same damage; and the central loop's trajectory does not depend on the
-// thread count. Also the on-demand per-bond loads (BondedSystem::bondLoads) equal the generic
+// thread count; with the partner list in its compact form (a table of the distinct bond values,
+// which a lattice has few of) and in its full form (one value per slot). Also the on-demand per-bond loads (BondedSystem::bondLoads) equal the generic
 // loop's stored loads.
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -43,9 +44,10 @@ BondedSystem tornBlock(const std::string& criterion) {
   return system;
 }
 
-BondedSystem run(BondedSystem s, bool central, int threads) {
+BondedSystem run(BondedSystem s, bool central, int threads, bool compact = true) {
   omp_set_num_threads(threads);
   s.centralLoop = central;
+  s.compactCentralList = compact;
   s.initialize();
   const double dt = 0.5 * s.criticalTimeStep();
   for (int step = 0; step < 150; ++step) s.step(dt);
@@ -59,6 +61,7 @@ TEST_P(CentralLoop, BreaksTheSameBondsAsTheGenericLoopAndIsThreadCountIndependen
   const BondedSystem start = tornBlock(GetParam());
   ASSERT_GT(start.bonds.size(), kMinParallelItems);  // the loops really fork on two threads
   const BondedSystem generic = run(start, false, 1), one = run(start, true, 1), two = run(start, true, 2);
+  const BondedSystem full = run(start, true, 1, false), fullTwo = run(start, true, 2, false);
   const std::size_t broken = generic.bonds.size() - generic.bonds.intactCount();
   EXPECT_GT(broken, 100u);
   EXPECT_LT(broken, generic.bonds.size() / 2);
@@ -69,6 +72,11 @@ TEST_P(CentralLoop, BreaksTheSameBondsAsTheGenericLoopAndIsThreadCountIndependen
   EXPECT_EQ(one.particles.x, two.particles.x);
   EXPECT_EQ(one.particles.vx, two.particles.vx);
   EXPECT_EQ(one.bonds.intact, two.bonds.intact);
+  EXPECT_EQ(generic.bonds.intact, full.bonds.intact);  // the full form of the partner list: the same
+  EXPECT_EQ(generic.particles.x, full.particles.x);
+  EXPECT_EQ(generic.particles.vx, full.particles.vx);
+  EXPECT_EQ(full.particles.x, fullTwo.particles.x);
+  EXPECT_EQ(full.bonds.intact, fullTwo.bonds.intact);
 
   // Loads on demand: the generic loop's stored loads (of a configuration equal up to rounding).
   const BondStore& onDemand = one.bondLoads();
