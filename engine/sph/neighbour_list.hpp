@@ -47,7 +47,7 @@ public:
   double cutoff() const { return m_cutoff; }
 
 private:
-  std::size_t m_stride = 0;
+  std::size_t m_stride = 0, m_slot = 0;  // list capacity per particle in the search; its slot size
   double m_cutoff = 0;
   // m_index: the search's fixed-stride slots (m_stride per particle); m_compact: the lists back to
   // back (particle i's at m_offset[i]), what the pair loops read: a sequential stream of ~10 MB
