@@ -79,11 +79,11 @@ void binParticles(const FluidParticles& p, const Grid& g, std::vector<std::int32
 
 }  // namespace
 
-std::vector<std::int32_t> NeighbourList::cellOrder(const FluidParticles& p, int dimension, double cellSize) {
+const std::vector<std::int32_t>& NeighbourList::cellOrder(const FluidParticles& p, int dimension, double cellSize) {
+  // The search's scratch (build overwrites it): a re-sort allocates, and page-faults, nothing.
   const Grid g(p, dimension, cellSize);
-  std::vector<std::int32_t> start, sorted, cell, cursor;
-  binParticles(p, g, start, sorted, cell, cursor);
-  return sorted;
+  binParticles(p, g, m_cellStart, m_sorted, m_cell, m_cursor);
+  return m_sorted;
 }
 
 std::size_t NeighbourList::totalPairs() const {
