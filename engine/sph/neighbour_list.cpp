@@ -139,7 +139,10 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
     {
       // Boundary neighbours are collected here and moved behind the fluid ones.
       std::vector<std::int32_t> wallScratch(m_slot);
-#pragma omp for schedule(static)
+      // Dynamic: a dry wall particle (no fluid in reach) costs next to nothing and a fluid one a full
+      // scan, and in cell order they are not spread evenly; each particle fills its own slot, so the
+      // lists are the same for any schedule.
+#pragma omp for schedule(dynamic, 512)
       for (std::size_t i = 0; i < n; ++i) {
         const double xi = p.x[i], yi = p.y[i], zi = is3d ? p.z[i] : 0.0;
         const bool fluidI = p.body[i] == kFluid;
