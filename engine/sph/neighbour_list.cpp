@@ -122,14 +122,15 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   m_sFluid.resize(n);
   m_fluidBefore.resize(n + 1);
   m_fluidBefore[0] = 0;
+#pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t s = 0; s < n; ++s) {
     const std::int32_t j = m_sorted[s];
     m_sx[s] = p.x[j];
     m_sy[s] = p.y[j];
     m_sz[s] = is3d ? p.z[j] : 0.0;
     m_sFluid[s] = p.body[j] == kFluid;
-    m_fluidBefore[s + 1] = m_fluidBefore[s] + m_sFluid[s];
   }
+  for (std::size_t s = 0; s < n; ++s) m_fluidBefore[s + 1] = m_fluidBefore[s] + m_sFluid[s];
   while (true) {
     // A slot holds m_stride entries and room for one vector store past them (the scan writes 8 at a time).
     m_slot = m_stride + kScanWidth;
@@ -293,16 +294,23 @@ void NeighbourList::splitIntoChunks() {
       ++i;
     }
     k.end = i;
-    k.lo = k.begin;
-    k.hi = k.end > k.begin ? k.end - 1 : k.begin;
+  }
+  // The particles each chunk touches: a scan of its lists, the chunks in parallel.
+#pragma omp parallel for schedule(static, 1) if (worthParallel(n))
+  for (std::size_t c = 0; c < chunks; ++c) {
+    Chunk& k = m_chunks[c];
+    std::int32_t lo = static_cast<std::int32_t>(k.begin);
+    std::int32_t hi = static_cast<std::int32_t>(k.end > k.begin ? k.end - 1 : k.begin);
     for (std::size_t a = k.begin; a < k.end; ++a) {
       if (!m_isFluid[a]) continue;
       const std::int32_t* nb = neighbours(a);
       for (int m = 0; m < m_count[a]; ++m) {
-        k.lo = std::min(k.lo, static_cast<std::size_t>(nb[m]));
-        k.hi = std::max(k.hi, static_cast<std::size_t>(nb[m]));
+        lo = std::min(lo, nb[m]);
+        hi = std::max(hi, nb[m]);
       }
     }
+    k.lo = static_cast<std::size_t>(lo);
+    k.hi = static_cast<std::size_t>(hi);
   }
 }
 
