@@ -28,10 +28,15 @@ void FluidParticles::add(double px, double py, double pz, double m, double densi
 
 void FluidParticles::permute(const std::vector<std::int32_t>& order) {
   std::vector<double> d;
+  std::vector<std::int32_t> i;
+  permute(order, d, i);
+}
+
+void FluidParticles::permute(const std::vector<std::int32_t>& order, std::vector<double>& d,
+                             std::vector<std::int32_t>& i) {
   for (std::vector<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure,
                                  &pressureOverRho2, &inverseRho, &ax, &ay, &az, &drho, &mass})
     applyOrder(*f, order, d);
-  std::vector<std::int32_t> i;
   applyOrder(body, order, i);
   applyOrder(id, order, i);
 }

@@ -36,6 +36,9 @@ struct FluidParticles {
 
   /// Reorders every array so that new position k holds old particle order[k].
   void permute(const std::vector<std::int32_t>& order);
+  /// The same with the caller's scratch (kept between calls, the reorder allocates nothing).
+  void permute(const std::vector<std::int32_t>& order, std::vector<double>& scratch,
+               std::vector<std::int32_t>& indexScratch);
 
   /// Fills `out` (size n) with field[k] placed at id[k]: the creation order used for output.
   void inCreationOrder(const std::vector<double>& field, std::vector<double>& out) const;

@@ -26,8 +26,9 @@ public:
   void build(const FluidParticles& p, int dimension, double cutoff);
 
   /// A permutation that puts particles in cell order (z-, then y-, then x-major cells of edge
-  /// `cellSize`), so that neighbours are close in memory: FluidParticles::permute(order).
-  static std::vector<std::int32_t> cellOrder(const FluidParticles& p, int dimension, double cellSize);
+  /// `cellSize`), so that neighbours are close in memory: FluidParticles::permute(order). Valid
+  /// until the next build or cellOrder.
+  const std::vector<std::int32_t>& cellOrder(const FluidParticles& p, int dimension, double cellSize);
 
   const std::int32_t* neighbours(std::size_t i) const { return m_compact.data() + m_offset[i]; }
   int count(std::size_t i) const { return m_count[i]; }
@@ -47,7 +48,7 @@ public:
   double cutoff() const { return m_cutoff; }
 
 private:
-  std::size_t m_stride = 0;
+  std::size_t m_stride = 0, m_slot = 0;  // list capacity per particle in the search; its slot size
   double m_cutoff = 0;
   // m_index: the search's fixed-stride slots (m_stride per particle); m_compact: the lists back to
   // back (particle i's at m_offset[i]), what the pair loops read: a sequential stream of ~10 MB

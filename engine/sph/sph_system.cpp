@@ -34,7 +34,7 @@ void SphSystem::refreshMembers() {
 void SphSystem::rebuildLists() {
   const double cutoff = model.kernel().support() * (1.0 + skinFraction);
   if (m_builds % static_cast<std::size_t>(std::max(1, sortEvery)) == 0) {
-    particles.permute(NeighbourList::cellOrder(particles, model.dimension, 0.5 * cutoff));
+    particles.permute(m_list.cellOrder(particles, model.dimension, 0.5 * cutoff), m_permuteScratch, m_permuteIndexScratch);
     refreshMembers();
   }
   m_list.build(particles, model.dimension, cutoff);

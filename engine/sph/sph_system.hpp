@@ -62,6 +62,8 @@ private:
   RateExtremes m_extremes;
   std::vector<double> m_blockForces;  ///< bodyForces scratch: 3 per block of members
   std::vector<double> m_x0, m_y0, m_z0;
+  std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
+  std::vector<std::int32_t> m_permuteIndexScratch;
   std::size_t m_builds = 0;
 };
 
