@@ -116,6 +116,7 @@ const BondStore& BondedSystem::bondLoads() const {
 }
 
 void BondedSystem::computeLoads() {
+  bool planarPass = false;
   visitModel([&](const auto& law, const auto& criterion) {
     using Law = std::decay_t<decltype(law)>;
     using Criterion = std::decay_t<decltype(criterion)>;
@@ -177,14 +178,18 @@ void BondedSystem::computeLoads() {
     if constexpr (requires(const Law& l, const BondGeometry& g) { l.planarResponse(g); }) {
       if (m_planar) {
         pass(std::true_type{});
+        planarPass = true;
         return;
       }
     }
     pass(std::false_type{});
   });
-  contact.addForces(particles, bonds);
+  contact.addForces(particles, bonds, m_planar);
   if (externalLoads) externalLoads(particles, m_loadTime);
-  if (particles.dimension == 2) {
+  // After the planar pass the gather wrote f_z = t_x = t_y = 0, 2D contact adds only zeros to them
+  // (n_z = 0, no out-of-plane velocity) and the planar kick does not read them: without external
+  // loads the fill would be a no-op.
+  if (particles.dimension == 2 && !(planarPass && !externalLoads)) {
     // Planar motion: no out-of-plane force, no torque about in-plane axes.
     std::fill(particles.fz.begin(), particles.fz.end(), 0.0);
     std::fill(particles.tx.begin(), particles.tx.end(), 0.0);

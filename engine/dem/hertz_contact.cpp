@@ -103,16 +103,23 @@ double contactReach(const ParticleStore& p, const BondStore& bonds, const CutLen
 
 }  // namespace
 
+template <bool kInPlane>
 double HertzContact::largestDisplacement(const ParticleStore& p) const {
   // The largest squared displacement: a max reduction vectorises, a short-circuit "any" does not.
+  // kInPlane: z is the rebuild's z, dz = 0 exactly, so leaving it out gives the same number.
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
   const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data();
   const double *x0 = m_x0.data(), *y0 = m_y0.data(), *z0 = m_z0.data();
   double largest = 0;
 #pragma omp parallel for simd reduction(max : largest) schedule(static) if (worthParallel(p.size()))
   for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const double dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
-    largest = std::max(largest, dx * dx + dy * dy + dz * dz);
+    const double dx = x[k] - x0[k], dy = y[k] - y0[k];
+    if constexpr (kInPlane) {
+      largest = std::max(largest, dx * dx + dy * dy);
+    } else {
+      const double dz = z[k] - z0[k];
+      largest = std::max(largest, dx * dx + dy * dy + dz * dz);
+    }
   }
   return std::sqrt(largest);
 }
@@ -180,10 +187,11 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
   m_activeLevel = -1;
 }
 
-void HertzContact::addForces(ParticleStore& p, const BondStore& bonds) {
+void HertzContact::addForces(ParticleStore& p, const BondStore& bonds, bool inPlane) {
   if (!m_params.enabled || p.size() == 0) return;
   double moved = 0;
-  if (m_listValid && m_x0.size() == p.size()) moved = largestDisplacement(p);
+  if (m_listValid && m_x0.size() == p.size())
+    moved = inPlane ? largestDisplacement<true>(p) : largestDisplacement<false>(p);
   if (!m_listValid || m_x0.size() != p.size() || moved > 0.5 * m_skin) {
     rebuild(p, bonds);
     moved = 0;

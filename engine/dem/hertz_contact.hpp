@@ -36,7 +36,8 @@ public:
   void setParameters(const ContactParameters& p) { m_params = p; m_listValid = false; }
 
   /// Adds contact forces and torques on every particle (after the bond loads were gathered).
-  void addForces(ParticleStore& p, const BondStore& bonds);
+  /// inPlane: z never moves (BondedSystem::planarMotion), so the rebuild check skips it.
+  void addForces(ParticleStore& p, const BondStore& bonds, bool inPlane = false);
 
   /// Call when a bond broke: its pair becomes a contact candidate immediately, touching at
   /// min(R_i + R_j, restLength).
@@ -48,6 +49,7 @@ public:
 
 private:
   void rebuild(const ParticleStore& p, const BondStore& bonds);
+  template <bool kInPlane>
   double largestDisplacement(const ParticleStore& p) const;
   void selectActive(double level);
 

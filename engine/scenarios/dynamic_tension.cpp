@@ -49,7 +49,7 @@ PreliminaryPlan planPreliminary(const DynamicTensionSpec& spec, const BondedSyst
   p.timeStep = timeStep;
   p.maxStrain = spec.run.maxStrain;
   p.maxSteps = spec.run.maxSteps;
-  plan.key = {{"format", 1},
+  plan.key = {{"format", 2},  // 2: the field of a sample in spatial order (dem/spatial_order.hpp)
               {"engine", RUPTURE_VERSION},
               {"dimension", spec.sample.dimension},
               {"sample", io::toJson(spec.sample)},
