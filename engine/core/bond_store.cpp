@@ -1,7 +1,10 @@
 #include "core/bond_store.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace rupture {
@@ -44,16 +47,11 @@ void BondStore::finalize(std::size_t particleCount) {
 }
 
 void BondStore::moveBond(std::size_t from, std::size_t to) {
-  restLength[to] = restLength[from];
-  n0x[to] = n0x[from]; n0y[to] = n0y[from]; n0z[to] = n0z[from];
-  intact[to] = intact[from];
-  stiffness[to] = stiffness[from];
-  threshold[to] = threshold[from];
-  strength[to] = strength[from];
+  forEachReferenceArray([&](std::vector<double>& v) { v[to] = v[from]; });
 }
 
 void BondStore::truncate(std::size_t m) {
-  for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) v->resize(m);
+  forEachReferenceArray([&](std::vector<double>& v) { v.resize(m); });
   i.resize(m);
   j.resize(m);
 }
@@ -73,6 +71,34 @@ void BondStore::remap(const std::vector<std::int32_t>& newIndex) {
     if (a >= 0 && c >= 0) cutPairs[kept++] = {a, c, pair.restLength};
   }
   cutPairs.resize(kept);
+}
+
+void BondStore::renumber(const std::vector<std::int32_t>& newIndex) {
+  const std::size_t m = size();
+  for (std::size_t b = 0; b < m; ++b) {
+    std::int32_t a = newIndex[i[b]], c = newIndex[j[b]];
+    if (a > c) {  // the sense of a bond is i -> j: exact negation, no rounding
+      std::swap(a, c);
+      n0x[b] = -n0x[b]; n0y[b] = -n0y[b]; n0z[b] = -n0z[b];
+    }
+    i[b] = a;
+    j[b] = c;
+  }
+  std::vector<std::size_t> order(m);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return std::tie(i[a], j[a], a) < std::tie(i[b], j[b], b); });
+  auto reorder = [&](auto& v) {
+    auto old = v;
+    for (std::size_t b = 0; b < m; ++b) v[b] = old[order[b]];
+  };
+  reorder(i);
+  reorder(j);
+  forEachReferenceArray(reorder);
+  for (CutPair& pair : cutPairs) {
+    pair.i = newIndex[pair.i];
+    pair.j = newIndex[pair.j];
+  }
 }
 
 void BondStore::filter(const std::vector<std::uint8_t>& keep) {

@@ -56,6 +56,11 @@ struct BondStore {
   /// removed particles.
   void remap(const std::vector<std::int32_t>& newIndex);
 
+  /// Renumbers particle indices after ParticleStore::permute (newIndex: old -> new, a permutation):
+  /// each bond keeps i < j, taking the opposite reference direction when its ends swap, and the
+  /// bonds are sorted by (i, j). Call before finalize.
+  void renumber(const std::vector<std::int32_t>& newIndex);
+
   /// Keeps only the bonds with keep[b] != 0, in order (call before finalize).
   void filter(const std::vector<std::uint8_t>& keep);
 
@@ -69,6 +74,12 @@ private:
   void moveBond(std::size_t from, std::size_t to);
   /// Keeps the first m bonds of every reference array.
   void truncate(std::size_t m);
+  /// Calls f on every per-bond reference array but i and j: the one list moveBond, truncate and
+  /// renumber share.
+  template <class F>
+  void forEachReferenceArray(F&& f) {
+    for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) f(*v);
+  }
 };
 
 }  // namespace rupture

@@ -1,6 +1,7 @@
 #include "core/particle_store.hpp"
 
 #include <numbers>
+#include <stdexcept>
 
 namespace rupture {
 
@@ -28,10 +29,21 @@ std::vector<std::int32_t> ParticleStore::compact(const std::vector<std::uint8_t>
       if (keep[k]) field[m++] = field[k];
     field.resize(m);
   };
-  for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &qw, &qx, &qy, &qz, &wx, &wy, &wz, &tx,
-                  &ty, &tz, &radius, &mass, &inertia, &volume})
-    squeeze(*v);
-  squeeze(fixedDofs);
+  forEachArray(squeeze);
+  return newIndex;
+}
+
+std::vector<std::int32_t> ParticleStore::permute(const std::vector<std::size_t>& order) {
+  const std::size_t n = size();
+  if (order.size() != n) throw std::logic_error("ParticleStore::permute: order of the wrong size");
+  std::vector<std::int32_t> newIndex(n, -1);
+  for (std::size_t k = 0; k < n; ++k) newIndex[order[k]] = static_cast<std::int32_t>(k);
+  forEachArray([&](auto& field) {
+    if (field.empty()) return;  // not set yet (e.g. volumes before the masses)
+    if (field.size() != n) throw std::logic_error("ParticleStore::permute: a per-particle array of the wrong size");
+    auto old = field;
+    for (std::size_t k = 0; k < n; ++k) field[k] = old[order[k]];
+  });
   return newIndex;
 }
 

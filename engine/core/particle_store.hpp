@@ -1,6 +1,6 @@
 #pragma once
 // Structure-of-arrays storage for rigid particles (2D disks or 3D spheres).
-// Particles are never reordered after a sample is built, so a particle's index is its id:
+// Particles are never reordered after a sample is built (permute is for the builder), so a particle's index is its id:
 // bonds and snapshots can refer to indices without a tag/rtag map.
 #include <cstddef>
 #include <cstdint>
@@ -40,11 +40,24 @@ struct ParticleStore {
   /// Keeps only the particles with keep[k] != 0, in order; returns old index -> new index (-1 if removed).
   std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
 
+  /// Renumbers the particles: new particle k is old particle order[k] (a permutation of 0..size-1).
+  /// Only while a sample is built (dem/spatial_order.hpp). Returns old index -> new index.
+  std::vector<std::int32_t> permute(const std::vector<std::size_t>& order);
+
   /// Sets mass and inertia from a material density (kg/m³) and each particle's volume
   /// (sphere 4/3 π R³; in 2D a disk π R² × thickness), and that volume. Inertia: 2/5 m R² (sphere),
   /// 1/2 m R² (disk).
   void setMassFromDensity(double elementDensity, double thickness2d);
 
+private:
+  /// Calls f on every per-particle array (all but dimension): the one list compact and permute share.
+  template <class F>
+  void forEachArray(F&& f) {
+    for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &qw, &qx, &qy, &qz, &wx, &wy, &wz, &tx, &ty, &tz,
+                    &radius, &mass, &inertia, &volume})
+      f(*v);
+    f(fixedDofs);
+  }
 };
 
 }  // namespace rupture
