@@ -4,10 +4,12 @@
 // threshold is −inf; the compact form is taken only while the distinct triples fit its 16-bit index.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <set>
 
 #include "core/central_bond_list.hpp"
 
@@ -74,7 +76,13 @@ TEST(CentralBondList, FewDistinctBondsTakeTheCompactFormWithTheSameValues) {
   CentralBondList list;
   list.build(bonds);
   EXPECT_TRUE(list.compact);
-  EXPECT_LT(list.kinds.size(), 2 * bonds.size());  // a table, not a copy per bond
+  // One table entry per distinct (L0, k_b, threshold) of the intact bonds, plus the broken entry.
+  std::set<std::array<std::uint64_t, 3>> distinct;
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    if (bonds.intact[b] > 0.5)
+      distinct.insert({bits(bonds.restLength[b]), bits(bonds.stiffness[b]), bits(bonds.failureThreshold[b])});
+  EXPECT_EQ(list.kinds.size(), distinct.size() + 1);
+  EXPECT_LT(distinct.size(), bonds.size() / 4);  // the chain's bonds repeat: a table, not a copy per bond
   expectSlotsMatchBonds(list, bonds);
 
   list.build(bonds, false);  // the full form on request
