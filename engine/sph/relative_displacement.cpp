@@ -114,10 +114,13 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
     }
     flush();
   }
-  // 2. The threads' boxes merged per cell, and emptied for the next call.
+  // 2. The threads' boxes merged per cell, and emptied for the next call. A fixed body's members
+  //    sit at displacement 0.
 #pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (std::size_t c = 0; c < 2 * cells; ++c) {
     Box merged;
+    if (c % 2 == 1 && m_fixedIn[c / 2])
+      for (int a = 0; a < 3; ++a) merged.lo[a] = merged.hi[a] = 0.0;
     for (int t = 0; t < threads; ++t) {
       Box& b = m_threadBoxes[static_cast<std::size_t>(t) * 2 * cells + c];
       for (int a = 0; a < 3; ++a) {
@@ -128,16 +131,6 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
     }
     m_merged[c] = merged;
   }
-  // A fixed body's members sit at displacement 0.
-#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
-  for (std::size_t c = 0; c < cells; ++c)
-    if (m_fixedIn[c]) {
-      Box& b = m_merged[2 * c + 1];
-      for (int a = 0; a < 3; ++a) {
-        b.lo[a] = std::min(b.lo[a], 0.0);
-        b.hi[a] = std::max(b.hi[a], 0.0);
-      }
-    }
   // 3. Over every cell with fluid: its fluid box against the fluid and the boundary box of itself
   //    and of each adjacent cell.
   const int reach[3] = {1, 1, dimension == 3 ? 1 : 0};
