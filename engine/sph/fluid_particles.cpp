@@ -19,7 +19,7 @@ void FluidParticles::add(double px, double py, double pz, double m, double densi
   rho.push_back(density);
   vxEst.push_back(0); vyEst.push_back(0); vzEst.push_back(0);
   rhoEst.push_back(density);
-  pressure.push_back(0); pressureOverRho2.push_back(0); inverseRho.push_back(1.0 / density);
+  pressure.push_back(0);
   ax.push_back(0); ay.push_back(0); az.push_back(0); drho.push_back(0);
   mass.push_back(m);
   body.push_back(bodyIndex);
@@ -34,8 +34,7 @@ void FluidParticles::permute(const std::vector<std::int32_t>& order) {
 
 void FluidParticles::permute(const std::vector<std::int32_t>& order, std::vector<double>& d,
                              std::vector<std::int32_t>& i) {
-  for (std::vector<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure,
-                                 &pressureOverRho2, &inverseRho, &ax, &ay, &az, &drho, &mass})
+  for (std::vector<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure, &ax, &ay, &az, &drho, &mass})
     applyOrder(*f, order, d);
   applyOrder(body, order, i);
   applyOrder(id, order, i);

@@ -20,8 +20,9 @@ struct FluidParticles {
   std::vector<double> rho;
   // Estimates at the end of the current step, read by the pair loop (see SphSystem::step).
   std::vector<double> vxEst, vyEst, vzEst, rhoEst;
-  // Per particle from rhoEst before each pair loop: p (Pa), p/ρ² (Pa·m⁶/kg²), 1/ρ (m³/kg).
-  std::vector<double> pressure, pressureOverRho2, inverseRho;
+  // Per particle from rhoEst before each pair loop: p (Pa) (the fluid's from the equation of state,
+  // the boundary's extrapolated).
+  std::vector<double> pressure;
   // Rates from the pair loop: acceleration without gravity (m/s²) and dρ/dt (kg/m³/s).
   std::vector<double> ax, ay, az, drho;
   // Constant: mass (kg; kg/m in 2D), body (kFluid or a body index), creation index.

@@ -129,6 +129,36 @@ inline __m512d inverse(__m512d x) {
   return y;
 }
 
+/// The 8 records pk[jj[0..7]] as 8 columns (lane l = record l): each 64-byte record is loaded whole
+/// and the 8 × 8 block transposed (24 shuffles: cheaper than 8 gathers).
+struct Columns {
+  __m512d x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
+};
+[[gnu::always_inline]] inline Columns loadColumns(const Packed* __restrict pk, const std::int32_t* jj) {
+  // Transposition indices (permutex2var: 0–7 the first operand, 8–15 the second).
+  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ].
+  __m512d r[8];
+  for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
+  __m512d t[8];
+  for (int l = 0; l < 4; ++l) {
+    t[2 * l] = _mm512_unpacklo_pd(r[2 * l], r[2 * l + 1]);     // x z vx vz of rows 2l, 2l+1
+    t[2 * l + 1] = _mm512_unpackhi_pd(r[2 * l], r[2 * l + 1]); // y p vy 1/ρ
+  }
+  const __m512d u0 = _mm512_permutex2var_pd(t[0], lowPairs, t[2]);   // x0-3 vx0-3
+  const __m512d u1 = _mm512_permutex2var_pd(t[0], highPairs, t[2]);  // z0-3 vz0-3
+  const __m512d u2 = _mm512_permutex2var_pd(t[1], lowPairs, t[3]);   // y0-3 vy0-3
+  const __m512d u3 = _mm512_permutex2var_pd(t[1], highPairs, t[3]);  // p0-3 ir0-3
+  const __m512d u4 = _mm512_permutex2var_pd(t[4], lowPairs, t[6]);
+  const __m512d u5 = _mm512_permutex2var_pd(t[4], highPairs, t[6]);
+  const __m512d u6 = _mm512_permutex2var_pd(t[5], lowPairs, t[7]);
+  const __m512d u7 = _mm512_permutex2var_pd(t[5], highPairs, t[7]);
+  return {_mm512_shuffle_f64x2(u0, u4, 0x44), _mm512_shuffle_f64x2(u2, u6, 0x44), _mm512_shuffle_f64x2(u1, u5, 0x44),
+          _mm512_shuffle_f64x2(u3, u7, 0x44), _mm512_shuffle_f64x2(u0, u4, 0xEE), _mm512_shuffle_f64x2(u2, u6, 0xEE),
+          _mm512_shuffle_f64x2(u1, u5, 0xEE), _mm512_shuffle_f64x2(u3, u7, 0xEE)};
+}
+
 /// pairsOf on 8 neighbours at a time. The 8 neighbours' 64-byte records are loaded whole and
 /// transposed (8 × 8 doubles, 24 shuffles: cheaper than 8 gathers), the pair terms computed in
 /// vectors (a lane of a partial block or a skin pair gets F = 0), and the 8 results transposed back
@@ -149,9 +179,7 @@ template <bool Diffuse, bool UniformMass>
   const __m512d eta2 = _mm512_set1_pd(k.eta2), four = _mm512_set1_pd(4.0), zero = _mm512_setzero_pd();
   const __m512d halfBeta = _mm512_set1_pd(k.halfBeta), halfAlphaC0 = _mm512_set1_pd(k.halfAlphaC0);
   const __m512d mi = _mm512_set1_pd(UniformMass ? 1.0 : mass[i]);
-  // Transposition indices (permutex2var: 0–7 the first operand, 8–15 the second).
-  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
-  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  // Transposition indices back to quadruples (permutex2var: 0–7 the first operand, 8–15 the second).
   const __m512i quadLow = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
   const __m512i quadHigh = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
   __m512d sax = zero, say = zero, saz = zero, sdrho = zero, smu = zero;
@@ -170,27 +198,9 @@ template <bool Diffuse, bool UniformMass>
       __builtin_prefetch(&pk[ahead], 0, 3);
       __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
     }
-    // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ]; columns after the transposition.
-    __m512d r[8];
-    for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
-    __m512d t[8];
-    for (int l = 0; l < 4; ++l) {
-      t[2 * l] = _mm512_unpacklo_pd(r[2 * l], r[2 * l + 1]);     // x z vx vz of rows 2l, 2l+1
-      t[2 * l + 1] = _mm512_unpackhi_pd(r[2 * l], r[2 * l + 1]); // y p vy 1/ρ
-    }
-    const __m512d u0 = _mm512_permutex2var_pd(t[0], lowPairs, t[2]);   // x0-3 vx0-3
-    const __m512d u1 = _mm512_permutex2var_pd(t[0], highPairs, t[2]);  // z0-3 vz0-3
-    const __m512d u2 = _mm512_permutex2var_pd(t[1], lowPairs, t[3]);   // y0-3 vy0-3
-    const __m512d u3 = _mm512_permutex2var_pd(t[1], highPairs, t[3]);  // p0-3 ir0-3
-    const __m512d u4 = _mm512_permutex2var_pd(t[4], lowPairs, t[6]);
-    const __m512d u5 = _mm512_permutex2var_pd(t[4], highPairs, t[6]);
-    const __m512d u6 = _mm512_permutex2var_pd(t[5], lowPairs, t[7]);
-    const __m512d u7 = _mm512_permutex2var_pd(t[5], highPairs, t[7]);
-    const __m512d bx = _mm512_shuffle_f64x2(u0, u4, 0x44), bvx = _mm512_shuffle_f64x2(u0, u4, 0xEE);
-    const __m512d bz = _mm512_shuffle_f64x2(u1, u5, 0x44), bvz = _mm512_shuffle_f64x2(u1, u5, 0xEE);
-    const __m512d by = _mm512_shuffle_f64x2(u2, u6, 0x44), bvy = _mm512_shuffle_f64x2(u2, u6, 0xEE);
-    const __m512d bp = _mm512_shuffle_f64x2(u3, u7, 0x44), bir = _mm512_shuffle_f64x2(u3, u7, 0xEE);
-
+    const Columns b = loadColumns(pk, jj);
+    const __m512d bx = b.x, by = b.y, bz = b.z, bp = b.pressureOverRho2, bvx = b.vx, bvy = b.vy, bvz = b.vz,
+                  bir = b.inverseRho;
     const __m512d dx = _mm512_sub_pd(ax, bx), dy = _mm512_sub_pd(ay, by), dz = _mm512_sub_pd(az, bz);
     const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
     const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, r2, support2, _CMP_LT_OQ);  // skin pairs: none
@@ -264,6 +274,64 @@ template <bool Diffuse, bool UniformMass>
 }
 #endif
 
+/// The Shepard sums of a boundary particle at (xw, yw, zw) over its fluid neighbours (Adami et al.
+/// 2012, eq. 27): Σ W, Σ p_f W and Σ ρ_f (g·x_wf) W, read from the fluid's records (ρ_f = 1/(1/ρ)_f,
+/// p_f = (p/ρ²)_f ρ_f²). Neighbours in the skin (r >= 2h) add nothing.
+struct WallSums {
+  CubicSplineKernel kernel;
+  double gx, gy, gz;
+
+  [[gnu::always_inline]] void operator()(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
+                                         const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
+#ifdef RUPTURE_SPH_AVX512
+    // 8 neighbours at a time from their records (loadColumns); lanes past the end read the next
+    // list's entries or the padding (valid particles) and are masked out.
+    const double h = kernel.h();
+    const __m512d vxw = _mm512_set1_pd(xw), vyw = _mm512_set1_pd(yw), vzw = _mm512_set1_pd(zw);
+    const __m512d invH = _mm512_set1_pd(1.0 / h), two = _mm512_set1_pd(2.0), one = _mm512_set1_pd(1.0);
+    const __m512d tiny = _mm512_set1_pd(1e-300), aD = _mm512_set1_pd(kernel.normalisation());
+    const __m512d vgx = _mm512_set1_pd(gx), vgy = _mm512_set1_pd(gy), vgz = _mm512_set1_pd(gz);
+    __m512d sW = _mm512_setzero_pd(), sPW = _mm512_setzero_pd(), sRR = _mm512_setzero_pd();
+    for (int n0 = 0; n0 < count; n0 += 8) {
+      const int m = std::min(8, count - n0);
+      const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+      const Columns f = loadColumns(pk, list + n0);
+      const __m512d dx = _mm512_sub_pd(vxw, f.x), dy = _mm512_sub_pd(vyw, f.y), dz = _mm512_sub_pd(vzw, f.z);
+      const __m512d r2 = _mm512_max_pd(_mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx))), tiny);
+      const __m512d q = _mm512_mul_pd(_mm512_mul_pd(r2, inverseSqrt(r2)), invH);
+      const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, q, two, _CMP_LT_OQ);
+      // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
+      const __m512d q2 = _mm512_mul_pd(q, q);
+      const __m512d nearW = _mm512_fmadd_pd(q2, _mm512_fmsub_pd(_mm512_set1_pd(0.75), q, _mm512_set1_pd(1.5)), one);
+      const __m512d t = _mm512_sub_pd(two, q);
+      const __m512d farW = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(0.25), t), _mm512_mul_pd(t, t));
+      const __mmask8 isNear = _mm512_cmp_pd_mask(q, one, _CMP_LT_OQ);
+      const __m512d W = _mm512_maskz_mul_pd(inside, aD, _mm512_mask_blend_pd(isNear, farW, nearW));
+      const __m512d rho = inverse(f.inverseRho);
+      const __m512d pressure = _mm512_mul_pd(_mm512_mul_pd(f.pressureOverRho2, rho), rho);
+      const __m512d gr = _mm512_fmadd_pd(vgz, dz, _mm512_fmadd_pd(vgy, dy, _mm512_mul_pd(vgx, dx)));
+      sW = _mm512_add_pd(sW, W);
+      sPW = _mm512_fmadd_pd(pressure, W, sPW);
+      sRR = _mm512_fmadd_pd(_mm512_mul_pd(rho, gr), W, sRR);  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
+    }
+    sumW = _mm512_reduce_add_pd(sW);
+    sumPW = _mm512_reduce_add_pd(sPW);
+    sumRhoRW = _mm512_reduce_add_pd(sRR);
+#else
+    sumW = sumPW = sumRhoRW = 0;
+    for (int m = 0; m < count; ++m) {
+      const Packed& f = pk[list[m]];
+      const double dx = xw - f.x, dy = yw - f.y, dz = zw - f.z;
+      const double W = kernel.value(std::sqrt(dx * dx + dy * dy + dz * dz));
+      const double rho = 1.0 / f.inverseRho;
+      sumW += W;
+      sumPW += f.pressureOverRho2 * rho * rho * W;
+      sumRhoRW += rho * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
+    }
+#endif
+  }
+};
+
 }  // namespace
 
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
@@ -292,42 +360,39 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   }
   k.diffusionScale = 2.0 * model.delta * kernel.h() * eos.soundSpeed;
 
-  // Fluid pressures from the equation of state; then the boundary particles' pressures extrapolated
-  // from the fluid around them (Adami et al. 2012, eq. 27), their density its EOS inverse.
-#pragma omp parallel for schedule(static) if (worthParallel(n))
-  for (std::size_t a = 0; a < n; ++a)
-    if (p.body[a] == kFluid) p.pressure[a] = eos.pressure(p.rhoEst[a]);
-  const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
-#pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
-  for (std::size_t w = 0; w < n; ++w) {
-    if (p.body[w] == kFluid) continue;
-    const std::int32_t* nb = list.neighbours(w);
-    double sumW = 0, sumPW = 0, sumRhoRW = 0;
-    for (int m = 0; m < list.count(w); ++m) {
-      const std::int32_t f = nb[m];
-      const double dx = p.x[w] - p.x[f], dy = p.y[w] - p.y[f], dz = is3d ? p.z[w] - p.z[f] : 0.0;
-      const double W = kernel.value(std::sqrt(dx * dx + dy * dy + dz * dz));
-      sumW += W;
-      sumPW += p.pressure[f] * W;
-      sumRhoRW += p.rhoEst[f] * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f r_wf W, a_w neglected
-    }
-    // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
-    const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
-    p.pressure[w] = pw;
-    p.rhoEst[w] = pw > 0 ? eos.density(pw) : eos.referenceDensity;
-  }
-  // What the pair loop reads of a particle, packed into one cache line.
+  // 1. Fluid: pressure from the equation of state, and the record the pair loop reads (one cache
+  //    line: position, p/ρ², velocity estimate, 1/ρ). Equal masses (every lattice-built set) save
+  //    the pair loop a load per pair; checked here, over every particle. Dynamic, as the fluid is
+  //    not spread evenly over the cell-ordered particles.
   ws.packed.resize(n);
-  // Equal masses (every lattice-built set): one load fewer per pair. Checked here, in parallel.
+  Packed* packed = ws.packed.data();
   double minMass = n > 0 ? p.mass[0] : 0.0, maxMass = minMass;
-#pragma omp parallel for schedule(static) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
+#pragma omp parallel for schedule(dynamic, 4096) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
     minMass = std::min(minMass, p.mass[a]);
     maxMass = std::max(maxMass, p.mass[a]);
-    p.inverseRho[a] = 1.0 / p.rhoEst[a];
-    p.pressureOverRho2[a] = p.pressure[a] * p.inverseRho[a] * p.inverseRho[a];
-    ws.packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, p.pressureOverRho2[a],
-                    p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, p.inverseRho[a]};
+    if (p.body[a] != kFluid) continue;
+    const double pressure = eos.pressure(p.rhoEst[a]), inverseRho = 1.0 / p.rhoEst[a];
+    p.pressure[a] = pressure;
+    packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, pressure * inverseRho * inverseRho,
+                 p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, inverseRho};
+  }
+  // 2. Boundary particles: the pressure extrapolated from the fluid around them (Adami et al. 2012,
+  //    eq. 27), their density its EOS inverse, and their record.
+  const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
+  const WallSums wallSums{kernel, gx, gy, gz};
+#pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
+  for (std::size_t w = 0; w < n; ++w) {
+    if (p.body[w] == kFluid) continue;
+    const double xw = p.x[w], yw = p.y[w], zw = is3d ? p.z[w] : 0.0;
+    double sumW = 0, sumPW = 0, sumRhoRW = 0;
+    if (list.count(w) > 0) wallSums(xw, yw, zw, list.neighbours(w), list.count(w), packed, sumW, sumPW, sumRhoRW);
+    // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
+    const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
+    const double rhow = pw > 0 ? eos.density(pw) : eos.referenceDensity, inverseRho = 1.0 / rhow;
+    p.pressure[w] = pw;
+    p.rhoEst[w] = rhow;
+    packed[w] = {xw, yw, zw, pw * inverseRho * inverseRho, p.vxEst[w], p.vyEst[w], is3d ? p.vzEst[w] : 0.0, inverseRho};
   }
 
   k.uniformMass = minMass;

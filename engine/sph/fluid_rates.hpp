@@ -38,8 +38,8 @@ struct RateWorkspace {
   std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt; all 0 between calls
 };
 
-/// Sets the boundary particles' pressure and rhoEst (extrapolated), every particle's pressure,
-/// pressureOverRho2 and inverseRho, then ax/ay/az (without gravity) and drho (fluid particles).
+/// Sets every particle's pressure (the boundary particles' extrapolated, with their rhoEst from it),
+/// then ax/ay/az (without gravity) and drho (fluid particles).
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
                           RateWorkspace& workspace);
 

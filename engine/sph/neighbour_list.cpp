@@ -263,12 +263,20 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
 
 void NeighbourList::compact() {
   const std::size_t n = m_count.size();
-  m_offset.resize(n + 1);
-  m_offset[0] = 0;
-  for (std::size_t i = 0; i < n; ++i) m_offset[i + 1] = m_offset[i] + static_cast<std::size_t>(m_count[i]);
+  // The fluid particles' lists first, then the boundary particles': each pass reads one stream
+  // (the pair loop the fluid's lists, the wall extrapolation the walls'), and the entries past the
+  // end of a fluid list, which the pair loop prefetches from, are the next fluid particle's.
+  m_offset.resize(n);
+  std::size_t total = 0;
+  for (int fluid = 1; fluid >= 0; --fluid)
+    for (std::size_t i = 0; i < n; ++i)
+      if (m_isFluid[i] == fluid) {
+        m_offset[i] = total;
+        total += static_cast<std::size_t>(m_count[i]);
+      }
   // Padded with particle 0: the pair loop loads and prefetches up to kListPadding entries past a list.
   // Only the padding needs zeros: every list entry is written below.
-  m_compact.resize(m_offset[n] + kListPadding);
+  m_compact.resize(total + kListPadding);
   std::fill(m_compact.end() - kListPadding, m_compact.end(), 0);
 #pragma omp parallel for schedule(static) if (worthParallel(n))
   for (std::size_t i = 0; i < n; ++i)

@@ -32,12 +32,16 @@ void SphSystem::refreshMembers() {
 }
 
 void SphSystem::rebuildLists() {
-  const double cutoff = model.kernel().support() * (1.0 + skinFraction);
+  const double cutoff = model.kernel().support() + listSkin();
   if (m_builds % static_cast<std::size_t>(std::max(1, sortEvery)) == 0) {
     particles.permute(m_list.cellOrder(particles, model.dimension, 0.5 * cutoff), m_permuteScratch, m_permuteIndexScratch);
     refreshMembers();
   }
   m_list.build(particles, model.dimension, cutoff);
+  std::vector<char> moves(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) moves[b] = bodies[b].motion != BodyMotion::Fixed;
+  m_relativeMove.reset(particles, model.dimension, cutoff, moves);
+  m_skinBudget = listSkin();  // nothing has moved: the whole skin is left
   m_x0 = particles.x;
   m_y0 = particles.y;
   m_z0 = particles.z;
@@ -114,8 +118,10 @@ void SphSystem::step(double dt) {
   // 1. Half kick of v and ρ with the rates at t; drift of x with the half-step velocity; estimates
   //    of v and ρ at t + dt for the pair loop. The largest move since the last list build is taken
   //    here and in the bodies' loop below, not by a pass of its own.
-  double maxMove2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : maxMove2) if (worthParallel(n))
+  //    Dynamic: the loop's work is the fluid's, and in cell order the fluid is not spread evenly
+  //    (a collapsing column leaves the upper cells to the walls).
+  double maxMove2 = 0, maxSpeed2 = 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : maxMove2, maxSpeed2) if (worthParallel(n))
   for (std::size_t k = 0; k < n; ++k) {
     if (p.body[k] == kFluid) {
       const double ax = p.ax[k] + gx, ay = p.ay[k] + gy, az = p.az[k] + gz;
@@ -126,6 +132,7 @@ void SphSystem::step(double dt) {
       p.rhoEst[k] = p.rho[k] + half * p.drho[k];
       const double dx = p.x[k] - m_x0[k], dy = p.y[k] - m_y0[k], dz = p.z[k] - m_z0[k];
       maxMove2 = std::max(maxMove2, dx * dx + dy * dy + dz * dz);
+      maxSpeed2 = std::max(maxSpeed2, p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k] + p.vz[k] * p.vz[k]);
     }  // boundary densities are extrapolated from the fluid in computeRates
   }
   // 2. Bodies: the same kick–drift for their one degree of freedom. A fixed body's members keep
@@ -143,6 +150,7 @@ void SphSystem::step(double dt) {
     }
     const double dx = dt * b.speed;
     b.displacement += dx;
+    maxSpeed2 = std::max(maxSpeed2, b.speed * b.speed);
     const std::int32_t* ids = b.members.data();
     double bodyMove2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : bodyMove2) if (worthParallel(b.members.size()))
@@ -158,9 +166,22 @@ void SphSystem::step(double dt) {
   time += dt;
   ++steps;
 
-  // 3. Neighbour lists, when some particle has moved more than half the skin since the last build.
-  const double skin = model.kernel().support() * skinFraction;
-  if (maxMove2 > 0.25 * skin * skin) rebuildLists();
+  // 3. Neighbour lists, when two particles that interact may have moved towards each other by more
+  //    than the skin since the last build. Three tests, cheapest first; the list is complete if
+  //    - every particle has moved less than half the skin since the build; or
+  //    - the budget left by the last bound still covers this step: a pair closer than the cutoff
+  //      at that bound's step has since changed its relative displacement by at most twice the
+  //      largest move of a particle, summed over the steps (the speeds here), and a pair farther
+  //      than the cutoff then cannot have come within the support without using up a skin; or
+  //    - the bound over the pairs closer than the cutoff now is within the skin
+  //      (relative_displacement.hpp), which sets a new budget.
+  const double skin = listSkin();
+  m_skinBudget -= 2.0 * dt * std::sqrt(maxSpeed2);
+  if (maxMove2 > 0.25 * skin * skin && m_skinBudget < 0.0) {
+    const double bound = m_relativeMove.evaluate(p, m_x0, m_y0, m_z0);
+    if (bound > skin * (1.0 - 1e-9)) rebuildLists();
+    else m_skinBudget = skin - bound;
+  }
 
   // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
   std::vector<std::array<double, 3>> oldForce;
@@ -174,7 +195,7 @@ void SphSystem::step(double dt) {
     for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (oldForce[b][a] + bodies[b].force[a]);
 
   // 5. Second half kick.
-#pragma omp parallel for schedule(static) if (worthParallel(n))
+#pragma omp parallel for schedule(dynamic, 4096) if (worthParallel(n))
   for (std::size_t k = 0; k < n; ++k) {
     if (p.body[k] == kFluid) {
       p.vx[k] += half * (p.ax[k] + gx); p.vy[k] += half * (p.ay[k] + gy); p.vz[k] += half * (p.az[k] + gz);

@@ -11,6 +11,7 @@
 #include "sph/fluid_particles.hpp"
 #include "sph/fluid_rates.hpp"
 #include "sph/neighbour_list.hpp"
+#include "sph/relative_displacement.hpp"
 #include "sph/rigid_body.hpp"
 
 namespace rupture::sph {
@@ -51,6 +52,7 @@ public:
 
 private:
   void rebuildLists();
+  double listSkin() const { return model.kernel().support() * skinFraction; }  ///< cutoff − support (m)
   void refreshMembers();
   void bodyForces();
   /// Sets the members' velocities from their body's speed; fixedToo: also those of fixed bodies
@@ -58,6 +60,7 @@ private:
   void setBodyVelocities(bool fixedToo);
 
   NeighbourList m_list;
+  RelativeDisplacementBound m_relativeMove;
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<double> m_blockForces;  ///< bodyForces scratch: 3 per block of members
@@ -65,6 +68,7 @@ private:
   std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
   std::vector<std::int32_t> m_permuteIndexScratch;
   std::size_t m_builds = 0;
+  double m_skinBudget = 0;  ///< m: what interacting pairs may still close in before a rebuild (step 3)
 };
 
 }  // namespace rupture::sph

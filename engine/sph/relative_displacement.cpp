@@ -1,0 +1,157 @@
+#include "sph/relative_displacement.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.hpp"
+
+namespace rupture::sph {
+
+namespace {
+
+/// Squared diagonal of the box spanning two non-empty boxes.
+template <class Box>
+double unionDiagonal2(const Box& a, const Box& b, int dimension) {
+  double d2 = 0;
+  for (int k = 0; k < dimension; ++k) {
+    const double e = std::max(a.hi[k], b.hi[k]) - std::min(a.lo[k], b.lo[k]);
+    d2 += e * e;
+  }
+  return d2;
+}
+
+}  // namespace
+
+void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, double reach,
+                                      const std::vector<char>& bodyMoves) {
+  m_dimension = dimension;
+  const std::size_t n = p.size();
+  const std::vector<double>* coord[3] = {&p.x, &p.y, &p.z};
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int a = 0; a < dimension && n > 0; ++a) {
+    const auto [mn, mx] = std::minmax_element(coord[a]->begin(), coord[a]->end());
+    lo[a] = *mn;
+    hi[a] = *mx;
+  }
+  // Edge >= reach; a scattered cloud must not ask for an absurd number of cells.
+  double edge = reach;
+  auto cells = [&](double e) {
+    double c = 1;
+    for (int a = 0; a < dimension; ++a) c *= std::floor((hi[a] - lo[a]) / e) + 1;
+    return c;
+  };
+  while (cells(edge) > 2.0 * static_cast<double>(n) + 64.0) edge *= 1.25;
+  m_inverseEdge = 1.0 / edge;
+  m_cells = 1;
+  for (int a = 0; a < 3; ++a) {
+    m_origin[a] = lo[a];
+    m_dims[a] = a < dimension ? static_cast<int>(std::floor((hi[a] - lo[a]) * m_inverseEdge)) + 1 : 1;
+    m_cells *= static_cast<std::size_t>(m_dims[a]);
+  }
+  m_threadBoxes.clear();  // evaluate sizes it for its thread count, all boxes empty
+  m_merged.resize(2 * m_cells);
+  m_fixedIn.assign(m_cells, 0);
+  m_movers.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t b = p.body[k];
+    if (b == kFluid || bodyMoves.at(static_cast<std::size_t>(b))) m_movers.push_back(static_cast<std::int32_t>(k));
+    else m_fixedIn[cellOf(p.x[k], p.y[k], p.z[k])] = 1;
+  }
+}
+
+std::size_t RelativeDisplacementBound::cellOf(double x, double y, double z) const {
+  const double v[3] = {x, y, z};
+  int c[3] = {0, 0, 0};
+  for (int a = 0; a < m_dimension; ++a) {
+    const double f = (v[a] - m_origin[a]) * m_inverseEdge;
+    // Clamped: a particle outside the box joins a border cell. Clamping keeps cells of particles
+    // closer than an edge within one of each other, so no pair is missed.
+    c[a] = f <= 0.0 ? 0 : (f >= m_dims[a] - 1 ? m_dims[a] - 1 : static_cast<int>(f));
+  }
+  return (static_cast<std::size_t>(c[2]) * m_dims[1] + c[1]) * m_dims[0] + c[0];
+}
+
+double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::vector<double>& x0,
+                                           const std::vector<double>& y0, const std::vector<double>& z0) {
+  const std::size_t cells = m_cells, movers = m_movers.size();
+  const int dimension = m_dimension;
+  const int threads = worthParallel(movers) ? omp_get_max_threads() : 1;
+  if (m_threadBoxes.size() < static_cast<std::size_t>(threads) * 2 * cells)
+    m_threadBoxes.resize(static_cast<std::size_t>(threads) * 2 * cells);  // new boxes are empty
+
+  // 1. Each thread widens its own cells' boxes with its movers' displacements. Neighbours in index
+  //    order mostly share a cell (particles are kept in cell order), so a run of them is gathered
+  //    in a local box and written once.
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    Box* mine = m_threadBoxes.data() + static_cast<std::size_t>(omp_get_thread_num()) * 2 * cells;
+    std::size_t slot = 0;
+    Box run;
+    auto flush = [&] {
+      if (run.empty()) return;
+      Box& b = mine[slot];
+      for (int a = 0; a < 3; ++a) {
+        b.lo[a] = std::min(b.lo[a], run.lo[a]);
+        b.hi[a] = std::max(b.hi[a], run.hi[a]);
+      }
+      run = Box{};
+    };
+#pragma omp for schedule(static)
+    for (std::size_t q = 0; q < movers; ++q) {
+      const std::int32_t k = m_movers[q];
+      const std::size_t s = 2 * cellOf(p.x[k], p.y[k], p.z[k]) + (p.body[k] == kFluid ? 0 : 1);
+      if (s != slot) {
+        flush();
+        slot = s;
+      }
+      const double d[3] = {p.x[k] - x0[k], p.y[k] - y0[k], dimension == 3 ? p.z[k] - z0[k] : 0.0};
+      for (int a = 0; a < 3; ++a) {
+        run.lo[a] = std::min(run.lo[a], d[a]);
+        run.hi[a] = std::max(run.hi[a], d[a]);
+      }
+    }
+    flush();
+  }
+  // 2. The threads' boxes merged per cell, and emptied for the next call. A fixed body's members
+  //    sit at displacement 0.
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
+  for (std::size_t c = 0; c < 2 * cells; ++c) {
+    Box merged;
+    if (c % 2 == 1 && m_fixedIn[c / 2])
+      for (int a = 0; a < 3; ++a) merged.lo[a] = merged.hi[a] = 0.0;
+    for (int t = 0; t < threads; ++t) {
+      Box& b = m_threadBoxes[static_cast<std::size_t>(t) * 2 * cells + c];
+      for (int a = 0; a < 3; ++a) {
+        merged.lo[a] = std::min(merged.lo[a], b.lo[a]);
+        merged.hi[a] = std::max(merged.hi[a], b.hi[a]);
+      }
+      b = Box{};
+    }
+    m_merged[c] = merged;
+  }
+  // 3. Over every cell with fluid: its fluid box against the fluid and the boundary box of itself
+  //    and of each adjacent cell.
+  const int reach[3] = {1, 1, dimension == 3 ? 1 : 0};
+  double worst2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst2) if (threads > 1) num_threads(threads)
+  for (std::size_t c = 0; c < cells; ++c) {
+    const Box& fluid = m_merged[2 * c];
+    if (fluid.empty()) continue;
+    const int cx = static_cast<int>(c % m_dims[0]), cy = static_cast<int>(c / m_dims[0] % m_dims[1]),
+              cz = static_cast<int>(c / (static_cast<std::size_t>(m_dims[0]) * m_dims[1]));
+    for (int z = std::max(cz - reach[2], 0); z <= std::min(cz + reach[2], m_dims[2] - 1); ++z)
+      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, m_dims[1] - 1); ++y)
+        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, m_dims[0] - 1); ++x) {
+          const std::size_t other = (static_cast<std::size_t>(z) * m_dims[1] + y) * m_dims[0] + x;
+          for (int kind = 0; kind < 2; ++kind) {
+            const Box& b = m_merged[2 * other + kind];
+            if (!b.empty()) worst2 = std::max(worst2, unionDiagonal2(fluid, b, dimension));
+          }
+        }
+  }
+  return std::sqrt(worst2);
+}
+
+}  // namespace rupture::sph
