@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/parallel.hpp"
+#include "sph/cell_grid.hpp"
 
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__) && !defined(RUPTURE_SPH_NO_INTRINSICS)
 #include <immintrin.h>
@@ -18,50 +19,9 @@ namespace {
 /// Candidates the list search tests at a time (one AVX-512 vector of doubles).
 constexpr int kScanWidth = 8;
 
-/// The cell grid over the particles' bounding box: edge >= cellSize, cells numbered x-fastest.
-struct Grid {
-  double origin[3] = {0, 0, 0};
-  double inverseSize = 1;
-  int dims[3] = {1, 1, 1};
-
-  Grid(const FluidParticles& p, int dimension, double cellSize) {
-    const std::size_t n = p.size();
-    const std::vector<double>* coord[3] = {&p.x, &p.y, &p.z};
-    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (int a = 0; a < dimension; ++a) {
-      if (n == 0) break;
-      const auto [mn, mx] = std::minmax_element(coord[a]->begin(), coord[a]->end());
-      lo[a] = *mn;
-      hi[a] = *mx;
-    }
-    double size = cellSize;
-    // A scattered cloud (a splash) must not ask for an absurd number of cells.
-    auto cells = [&](double edge) {
-      double c = 1;
-      for (int a = 0; a < dimension; ++a) c *= std::floor((hi[a] - lo[a]) / edge) + 1;
-      return c;
-    };
-    while (cells(size) > 8.0 * static_cast<double>(n) + 64.0) size *= 1.25;
-    inverseSize = 1.0 / size;
-    for (int a = 0; a < dimension; ++a) {
-      origin[a] = lo[a];
-      dims[a] = static_cast<int>(std::floor((hi[a] - lo[a]) * inverseSize)) + 1;
-    }
-  }
-
-  int coord(double v, int a) const {
-    const int c = static_cast<int>((v - origin[a]) * inverseSize);
-    return c < 0 ? 0 : (c >= dims[a] ? dims[a] - 1 : c);
-  }
-  std::size_t cellOf(const FluidParticles& p, std::size_t k) const {
-    return (static_cast<std::size_t>(coord(p.z[k], 2)) * dims[1] + coord(p.y[k], 1)) * dims[0] + coord(p.x[k], 0);
-  }
-  std::size_t count() const { return static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]; }
-};
-
 /// Counting sort of particles by cell: start (cells + 1) and the particles in cell order. cell and
 /// cursor are scratch, kept by the caller so that a rebuild allocates (and page-faults) nothing.
-void binParticles(const FluidParticles& p, const Grid& g, std::vector<std::int32_t>& start,
+void binParticles(const FluidParticles& p, const CellGrid& g, std::vector<std::int32_t>& start,
                   std::vector<std::int32_t>& sorted, std::vector<std::int32_t>& cell,
                   std::vector<std::int32_t>& cursor) {
   const std::size_t n = p.size();
@@ -81,7 +41,7 @@ void binParticles(const FluidParticles& p, const Grid& g, std::vector<std::int32
 
 const std::vector<std::int32_t>& NeighbourList::cellOrder(const FluidParticles& p, int dimension, double cellSize) {
   // The search's scratch (build overwrites it): a re-sort allocates, and page-faults, nothing.
-  const Grid g(p, dimension, cellSize);
+  const CellGrid g(p, dimension, cellSize, 8.0);
   binParticles(p, g, m_cellStart, m_sorted, m_cell, m_cursor);
   return m_sorted;
 }
@@ -99,7 +59,7 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
   m_cutoff = cutoff;
   // Cells of half the cutoff and a ±2 stencil: 125 (3D) half-size cells hold about half the
   // candidates of 27 full-size ones.
-  const Grid g(p, dimension, 0.5 * cutoff);
+  const CellGrid g(p, dimension, 0.5 * cutoff, 8.0);
   binParticles(p, g, m_cellStart, m_sorted, m_cell, m_cursor);
   m_count.assign(n, 0);
   m_fluidCount.assign(n, 0);

@@ -28,28 +28,8 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
                                       const std::vector<char>& bodyMoves) {
   m_dimension = dimension;
   const std::size_t n = p.size();
-  const std::vector<double>* coord[3] = {&p.x, &p.y, &p.z};
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int a = 0; a < dimension && n > 0; ++a) {
-    const auto [mn, mx] = std::minmax_element(coord[a]->begin(), coord[a]->end());
-    lo[a] = *mn;
-    hi[a] = *mx;
-  }
-  // Edge >= reach; a scattered cloud must not ask for an absurd number of cells.
-  double edge = reach;
-  auto cells = [&](double e) {
-    double c = 1;
-    for (int a = 0; a < dimension; ++a) c *= std::floor((hi[a] - lo[a]) / e) + 1;
-    return c;
-  };
-  while (cells(edge) > 2.0 * static_cast<double>(n) + 64.0) edge *= 1.25;
-  m_inverseEdge = 1.0 / edge;
-  m_cells = 1;
-  for (int a = 0; a < 3; ++a) {
-    m_origin[a] = lo[a];
-    m_dims[a] = a < dimension ? static_cast<int>(std::floor((hi[a] - lo[a]) * m_inverseEdge)) + 1 : 1;
-    m_cells *= static_cast<std::size_t>(m_dims[a]);
-  }
+  m_grid = CellGrid(p, dimension, reach, 2.0);
+  m_cells = m_grid.count();
   m_threadBoxes.clear();  // evaluate sizes it for its thread count, all boxes empty
   m_merged.resize(2 * m_cells);
   m_fixedIn.assign(m_cells, 0);
@@ -57,20 +37,8 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
   for (std::size_t k = 0; k < n; ++k) {
     const std::int32_t b = p.body[k];
     if (b == kFluid || bodyMoves.at(static_cast<std::size_t>(b))) m_movers.push_back(static_cast<std::int32_t>(k));
-    else m_fixedIn[cellOf(p.x[k], p.y[k], p.z[k])] = 1;
+    else m_fixedIn[m_grid.cellOf(p, k)] = 1;
   }
-}
-
-std::size_t RelativeDisplacementBound::cellOf(double x, double y, double z) const {
-  const double v[3] = {x, y, z};
-  int c[3] = {0, 0, 0};
-  for (int a = 0; a < m_dimension; ++a) {
-    const double f = (v[a] - m_origin[a]) * m_inverseEdge;
-    // Clamped: a particle outside the box joins a border cell. Clamping keeps cells of particles
-    // closer than an edge within one of each other, so no pair is missed.
-    c[a] = f <= 0.0 ? 0 : (f >= m_dims[a] - 1 ? m_dims[a] - 1 : static_cast<int>(f));
-  }
-  return (static_cast<std::size_t>(c[2]) * m_dims[1] + c[1]) * m_dims[0] + c[0];
 }
 
 double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::vector<double>& x0,
@@ -101,7 +69,7 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
 #pragma omp for schedule(static)
     for (std::size_t q = 0; q < movers; ++q) {
       const std::int32_t k = m_movers[q];
-      const std::size_t s = 2 * cellOf(p.x[k], p.y[k], p.z[k]) + (p.body[k] == kFluid ? 0 : 1);
+      const std::size_t s = 2 * m_grid.cellOf(p, k) + (p.body[k] == kFluid ? 0 : 1);
       if (s != slot) {
         flush();
         slot = s;
@@ -139,12 +107,12 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
   for (std::size_t c = 0; c < cells; ++c) {
     const Box& fluid = m_merged[2 * c];
     if (fluid.empty()) continue;
-    const int cx = static_cast<int>(c % m_dims[0]), cy = static_cast<int>(c / m_dims[0] % m_dims[1]),
-              cz = static_cast<int>(c / (static_cast<std::size_t>(m_dims[0]) * m_dims[1]));
-    for (int z = std::max(cz - reach[2], 0); z <= std::min(cz + reach[2], m_dims[2] - 1); ++z)
-      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, m_dims[1] - 1); ++y)
-        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, m_dims[0] - 1); ++x) {
-          const std::size_t other = (static_cast<std::size_t>(z) * m_dims[1] + y) * m_dims[0] + x;
+    const int cx = static_cast<int>(c % m_grid.dims[0]), cy = static_cast<int>(c / m_grid.dims[0] % m_grid.dims[1]),
+              cz = static_cast<int>(c / (static_cast<std::size_t>(m_grid.dims[0]) * m_grid.dims[1]));
+    for (int z = std::max(cz - reach[2], 0); z <= std::min(cz + reach[2], m_grid.dims[2] - 1); ++z)
+      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, m_grid.dims[1] - 1); ++y)
+        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, m_grid.dims[0] - 1); ++x) {
+          const std::size_t other = (static_cast<std::size_t>(z) * m_grid.dims[1] + y) * m_grid.dims[0] + x;
           for (int kind = 0; kind < 2; ++kind) {
             const Box& b = m_merged[2 * other + kind];
             if (!b.empty()) worst2 = std::max(worst2, unionDiagonal2(fluid, b, dimension));

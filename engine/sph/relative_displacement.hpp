@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sph/cell_grid.hpp"
 #include "sph/fluid_particles.hpp"
 
 namespace rupture::sph {
@@ -42,15 +43,12 @@ private:
     bool empty() const { return lo[0] > hi[0]; }
   };
   int m_dimension = 3;
-  double m_origin[3] = {0, 0, 0}, m_inverseEdge = 1;
-  int m_dims[3] = {1, 1, 1};
+  CellGrid m_grid;
   std::size_t m_cells = 0;
   // Per thread, 2 boxes a cell (fluid, boundary); all empty between calls. Then the merged boxes.
   std::vector<Box> m_threadBoxes, m_merged;
   std::vector<std::int32_t> m_movers;  // the particles that can move, in index order
   std::vector<char> m_fixedIn;         // per cell: holds a member of a fixed body (displacement 0)
-
-  std::size_t cellOf(double x, double y, double z) const;
 };
 
 }  // namespace rupture::sph
