@@ -28,7 +28,10 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
                                       const std::vector<char>& bodyMoves) {
   m_dimension = dimension;
   const std::size_t n = p.size();
-  m_grid = CellGrid(p, dimension, reach, 2.0);
+  // At most one cell per particle: each thread keeps two boxes (48 bytes each) a cell, so a
+  // scattered cloud must not multiply the memory (a dense fluid has about 20 particles in a cell
+  // of the cutoff in 3D, 8 in 2D).
+  m_grid = CellGrid(p, dimension, reach, 1.0);
   m_cells = m_grid.count();
   m_threadBoxes.clear();  // evaluate sizes it for its thread count, all boxes empty
   m_merged.resize(2 * m_cells);
