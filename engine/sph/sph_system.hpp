@@ -24,8 +24,9 @@ public:
   double time = 0;         ///< s
   std::size_t steps = 0;
   /// Neighbour-list skin as a fraction of the kernel support. 0.08 rather than 0.1: W3 on one
-  /// thread took 10 % less processor time at 300 steps and at 1000 (more builds, but fewer listed
-  /// pairs every step; bench/README.md).
+  /// thread took 10 % less processor time at 300 steps and at 1000 under the half-skin rebuild
+  /// rule (more builds, but fewer listed pairs every step); under the relative-displacement rule
+  /// 0.06, 0.10 and 0.12 were not distinguishable from it (bench/README.md).
   double skinFraction = 0.08;
   int sortEvery = 4;          ///< re-sort particles in cell order every this many list builds
 
