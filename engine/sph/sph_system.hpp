@@ -4,6 +4,7 @@
 // LAMMPS' fix sph): half kick of v and ρ, drift of x, estimates of v and ρ at the end of the step
 // for the pair loop, then the second half kick with the new rates. Boundary particles move with
 // their body; their density is not integrated but extrapolated from the fluid (fluid_rates.hpp).
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -65,6 +66,7 @@ private:
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<double> m_blockForces;  ///< bodyForces scratch: 3 per block of members
+  std::vector<std::array<double, 3>> m_oldForces;  ///< step's scratch: the bodies' forces at t (N)
   std::vector<double> m_x0, m_y0, m_z0;
   std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
   std::vector<std::int32_t> m_permuteIndexScratch;
