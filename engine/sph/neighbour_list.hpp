@@ -51,7 +51,8 @@ private:
   std::size_t m_stride = 0, m_slot = 0;  // list capacity per particle in the search; its slot size
   double m_cutoff = 0;
   // m_index: the search's fixed-stride slots (m_stride per particle); m_compact: the lists back to
-  // back (particle i's at m_offset[i]), what the pair loops read: a sequential stream of ~10 MB
+  // back (particle i's at m_offset[i]; the fluid particles' first, in index order, then the boundary
+  // particles'), what the pair loops read: a sequential stream of ~10 MB
   // instead of one line per particle in an 80 MB table (W3), which the loops' time waited on.
   std::vector<std::int32_t> m_index, m_compact, m_count, m_fluidCount;
   std::vector<std::size_t> m_offset;

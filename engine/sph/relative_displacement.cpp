@@ -62,11 +62,7 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
     Box run;
     auto flush = [&] {
       if (run.empty()) return;
-      Box& b = mine[slot];
-      for (int a = 0; a < 3; ++a) {
-        b.lo[a] = std::min(b.lo[a], run.lo[a]);
-        b.hi[a] = std::max(b.hi[a], run.hi[a]);
-      }
+      mine[slot].widen(run);
       run = Box{};
     };
 #pragma omp for schedule(static)
@@ -78,10 +74,7 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
         slot = s;
       }
       const double d[3] = {p.x[k] - x0[k], p.y[k] - y0[k], dimension == 3 ? p.z[k] - z0[k] : 0.0};
-      for (int a = 0; a < 3; ++a) {
-        run.lo[a] = std::min(run.lo[a], d[a]);
-        run.hi[a] = std::max(run.hi[a], d[a]);
-      }
+      run.widen(d, d);
     }
     flush();
   }
@@ -90,14 +83,11 @@ double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::v
 #pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (std::size_t c = 0; c < 2 * cells; ++c) {
     Box merged;
-    if (c % 2 == 1 && m_fixedIn[c / 2])
-      for (int a = 0; a < 3; ++a) merged.lo[a] = merged.hi[a] = 0.0;
+    constexpr double kOrigin[3] = {0, 0, 0};
+    if (c % 2 == 1 && m_fixedIn[c / 2]) merged.widen(kOrigin, kOrigin);
     for (int t = 0; t < threads; ++t) {
       Box& b = m_threadBoxes[static_cast<std::size_t>(t) * 2 * cells + c];
-      for (int a = 0; a < 3; ++a) {
-        merged.lo[a] = std::min(merged.lo[a], b.lo[a]);
-        merged.hi[a] = std::max(merged.hi[a], b.hi[a]);
-      }
+      merged.widen(b);
       b = Box{};
     }
     m_merged[c] = merged;

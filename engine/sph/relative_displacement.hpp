@@ -41,6 +41,13 @@ private:
   struct Box {
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     bool empty() const { return lo[0] > hi[0]; }
+    void widen(const double lower[3], const double upper[3]) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = lower[a] < lo[a] ? lower[a] : lo[a];
+        hi[a] = upper[a] > hi[a] ? upper[a] : hi[a];
+      }
+    }
+    void widen(const Box& b) { widen(b.lo, b.hi); }
   };
   int m_dimension = 3;
   CellGrid m_grid;

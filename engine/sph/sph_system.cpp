@@ -184,15 +184,15 @@ void SphSystem::step(double dt) {
   }
 
   // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
-  std::vector<std::array<double, 3>> oldForce;
-  for (const RigidBody& b : bodies) oldForce.push_back(b.force);
+  m_oldForces.clear();  // kept between steps: a step allocates nothing
+  for (const RigidBody& b : bodies) m_oldForces.push_back(b.force);
   m_extremes = computeRates(p, m_list, model, m_workspace);
   if (!std::isfinite(m_extremes.maxDensity) || !std::isfinite(m_extremes.maxAcceleration))
     throw std::runtime_error("SPH: the solution became non-finite at t = " + std::to_string(time) +
                              " s (time step too large for the sound speed?)");
   bodyForces();
   for (std::size_t b = 0; b < bodies.size(); ++b)
-    for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (oldForce[b][a] + bodies[b].force[a]);
+    for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (m_oldForces[b][a] + bodies[b].force[a]);
 
   // 5. Second half kick.
 #pragma omp parallel for schedule(dynamic, 4096) if (worthParallel(n))

@@ -4,6 +4,7 @@
 // LAMMPS' fix sph): half kick of v and ρ, drift of x, estimates of v and ρ at the end of the step
 // for the pair loop, then the second half kick with the new rates. Boundary particles move with
 // their body; their density is not integrated but extrapolated from the fluid (fluid_rates.hpp).
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -24,8 +25,9 @@ public:
   double time = 0;         ///< s
   std::size_t steps = 0;
   /// Neighbour-list skin as a fraction of the kernel support. 0.08 rather than 0.1: W3 on one
-  /// thread took 10 % less processor time at 300 steps and at 1000 (more builds, but fewer listed
-  /// pairs every step; bench/README.md).
+  /// thread took 10 % less processor time at 300 steps and at 1000 under the half-skin rebuild
+  /// rule (more builds, but fewer listed pairs every step); under the relative-displacement rule
+  /// 0.06, 0.10 and 0.12 were not distinguishable from it (bench/README.md).
   double skinFraction = 0.08;
   int sortEvery = 4;          ///< re-sort particles in cell order every this many list builds
 
@@ -64,6 +66,7 @@ private:
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<double> m_blockForces;  ///< bodyForces scratch: 3 per block of members
+  std::vector<std::array<double, 3>> m_oldForces;  ///< step's scratch: the bodies' forces at t (N)
   std::vector<double> m_x0, m_y0, m_z0;
   std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
   std::vector<std::int32_t> m_permuteIndexScratch;

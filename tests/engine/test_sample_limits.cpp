@@ -11,9 +11,11 @@
 
 #include "dem/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
+#include "sample_test_support.hpp"
 #include "support/test_support.hpp"
 
 using namespace rupture;
+using rupture::testing::ceramic;
 using rupture::testing::rejectedField;
 
 namespace {
@@ -31,14 +33,6 @@ nlohmann::json tensionSpec(int dimension) {
       {"loading", {{"strain_rate", 1e6}, {"initial_velocity", "VL"}}}};
   if (dimension == 3) spec["sample"]["pore_radius"] = {1.5e-8, 3e-8};
   return spec;
-}
-
-MaterialSpec ceramic() {
-  MaterialSpec m;
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9;
-  return m;
 }
 
 TEST(SampleLimits, TheSpecThatPinnedAWorkerIsRejected) {

@@ -10,29 +10,13 @@
 #include <vector>
 
 #include "dem/sample_builder.hpp"
+#include "sample_test_support.hpp"
 
 using namespace rupture;
+using rupture::testing::ceramic;
+using rupture::testing::porousSpec;
 
 namespace {
-
-SampleSpec porousSpec(int dimension, std::uint64_t seed) {
-  SampleSpec s;
-  s.dimension = dimension;
-  s.size = dimension == 2 ? std::array<double, 3>{0.3e-6, 0.3e-6, 0} : std::array<double, 3>{0.12e-6, 0.12e-6, 0.12e-6};
-  s.elementRadius = dimension == 2 ? 3.3e-9 : 5e-9;
-  s.porosity = 0.11;
-  s.poreRadius = dimension == 2 ? std::array<double, 2>{0.02e-6, 0.06e-6} : std::array<double, 2>{0.015e-6, 0.03e-6};
-  s.seed = seed;
-  return s;
-}
-
-MaterialSpec ceramic() {
-  MaterialSpec m;
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9;
-  return m;
-}
 
 struct Case {
   int dimension;

@@ -86,7 +86,7 @@ TEST(DamBreak, TrajectoriesAreBitwiseIdenticalOnOneAndTwoThreads) {
     sph::SphSystem s;
     buildDamBreak(s, parsed);
     ASSERT_GE(s.particles.size(), 8192u);
-    s.skinFraction = 0.01;  // rebuild and re-sort within these few steps
+    s.skinFraction = 0.005;  // rebuild and re-sort within these few steps
     s.sortEvery = 1;
     s.initialise();
     for (int k = 0; k < 60; ++k) s.step(s.stableTimeStep(0.2));
