@@ -335,7 +335,7 @@ struct WallSums {
 }  // namespace
 
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
-                          RateWorkspace& ws) {
+                          RateWorkspace& ws, const RateClosing& closing) {
   const std::size_t n = p.size();
   const EquationOfState eos = model.eos;
   const CubicSplineKernel kernel = model.kernel();
@@ -445,12 +445,17 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   // The chunks' buffers added in chunk order: the same sums for any thread count. By spans of
   // particles, each chunk's overlap with the span added as one contiguous (vectorised) run.
   const double massScale = uniform ? k.uniformMass : 1.0;
+  const double tau = closing.halfKick;
+  const std::size_t bodies = closing.bodyForces.size();
   double maxAcc2 = 0, maxRho = 0;
   constexpr std::size_t kSpan = 512;
   const std::size_t spans = (n + kSpan - 1) / kSpan;
+  ws.spanForces.resize(3 * bodies * spans);
 #pragma omp parallel for schedule(static) reduction(max : maxAcc2, maxRho) if (worthParallel(n))
   for (std::size_t b = 0; b < spans; ++b) {
     const std::size_t a0 = b * kSpan, a1 = std::min(n, a0 + kSpan);
+    double* __restrict spanForce = ws.spanForces.data() + 3 * bodies * b;
+    std::fill(spanForce, spanForce + 3 * bodies, 0.0);
     alignas(64) double s[4 * kSpan];
     std::fill(s, s + 4 * (a1 - a0), 0.0);
     for (std::size_t c = 0; c < chunks.size(); ++c) {
@@ -470,15 +475,36 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       p.ax[a] = massScale * t[0];
       p.ay[a] = massScale * t[1];
       p.az[a] = massScale * t[2];
-      if (p.body[a] == kFluid) {
+      const std::int32_t body = p.body[a];
+      if (body == kFluid) {
         p.drho[a] = massScale * t[3];
         const double fx = p.ax[a] + gx, fy = p.ay[a] + gy, fz = p.az[a] + gz;
         maxAcc2 = std::max(maxAcc2, fx * fx + fy * fy + fz * fz);
         maxRho = std::max(maxRho, p.rhoEst[a]);
+        if (tau != 0) {
+          p.vx[a] += tau * fx;
+          p.vy[a] += tau * fy;
+          p.vz[a] += tau * fz;
+          p.rho[a] += tau * p.drho[a];
+        }
       } else {
         p.drho[a] = 0;  // boundary densities are extrapolated, not integrated
+        if (tau != 0) p.rho[a] = p.rhoEst[a];
+        if (bodies > 0) {
+          const double m = p.mass[a];
+          double* f = spanForce + 3 * static_cast<std::size_t>(body);
+          f[0] += m * p.ax[a];
+          f[1] += m * p.ay[a];
+          f[2] += m * p.az[a];
+        }
       }
     }
+  }
+  for (std::size_t body = 0; body < bodies; ++body) {
+    std::array<double, 3> f{0, 0, 0};
+    for (std::size_t b = 0; b < spans; ++b)
+      for (int c = 0; c < 3; ++c) f[c] += ws.spanForces[3 * (bodies * b + body) + c];
+    closing.bodyForces[body] = f;
   }
   return {maxMu, std::sqrt(maxAcc2), maxRho};
 }
