@@ -29,10 +29,9 @@ void binParticles(const FluidParticles& p, const CellGrid& g, std::vector<std::i
   const std::size_t n = p.size();
   start.assign(g.count() + 1, 0);
   cell.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    cell[k] = static_cast<std::int32_t>(g.cellOf(p, k));
-    ++start[cell[k] + 1];
-  }
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) cell[k] = static_cast<std::int32_t>(g.cellOf(p, k));
+  for (std::size_t k = 0; k < n; ++k) ++start[cell[k] + 1];
   for (std::size_t c = 0; c < g.count(); ++c) start[c + 1] += start[c];
   sorted.resize(n);
   cursor.assign(start.begin(), start.end() - 1);

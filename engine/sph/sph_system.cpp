@@ -42,9 +42,17 @@ void SphSystem::rebuildLists() {
   for (std::size_t b = 0; b < bodies.size(); ++b) moves[b] = bodies[b].motion != BodyMotion::Fixed;
   m_relativeMove.reset(particles, model.dimension, cutoff, moves);
   m_skinBudget = listSkin();  // nothing has moved: the whole skin is left
-  m_x0 = particles.x;
-  m_y0 = particles.y;
-  m_z0 = particles.z;
+  // The positions the moves are measured from.
+  const std::size_t n = particles.size();
+  m_x0.resize(n);
+  m_y0.resize(n);
+  m_z0.resize(n);
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    m_x0[k] = particles.x[k];
+    m_y0[k] = particles.y[k];
+    m_z0[k] = particles.z[k];
+  }
   ++m_builds;
 }
 
