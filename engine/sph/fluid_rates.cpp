@@ -402,9 +402,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   const std::vector<NeighbourList::Chunk>& chunks = list.chunks();
   std::vector<std::size_t> offset(chunks.size() + 1, 0);
   for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + 4 * chunks[c].touched();
-  // The buffers are all zero between calls: zero when allocated, and zeroed again by the reduction
-  // below as it reads them (while the lines are in cache), instead of by a pass of their own here.
-  if (ws.sums.size() < offset.back()) ws.sums.resize(offset.back(), 0.0);
+  if (ws.sums.size() < offset.back()) ws.sums.resize(offset.back());
   const Packed* pk = ws.packed.data();
   const double* rho = p.rhoEst.data();
   const double* mass = p.mass.data();
@@ -414,6 +412,9 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     for (std::size_t c = 0; c < chunks.size(); ++c) {
       const NeighbourList::Chunk& ch = chunks[c];
       double* acc = ws.sums.data() + offset[c];
+      // Zeroed here, just before its sums, rather than by the reduction after reading it: the
+      // reduction then only reads, and no line of zeros goes back to memory (memory-bound on W3).
+      std::fill(acc, acc + 4 * ch.touched(), 0.0);
       double mu = 0;
       for (std::size_t i = ch.begin; i < ch.end; ++i) {
         if (p.body[i] != kFluid) continue;
@@ -463,12 +464,9 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       if (ch.touched() == 0) continue;
       const std::size_t from = std::max(a0, ch.lo), to = std::min(a1, ch.hi + 1);
       if (from >= to) continue;
-      double* __restrict v = ws.sums.data() + offset[c] + 4 * (from - ch.lo);
+      const double* __restrict v = ws.sums.data() + offset[c] + 4 * (from - ch.lo);
       double* __restrict d = s + 4 * (from - a0);
-      for (std::size_t m = 0; m < 4 * (to - from); ++m) {
-        d[m] += v[m];
-        v[m] = 0.0;  // ready for the next call
-      }
+      for (std::size_t m = 0; m < 4 * (to - from); ++m) d[m] += v[m];
     }
     for (std::size_t a = a0; a < a1; ++a) {
       const double* t = s + 4 * (a - a0);

@@ -37,7 +37,7 @@ struct RateWorkspace {
     double x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
   };
   std::vector<Packed> packed;
-  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt; all 0 between calls
+  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
   std::vector<double> spanForces;  ///< the bodies' forces summed over each span of the last pass
 };
 
