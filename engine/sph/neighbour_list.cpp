@@ -249,7 +249,9 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
 
 void NeighbourList::splitIntoChunks() {
   const std::size_t n = m_count.size();
-  // 1, 2, 4 or 8 chunks of at least 4,096 particles: a power of two shares evenly among 1, 2, 4, 8 threads.
+  // 1, 2, 4 or 8 chunks of at least 4,096 particles on average; no more than 8, as a chunk's buffer
+  // spans its particles and their neighbours (on W3 about twice its own), so each more chunk adds
+  // memory traffic.
   std::size_t chunks = 1;
   while (chunks < 8 && n / (2 * chunks) >= 4096) chunks *= 2;
   std::size_t work = 0;
@@ -260,7 +262,9 @@ void NeighbourList::splitIntoChunks() {
   for (std::size_t c = 0; c < chunks; ++c) {
     Chunk& k = m_chunks[c];
     k.begin = i;
-    const std::size_t target = work * (c + 1) / chunks;
+    // Shares proportional to 2C − c (chunks(), neighbour_list.hpp): the first c + 1 hold this many of all.
+    const std::size_t cumulative = (c + 1) * 2 * chunks - c * (c + 1) / 2, all = chunks * (3 * chunks + 1) / 2;
+    const std::size_t target = static_cast<std::size_t>(static_cast<double>(work) * cumulative / all);
     while (i < n && (c + 1 == chunks || done < target)) {
       if (m_isFluid[i]) done += static_cast<std::size_t>(m_count[i]);
       ++i;
