@@ -1,5 +1,7 @@
 #include "sph/fluid_particles.hpp"
 
+#include "core/parallel.hpp"
+
 namespace rupture::sph {
 
 namespace {
@@ -7,6 +9,7 @@ namespace {
 template <class T>
 void applyOrder(std::vector<T>& field, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
   scratch.resize(field.size());
+#pragma omp parallel for schedule(static) if (worthParallel(order.size()))
   for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = field[order[k]];
   field.swap(scratch);
 }

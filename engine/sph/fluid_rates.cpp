@@ -335,7 +335,7 @@ struct WallSums {
 }  // namespace
 
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
-                          RateWorkspace& ws) {
+                          RateWorkspace& ws, const RateClosing& closing) {
   const std::size_t n = p.size();
   const EquationOfState eos = model.eos;
   const CubicSplineKernel kernel = model.kernel();
@@ -402,9 +402,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   const std::vector<NeighbourList::Chunk>& chunks = list.chunks();
   std::vector<std::size_t> offset(chunks.size() + 1, 0);
   for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + 4 * chunks[c].touched();
-  // The buffers are all zero between calls: zero when allocated, and zeroed again by the reduction
-  // below as it reads them (while the lines are in cache), instead of by a pass of their own here.
-  if (ws.sums.size() < offset.back()) ws.sums.resize(offset.back(), 0.0);
+  if (ws.sums.size() < offset.back()) ws.sums.resize(offset.back());
   const Packed* pk = ws.packed.data();
   const double* rho = p.rhoEst.data();
   const double* mass = p.mass.data();
@@ -414,6 +412,9 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     for (std::size_t c = 0; c < chunks.size(); ++c) {
       const NeighbourList::Chunk& ch = chunks[c];
       double* acc = ws.sums.data() + offset[c];
+      // Zeroed here, just before its sums, rather than by the reduction after reading it: the
+      // reduction then only reads, and no line of zeros goes back to memory (memory-bound on W3).
+      std::fill(acc, acc + 4 * ch.touched(), 0.0);
       double mu = 0;
       for (std::size_t i = ch.begin; i < ch.end; ++i) {
         if (p.body[i] != kFluid) continue;
@@ -445,12 +446,17 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   // The chunks' buffers added in chunk order: the same sums for any thread count. By spans of
   // particles, each chunk's overlap with the span added as one contiguous (vectorised) run.
   const double massScale = uniform ? k.uniformMass : 1.0;
+  const double tau = closing.halfKick;
+  const std::size_t bodies = closing.bodyForces.size();
   double maxAcc2 = 0, maxRho = 0;
   constexpr std::size_t kSpan = 512;
   const std::size_t spans = (n + kSpan - 1) / kSpan;
+  ws.spanForces.resize(3 * bodies * spans);
 #pragma omp parallel for schedule(static) reduction(max : maxAcc2, maxRho) if (worthParallel(n))
   for (std::size_t b = 0; b < spans; ++b) {
     const std::size_t a0 = b * kSpan, a1 = std::min(n, a0 + kSpan);
+    double* __restrict spanForce = ws.spanForces.data() + 3 * bodies * b;
+    std::fill(spanForce, spanForce + 3 * bodies, 0.0);
     alignas(64) double s[4 * kSpan];
     std::fill(s, s + 4 * (a1 - a0), 0.0);
     for (std::size_t c = 0; c < chunks.size(); ++c) {
@@ -458,27 +464,45 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       if (ch.touched() == 0) continue;
       const std::size_t from = std::max(a0, ch.lo), to = std::min(a1, ch.hi + 1);
       if (from >= to) continue;
-      double* __restrict v = ws.sums.data() + offset[c] + 4 * (from - ch.lo);
+      const double* __restrict v = ws.sums.data() + offset[c] + 4 * (from - ch.lo);
       double* __restrict d = s + 4 * (from - a0);
-      for (std::size_t m = 0; m < 4 * (to - from); ++m) {
-        d[m] += v[m];
-        v[m] = 0.0;  // ready for the next call
-      }
+      for (std::size_t m = 0; m < 4 * (to - from); ++m) d[m] += v[m];
     }
     for (std::size_t a = a0; a < a1; ++a) {
       const double* t = s + 4 * (a - a0);
       p.ax[a] = massScale * t[0];
       p.ay[a] = massScale * t[1];
       p.az[a] = massScale * t[2];
-      if (p.body[a] == kFluid) {
+      const std::int32_t body = p.body[a];
+      if (body == kFluid) {
         p.drho[a] = massScale * t[3];
         const double fx = p.ax[a] + gx, fy = p.ay[a] + gy, fz = p.az[a] + gz;
         maxAcc2 = std::max(maxAcc2, fx * fx + fy * fy + fz * fz);
         maxRho = std::max(maxRho, p.rhoEst[a]);
+        if (tau != 0) {
+          p.vx[a] += tau * fx;
+          p.vy[a] += tau * fy;
+          p.vz[a] += tau * fz;
+          p.rho[a] += tau * p.drho[a];
+        }
       } else {
         p.drho[a] = 0;  // boundary densities are extrapolated, not integrated
+        if (tau != 0) p.rho[a] = p.rhoEst[a];
+        if (bodies > 0) {
+          const double m = p.mass[a];
+          double* f = spanForce + 3 * static_cast<std::size_t>(body);
+          f[0] += m * p.ax[a];
+          f[1] += m * p.ay[a];
+          f[2] += m * p.az[a];
+        }
       }
     }
+  }
+  for (std::size_t body = 0; body < bodies; ++body) {
+    std::array<double, 3> f{0, 0, 0};
+    for (std::size_t b = 0; b < spans; ++b)
+      for (int c = 0; c < 3; ++c) f[c] += ws.spanForces[3 * (bodies * b + body) + c];
+    closing.bodyForces[body] = f;
   }
   return {maxMu, std::sqrt(maxAcc2), maxRho};
 }

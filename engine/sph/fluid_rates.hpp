@@ -13,6 +13,8 @@
 // Each pair is computed once (half lists) and added to both particles: every chunk of the loop
 // (NeighbourList::chunks) sums into its own buffer, and the buffers are added in chunk order
 // afterwards: no atomics, and the same sums in the same order for any thread count.
+#include <array>
+#include <span>
 #include <vector>
 
 #include "sph/fluid_model.hpp"
@@ -35,12 +37,26 @@ struct RateWorkspace {
     double x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
   };
   std::vector<Packed> packed;
-  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt; all 0 between calls
+  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
+  std::vector<double> spanForces;  ///< the bodies' forces summed over each span of the last pass
+};
+
+/// What the pass that stores the rates also does, so that the particles are not swept once more
+/// for it (on W3 each sweep is memory-bound and gains little from a second thread).
+struct RateClosing {
+  /// s: the integrator's second half kick with the new rates, v += τ (a + g) and ρ += τ dρ/dt for
+  /// the fluid, and the boundary particles' ρ set to their extrapolated density (for output);
+  /// 0: neither.
+  double halfKick = 0;
+  /// Out: the fluid's force on each body, Σ m a over its members (N), body b at [b]; every
+  /// boundary particle's body must be below its size. Summed over fixed spans of particles, then
+  /// the spans in order: the same forces for any thread count. Empty: not summed.
+  std::span<std::array<double, 3>> bodyForces;
 };
 
 /// Sets every particle's pressure (the boundary particles' extrapolated, with their rhoEst from it),
-/// then ax/ay/az (without gravity) and drho (fluid particles).
+/// then ax/ay/az (without gravity) and drho (fluid particles), then what `closing` asks for.
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
-                          RateWorkspace& workspace);
+                          RateWorkspace& workspace, const RateClosing& closing = {});
 
 }  // namespace rupture::sph

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <omp.h>
+
 #include "core/parallel.hpp"
 #include "sph/cell_grid.hpp"
 
@@ -27,10 +29,9 @@ void binParticles(const FluidParticles& p, const CellGrid& g, std::vector<std::i
   const std::size_t n = p.size();
   start.assign(g.count() + 1, 0);
   cell.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    cell[k] = static_cast<std::int32_t>(g.cellOf(p, k));
-    ++start[cell[k] + 1];
-  }
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) cell[k] = static_cast<std::int32_t>(g.cellOf(p, k));
+  for (std::size_t k = 0; k < n; ++k) ++start[cell[k] + 1];
   for (std::size_t c = 0; c < g.count(); ++c) start[c + 1] += start[c];
   sorted.resize(n);
   cursor.assign(start.begin(), start.end() - 1);
@@ -91,24 +92,35 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
     m_sFluid[s] = p.body[j] == kFluid;
   }
   for (std::size_t s = 0; s < n; ++s) m_fluidBefore[s + 1] = m_fluidBefore[s] + m_sFluid[s];
+  const int threads = worthParallel(n) ? std::max(1, omp_get_max_threads()) : 1;
+  if (m_threadLists.size() < static_cast<std::size_t>(threads)) m_threadLists.resize(threads);
+  m_where.resize(n);
   while (true) {
-    // A slot holds m_stride entries and room for one vector store past them (the scan writes 8 at a time).
-    m_slot = m_stride + kScanWidth;
-    m_index.resize(n * m_slot);
+    // Room for m_stride entries and one vector store past them (the scan writes 8 at a time).
+    const std::size_t room = m_stride + kScanWidth;
     int overflow = 0;
-#pragma omp parallel reduction(max : overflow) if (worthParallel(n))
+#pragma omp parallel num_threads(threads) reduction(max : overflow) if (threads > 1)
     {
+      // Each thread appends the lists of the particles it scans to its own two buffers (fluid
+      // particles' lists, boundary particles' lists): written once, where the pair loops read them.
+      ThreadLists& mine = m_threadLists[omp_get_thread_num()];
+      mine.fluidUsed = mine.wallsUsed = 0;
       // Boundary neighbours are collected here and moved behind the fluid ones.
-      std::vector<std::int32_t> wallScratch(m_slot);
+      std::vector<std::int32_t> wallScratch(room);
       // Dynamic: a dry wall particle (no fluid in reach) costs next to nothing and a fluid one a full
-      // scan, and in cell order they are not spread evenly; each particle fills its own slot, so the
-      // lists are the same for any schedule.
+      // scan, and in cell order they are not spread evenly; a particle's list is the same whichever
+      // thread scans it, and the pair loops find it by pointer (m_start).
 #pragma omp for schedule(dynamic, 512)
       for (std::size_t i = 0; i < n; ++i) {
         const double xi = p.x[i], yi = p.y[i], zi = is3d ? p.z[i] : 0.0;
         const bool fluidI = p.body[i] == kFluid;
         const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(p.z[i], 2);
-        std::int32_t* out = m_index.data() + i * m_slot;
+        std::vector<std::int32_t>& buffer = fluidI ? mine.fluid : mine.walls;
+        std::size_t& used = fluidI ? mine.fluidUsed : mine.wallsUsed;
+        // Room for this list and the padding; grown (rarely: the buffers live from build to build)
+        // by doubling.
+        if (buffer.size() < used + room + kListPadding) buffer.resize(std::max(2 * buffer.size(), used + room + kListPadding));
+        std::int32_t* out = buffer.data() + used;
         std::int32_t* walls = wallScratch.data();
         const int stride = static_cast<int>(m_stride);
         int nf = 0, nb = 0;
@@ -212,40 +224,34 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
         std::copy(walls, walls + nb, out + nf);
         m_count[i] = total;
         m_fluidCount[i] = nf;
+        m_where[i] = {static_cast<std::int32_t>(omp_get_thread_num()), used};
+        used += static_cast<std::size_t>(total);
+      }
+      // Padded with particle 0: the pair loops load and prefetch up to kListPadding entries past a
+      // list, which are the next list's in the buffer or these.
+      for (auto [buffer, used] : {std::pair{&mine.fluid, mine.fluidUsed}, std::pair{&mine.walls, mine.wallsUsed}}) {
+        if (buffer->size() < used + kListPadding) buffer->resize(used + kListPadding);
+        std::fill_n(buffer->data() + used, kListPadding, 0);
       }
     }
     if (overflow == 0) break;
     m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
   }
-  compact();
-  splitIntoChunks();
-}
-
-void NeighbourList::compact() {
-  const std::size_t n = m_count.size();
-  // The fluid particles' lists first, then the boundary particles': each pass reads one stream
-  // (the pair loop the fluid's lists, the wall extrapolation the walls'), and the entries past the
-  // end of a fluid list, which the pair loop prefetches from, are the next fluid particle's.
-  m_offset.resize(n);
-  std::size_t total = 0;
-  for (int fluid = 1; fluid >= 0; --fluid)
-    for (std::size_t i = 0; i < n; ++i)
-      if (m_isFluid[i] == fluid) {
-        m_offset[i] = total;
-        total += static_cast<std::size_t>(m_count[i]);
-      }
-  // Padded with particle 0: the pair loop loads and prefetches up to kListPadding entries past a list.
-  // Only the padding needs zeros: every list entry is written below.
-  m_compact.resize(total + kListPadding);
-  std::fill(m_compact.end() - kListPadding, m_compact.end(), 0);
+  // Where each list lies, now that no buffer grows any more.
+  m_start.resize(n);
 #pragma omp parallel for schedule(static) if (worthParallel(n))
-  for (std::size_t i = 0; i < n; ++i)
-    std::copy_n(m_index.data() + i * m_slot, m_count[i], m_compact.data() + m_offset[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ThreadLists& owner = m_threadLists[m_where[i].thread];
+    m_start[i] = (m_isFluid[i] ? owner.fluid.data() : owner.walls.data()) + m_where[i].offset;
+  }
+  splitIntoChunks();
 }
 
 void NeighbourList::splitIntoChunks() {
   const std::size_t n = m_count.size();
-  // 1, 2, 4 or 8 chunks of at least 4,096 particles: a power of two shares evenly among 1, 2, 4, 8 threads.
+  // 1, 2, 4 or 8 chunks of at least 4,096 particles on average; no more than 8, as a chunk's buffer
+  // spans its particles and their neighbours (on W3 about twice its own), so each more chunk adds
+  // memory traffic.
   std::size_t chunks = 1;
   while (chunks < 8 && n / (2 * chunks) >= 4096) chunks *= 2;
   std::size_t work = 0;
@@ -256,7 +262,9 @@ void NeighbourList::splitIntoChunks() {
   for (std::size_t c = 0; c < chunks; ++c) {
     Chunk& k = m_chunks[c];
     k.begin = i;
-    const std::size_t target = work * (c + 1) / chunks;
+    // Shares proportional to 2C − c (chunks(), neighbour_list.hpp): the first c + 1 hold this many of all.
+    const std::size_t cumulative = (c + 1) * 2 * chunks - c * (c + 1) / 2, all = chunks * (3 * chunks + 1) / 2;
+    const std::size_t target = static_cast<std::size_t>(static_cast<double>(work) * cumulative / all);
     while (i < n && (c + 1 == chunks || done < target)) {
       if (m_isFluid[i]) done += static_cast<std::size_t>(m_count[i]);
       ++i;

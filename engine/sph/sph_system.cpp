@@ -42,37 +42,24 @@ void SphSystem::rebuildLists() {
   for (std::size_t b = 0; b < bodies.size(); ++b) moves[b] = bodies[b].motion != BodyMotion::Fixed;
   m_relativeMove.reset(particles, model.dimension, cutoff, moves);
   m_skinBudget = listSkin();  // nothing has moved: the whole skin is left
-  m_x0 = particles.x;
-  m_y0 = particles.y;
-  m_z0 = particles.z;
+  // The positions the moves are measured from.
+  const std::size_t n = particles.size();
+  m_x0.resize(n);
+  m_y0.resize(n);
+  m_z0.resize(n);
+#pragma omp parallel for schedule(static) if (worthParallel(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    m_x0[k] = particles.x[k];
+    m_y0[k] = particles.y[k];
+    m_z0[k] = particles.z[k];
+  }
   ++m_builds;
 }
 
-void SphSystem::bodyForces() {
-  // Sums over fixed blocks of members (in member order), then the blocks' sums in block order:
-  // the same forces for any thread count, and the blocks run in parallel (a tank: 64,608 members).
-  constexpr std::size_t kBlock = 4096;
-  for (RigidBody& b : bodies) {
-    const std::size_t members = b.members.size(), blocks = (members + kBlock - 1) / kBlock;
-    m_blockForces.assign(3 * blocks, 0.0);
-    const std::int32_t* ids = b.members.data();
-#pragma omp parallel for schedule(static) if (worthParallel(members))
-    for (std::size_t c = 0; c < blocks; ++c) {
-      double f[3] = {0, 0, 0};
-      for (std::size_t q = c * kBlock; q < std::min(members, (c + 1) * kBlock); ++q) {
-        const std::int32_t k = ids[q];
-        const double m = particles.mass[k];
-        f[0] += m * particles.ax[k];
-        f[1] += m * particles.ay[k];
-        f[2] += m * particles.az[k];
-      }
-      for (int a = 0; a < 3; ++a) m_blockForces[3 * c + a] = f[a];
-    }
-    double f[3] = {0, 0, 0};
-    for (std::size_t c = 0; c < blocks; ++c)
-      for (int a = 0; a < 3; ++a) f[a] += m_blockForces[3 * c + a];
-    b.force = {f[0], f[1], f[2]};
-  }
+void SphSystem::evaluateRates(double halfKick) {
+  m_forces.resize(bodies.size());
+  m_extremes = computeRates(particles, m_list, model, m_workspace, {halfKick, m_forces});
+  for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].force = m_forces[b];
 }
 
 void SphSystem::setBodyVelocities(bool fixedToo) {
@@ -105,8 +92,7 @@ void SphSystem::initialise() {
   particles.rhoEst = particles.rho;
   m_builds = 0;
   rebuildLists();
-  m_extremes = computeRates(particles, m_list, model, m_workspace);
-  bodyForces();
+  evaluateRates(0.0);
 }
 
 void SphSystem::step(double dt) {
@@ -183,27 +169,18 @@ void SphSystem::step(double dt) {
     else m_skinBudget = skin - bound;
   }
 
-  // 4. Rates at t + dt; the bodies' forces and impulses (trapezoid, as the fluid's kicks).
+  // 4. Rates at t + dt, with the fluid's second half kick done as they are stored (RateClosing);
+  //    the bodies' forces and impulses (trapezoid, as the fluid's kicks).
   m_oldForces.clear();  // kept between steps: a step allocates nothing
   for (const RigidBody& b : bodies) m_oldForces.push_back(b.force);
-  m_extremes = computeRates(p, m_list, model, m_workspace);
+  evaluateRates(half);
   if (!std::isfinite(m_extremes.maxDensity) || !std::isfinite(m_extremes.maxAcceleration))
     throw std::runtime_error("SPH: the solution became non-finite at t = " + std::to_string(time) +
                              " s (time step too large for the sound speed?)");
-  bodyForces();
   for (std::size_t b = 0; b < bodies.size(); ++b)
     for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (m_oldForces[b][a] + bodies[b].force[a]);
 
-  // 5. Second half kick.
-#pragma omp parallel for schedule(dynamic, 4096) if (worthParallel(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    if (p.body[k] == kFluid) {
-      p.vx[k] += half * (p.ax[k] + gx); p.vy[k] += half * (p.ay[k] + gy); p.vz[k] += half * (p.az[k] + gz);
-      p.rho[k] += half * p.drho[k];
-    } else {
-      p.rho[k] = p.rhoEst[k];  // the extrapolated wall density, for output
-    }
-  }
+  // 5. The bodies' second half kick.
   for (RigidBody& b : bodies) {
     if (b.motion == BodyMotion::Free) b.speed += half * bodyAcceleration(b, model);
     else if (b.motion == BodyMotion::Prescribed) b.speed = b.history.at(time);
