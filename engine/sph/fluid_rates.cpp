@@ -332,6 +332,12 @@ struct WallSums {
   }
 };
 
+/// Particle a's record from its estimates, pressure (Pa) and 1/ρ (m³/kg); 2D: z and v_z are 0.
+Packed recordOf(const FluidParticles& p, std::size_t a, double pressure, double inverseRho, bool is3d) {
+  return {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, pressure * inverseRho * inverseRho,
+          p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, inverseRho};
+}
+
 }  // namespace
 
 RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const FluidModel& model,
@@ -374,8 +380,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     if (p.body[a] != kFluid) continue;
     const double pressure = eos.pressure(p.rhoEst[a]), inverseRho = 1.0 / p.rhoEst[a];
     p.pressure[a] = pressure;
-    packed[a] = {p.x[a], p.y[a], is3d ? p.z[a] : 0.0, pressure * inverseRho * inverseRho,
-                 p.vxEst[a], p.vyEst[a], is3d ? p.vzEst[a] : 0.0, inverseRho};
+    packed[a] = recordOf(p, a, pressure, inverseRho, is3d);
   }
   // 2. Boundary particles: the pressure extrapolated from the fluid around them (Adami et al. 2012,
   //    eq. 27), their density its EOS inverse, and their record.
@@ -392,7 +397,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     const double rhow = pw > 0 ? eos.density(pw) : eos.referenceDensity, inverseRho = 1.0 / rhow;
     p.pressure[w] = pw;
     p.rhoEst[w] = rhow;
-    packed[w] = {xw, yw, zw, pw * inverseRho * inverseRho, p.vxEst[w], p.vyEst[w], is3d ? p.vzEst[w] : 0.0, inverseRho};
+    packed[w] = recordOf(p, w, pw, inverseRho, is3d);
   }
 
   k.uniformMass = minMass;

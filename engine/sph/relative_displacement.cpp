@@ -32,10 +32,9 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
   // scattered cloud must not multiply the memory (a dense fluid has about 20 particles in a cell
   // of the cutoff in 3D, 8 in 2D).
   m_grid = CellGrid(p, dimension, reach, 1.0);
-  m_cells = m_grid.count();
   m_threadBoxes.clear();  // evaluate sizes it for its thread count, all boxes empty
-  m_merged.resize(2 * m_cells);
-  m_fixedIn.assign(m_cells, 0);
+  m_merged.resize(2 * m_grid.count());
+  m_fixedIn.assign(m_grid.count(), 0);
   m_movers.clear();
   for (std::size_t k = 0; k < n; ++k) {
     const std::int32_t b = p.body[k];
@@ -46,7 +45,7 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
 
 double RelativeDisplacementBound::evaluate(const FluidParticles& p, const std::vector<double>& x0,
                                            const std::vector<double>& y0, const std::vector<double>& z0) {
-  const std::size_t cells = m_cells, movers = m_movers.size();
+  const std::size_t cells = m_grid.count(), movers = m_movers.size();
   const int dimension = m_dimension;
   const int threads = worthParallel(movers) ? omp_get_max_threads() : 1;
   if (m_threadBoxes.size() < static_cast<std::size_t>(threads) * 2 * cells)

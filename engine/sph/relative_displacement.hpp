@@ -51,7 +51,6 @@ private:
   };
   int m_dimension = 3;
   CellGrid m_grid;
-  std::size_t m_cells = 0;
   // Per thread, 2 boxes a cell (fluid, boundary); all empty between calls. Then the merged boxes.
   std::vector<Box> m_threadBoxes, m_merged;
   std::vector<std::int32_t> m_movers;  // the particles that can move, in index order

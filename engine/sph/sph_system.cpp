@@ -59,7 +59,11 @@ void SphSystem::rebuildLists() {
 void SphSystem::evaluateRates(double halfKick) {
   m_forces.resize(bodies.size());
   m_extremes = computeRates(particles, m_list, model, m_workspace, {halfKick, m_forces});
-  for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].force = m_forces[b];
+  // The impulse over the step, trapezoid as the fluid's kicks: the force at t is still in place.
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += halfKick * (bodies[b].force[a] + m_forces[b][a]);
+    bodies[b].force = m_forces[b];
+  }
 }
 
 void SphSystem::setBodyVelocities(bool fixedToo) {
@@ -170,15 +174,11 @@ void SphSystem::step(double dt) {
   }
 
   // 4. Rates at t + dt, with the fluid's second half kick done as they are stored (RateClosing);
-  //    the bodies' forces and impulses (trapezoid, as the fluid's kicks).
-  m_oldForces.clear();  // kept between steps: a step allocates nothing
-  for (const RigidBody& b : bodies) m_oldForces.push_back(b.force);
+  //    the bodies' forces and impulses.
   evaluateRates(half);
   if (!std::isfinite(m_extremes.maxDensity) || !std::isfinite(m_extremes.maxAcceleration))
     throw std::runtime_error("SPH: the solution became non-finite at t = " + std::to_string(time) +
                              " s (time step too large for the sound speed?)");
-  for (std::size_t b = 0; b < bodies.size(); ++b)
-    for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += half * (m_oldForces[b][a] + bodies[b].force[a]);
 
   // 5. The bodies' second half kick.
   for (RigidBody& b : bodies) {

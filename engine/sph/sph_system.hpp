@@ -56,8 +56,8 @@ private:
   void rebuildLists();
   double listSkin() const { return model.kernel().support() * skinFraction; }  ///< cutoff − support (m)
   void refreshMembers();
-  /// The rates at the current state, the bodies' forces from them, and halfKick (s) as
-  /// RateClosing::halfKick.
+  /// The rates at the current state, the bodies' forces from them and their impulses over the
+  /// step (halfKick × (old + new force)), and halfKick (s) as RateClosing::halfKick.
   void evaluateRates(double halfKick);
   /// Sets the members' velocities from their body's speed; fixedToo: also those of fixed bodies
   /// (their zero velocities never change after initialise).
@@ -68,7 +68,6 @@ private:
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<std::array<double, 3>> m_forces;      ///< evaluateRates' scratch: the bodies' forces (N)
-  std::vector<std::array<double, 3>> m_oldForces;  ///< step's scratch: the bodies' forces at t (N)
   std::vector<double> m_x0, m_y0, m_z0;
   std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
   std::vector<std::int32_t> m_permuteIndexScratch;
