@@ -7,7 +7,7 @@ namespace rupture::sph {
 
 CellGrid::CellGrid(const FluidParticles& p, int dimension, double minEdge, double cellsPerParticle) {
   const std::size_t n = p.size();
-  const std::vector<double>* coords[3] = {&p.x, &p.y, &p.z};
+  const ParticleArray<double>* coords[3] = {&p.x, &p.y, &p.z};
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (int a = 0; a < dimension && n > 0; ++a) {
     const auto [mn, mx] = std::minmax_element(coords[a]->begin(), coords[a]->end());

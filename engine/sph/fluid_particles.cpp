@@ -7,7 +7,7 @@ namespace rupture::sph {
 namespace {
 
 template <class T>
-void applyOrder(std::vector<T>& field, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
+void applyOrder(ParticleArray<T>& field, const std::vector<std::int32_t>& order, ParticleArray<T>& scratch) {
   scratch.resize(field.size());
 #pragma omp parallel for schedule(static) if (worthParallel(order.size()))
   for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = field[order[k]];
@@ -30,20 +30,22 @@ void FluidParticles::add(double px, double py, double pz, double m, double densi
 }
 
 void FluidParticles::permute(const std::vector<std::int32_t>& order) {
-  std::vector<double> d;
-  std::vector<std::int32_t> i;
+  ParticleArray<double> d;
+  ParticleArray<std::int32_t> i;
   permute(order, d, i);
 }
 
-void FluidParticles::permute(const std::vector<std::int32_t>& order, std::vector<double>& d,
-                             std::vector<std::int32_t>& i) {
-  for (std::vector<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure, &ax, &ay, &az, &drho, &mass})
+void FluidParticles::permute(const std::vector<std::int32_t>& order, ParticleArray<double>& d,
+                             ParticleArray<std::int32_t>& i) {
+  // Each field swaps its buffer with the scratch: the buffers (and their offsets within the page)
+  // pass from field to field, and stay distinct.
+  for (ParticleArray<double>* f : {&x, &y, &z, &vx, &vy, &vz, &rho, &vxEst, &vyEst, &vzEst, &rhoEst, &pressure, &ax, &ay, &az, &drho, &mass})
     applyOrder(*f, order, d);
   applyOrder(body, order, i);
   applyOrder(id, order, i);
 }
 
-void FluidParticles::inCreationOrder(const std::vector<double>& field, std::vector<double>& out) const {
+void FluidParticles::inCreationOrder(const ParticleArray<double>& field, std::vector<double>& out) const {
   out.resize(field.size());
   for (std::size_t k = 0; k < field.size(); ++k) out[id[k]] = field[k];
 }

@@ -8,26 +8,30 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/staggered_allocator.hpp"
+
 namespace rupture::sph {
 
 /// body[k] of a fluid particle; boundary particles hold their body's index (>= 0).
 inline constexpr std::int32_t kFluid = -1;
 
 struct FluidParticles {
+  // Each field is a ParticleArray, staggered within the page: the integrator's and the pair
+  // loop's passes walk up to 22 of them at once (core/staggered_allocator.hpp).
   // State (m, m/s, kg/m³).
-  std::vector<double> x, y, z;
-  std::vector<double> vx, vy, vz;
-  std::vector<double> rho;
+  ParticleArray<double> x, y, z;
+  ParticleArray<double> vx, vy, vz;
+  ParticleArray<double> rho;
   // Estimates at the end of the current step, read by the pair loop (see SphSystem::step).
-  std::vector<double> vxEst, vyEst, vzEst, rhoEst;
+  ParticleArray<double> vxEst, vyEst, vzEst, rhoEst;
   // Per particle from rhoEst before each pair loop: p (Pa) (the fluid's from the equation of state,
   // the boundary's extrapolated).
-  std::vector<double> pressure;
+  ParticleArray<double> pressure;
   // Rates from the pair loop: acceleration without gravity (m/s²) and dρ/dt (kg/m³/s).
-  std::vector<double> ax, ay, az, drho;
+  ParticleArray<double> ax, ay, az, drho;
   // Constant: mass (kg; kg/m in 2D), body (kFluid or a body index), creation index.
-  std::vector<double> mass;
-  std::vector<std::int32_t> body, id;
+  ParticleArray<double> mass;
+  ParticleArray<std::int32_t> body, id;
 
   std::size_t size() const { return x.size(); }
   bool isFluid(std::size_t k) const { return body[k] == kFluid; }
@@ -38,11 +42,11 @@ struct FluidParticles {
   /// Reorders every array so that new position k holds old particle order[k].
   void permute(const std::vector<std::int32_t>& order);
   /// The same with the caller's scratch (kept between calls, the reorder allocates nothing).
-  void permute(const std::vector<std::int32_t>& order, std::vector<double>& scratch,
-               std::vector<std::int32_t>& indexScratch);
+  void permute(const std::vector<std::int32_t>& order, ParticleArray<double>& scratch,
+               ParticleArray<std::int32_t>& indexScratch);
 
   /// Fills `out` (size n) with field[k] placed at id[k]: the creation order used for output.
-  void inCreationOrder(const std::vector<double>& field, std::vector<double>& out) const;
+  void inCreationOrder(const ParticleArray<double>& field, std::vector<double>& out) const;
 };
 
 }  // namespace rupture::sph

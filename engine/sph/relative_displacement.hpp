@@ -33,8 +33,8 @@ public:
 
   /// The bound (m) for the displacements (x − x0, y − y0, z − z0) since the last build, over the
   /// interacting pairs closer than the reach.
-  double evaluate(const FluidParticles& p, const std::vector<double>& x0, const std::vector<double>& y0,
-                  const std::vector<double>& z0);
+  double evaluate(const FluidParticles& p, const ParticleArray<double>& x0, const ParticleArray<double>& y0,
+                  const ParticleArray<double>& z0);
 
 private:
   /// A box of displacements; empty while lo > hi.

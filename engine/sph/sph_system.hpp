@@ -68,9 +68,9 @@ private:
   RateWorkspace m_workspace;
   RateExtremes m_extremes;
   std::vector<std::array<double, 3>> m_forces;      ///< evaluateRates' scratch: the bodies' forces (N)
-  std::vector<double> m_x0, m_y0, m_z0;
-  std::vector<double> m_permuteScratch;             // FluidParticles::permute's, kept between re-sorts
-  std::vector<std::int32_t> m_permuteIndexScratch;
+  ParticleArray<double> m_x0, m_y0, m_z0;           // the positions at the last list build (m)
+  ParticleArray<double> m_permuteScratch;           // FluidParticles::permute's, kept between re-sorts
+  ParticleArray<std::int32_t> m_permuteIndexScratch;
   std::size_t m_builds = 0;
   double m_skinBudget = 0;  ///< m: what interacting pairs may still close in before a rebuild (step 3)
 };

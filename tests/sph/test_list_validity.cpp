@@ -61,7 +61,7 @@ void forInteractingPairs(const FluidParticles& p, int dimension, double reach, F
 
 struct Field {
   FluidParticles particles;
-  std::vector<double> x0, y0, z0;  // positions at the "build"
+  ParticleArray<double> x0, y0, z0;  // positions at the "build"
 };
 
 /// Particles scattered over a box, 70 % fluid, 20 % of a fixed body (0), 10 % of a moving body (1),
@@ -182,7 +182,7 @@ TEST(RelativeDisplacementBound, RigidMotionsGiveTheirExactValues) {
 double checkListsAlongTheFlow(sph::SphSystem& s, int steps) {
   const int dimension = s.model.dimension;
   const double support = s.model.kernel().support(), skin = support * s.skinFraction;
-  std::vector<double> x0 = s.particles.x, y0 = s.particles.y, z0 = s.particles.z;
+  ParticleArray<double> x0 = s.particles.x, y0 = s.particles.y, z0 = s.particles.z;
   std::size_t builds = s.listBuilds();
   double largestKept = 0;
   for (int step = 0; step < steps; ++step) {

@@ -73,7 +73,7 @@ Reference directSums(const FluidParticles& p, const FluidModel& model) {
   const EquationOfState& eos = model.eos;
   const double h = kernel.h(), support2 = kernel.support() * kernel.support(), c0 = eos.soundSpeed;
   const auto& g = model.gravity;
-  std::vector<double> pressure(n), rho(p.rhoEst);
+  std::vector<double> pressure(n), rho(p.rhoEst.begin(), p.rhoEst.end());
   for (std::size_t a = 0; a < n; ++a)
     if (p.isFluid(a)) pressure[a] = eos.pressure(rho[a]);
   for (std::size_t w = 0; w < n; ++w) {  // Adami et al. (2012) eq. 27
@@ -153,7 +153,7 @@ TEST(SphPairLoop, HalfListsAndChunkSumsMatchTheDirectSumOverAllPairs) {
 
 TEST(SphPairLoop, RatesAreBitwiseIdenticalForOneTwoAndFourThreads) {
   const FluidModel model = testModel();
-  std::vector<double> first[4];
+  ParticleArray<double> first[4];
   for (int threads : {1, 2, 4}) {
     omp_set_num_threads(threads);
     FluidParticles p = jitteredBlock(true, 13);
