@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "cli/cli.hpp"
+#include "host_processor.hpp"
 #include "w1_benchmark.hpp"
 #include "w2_benchmark.hpp"
 #include "tank_impact_benchmark.hpp"
@@ -9,6 +10,12 @@
 namespace rupture::cli {
 
 namespace {
+
+/// Prints a benchmark's JSON line with the processor it ran on ("host").
+void printReport(nlohmann::json report) {
+  report["host"] = bench::hostProcessor();
+  std::cout << report.dump() << std::endl;
+}
 
 /// Reads the "--threads N" and "--steps N" that follow the workload name; returns 0, or 2 after
 /// printing what is wrong.
@@ -34,7 +41,7 @@ int readThreadsAndSteps(const Args& args, const std::string& workload, int& thre
 int benchW2(const Args& args) {
   bench::W2Options options;
   if (int code = readThreadsAndSteps(args, "W2", options.threads, options.steps)) return code;
-  std::cout << bench::runW2(options).dump() << std::endl;
+  printReport(bench::runW2(options));
   return 0;
 }
 
@@ -42,7 +49,7 @@ int benchW2(const Args& args) {
 int benchTank(const Args& args) {
   bench::TankImpactOptions options;
   if (int code = readThreadsAndSteps(args, "TANK", options.threads, options.steps)) return code;
-  std::cout << bench::runTankImpactBenchmark(options).dump() << std::endl;
+  printReport(bench::runTankImpactBenchmark(options));
   return 0;
 }
 
@@ -50,7 +57,7 @@ int benchTank(const Args& args) {
 int benchW3(const Args& args) {
   bench::W3Options options;
   if (int code = readThreadsAndSteps(args, "W3", options.threads, options.steps)) return code;
-  std::cout << bench::runW3(options).dump() << std::endl;
+  printReport(bench::runW3(options));
   return 0;
 }
 
@@ -81,7 +88,7 @@ int benchCommand(const Args& args) {
     }
     ++k;
   }
-  std::cout << bench::runW1(options).dump() << std::endl;
+  printReport(bench::runW1(options));
   return 0;
 }
 

@@ -1,6 +1,10 @@
 // `rupture bench W2` through the real binary: the documented keys and the problem's size
 // (bench/README.md: 100,000 sites, every pair within 3.015 dx bonded).
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +28,23 @@ TEST(CliBenchW2, PrintsOneJsonLineWithTheDocumentedKeys) {
   EXPECT_GT(bondsPerSite, 50.0);
   EXPECT_LT(bondsPerSite, 61.0);
   EXPECT_EQ(runCli("bench W2 --particles 10").exitCode, 2);  // W2 has a fixed size
+
+  // The processor it ran on: /proc/cpuinfo's first "model name" and the L1 data cache the C
+  // library reports (bench/README.md, "Output").
+  ASSERT_TRUE(out.contains("host"));
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, modelName;
+  while (std::getline(cpuinfo, line) && modelName.empty())
+    if (line.rfind("model name", 0) == 0) modelName = line.substr(line.find(':') + 2);
+  if (!modelName.empty()) {
+    EXPECT_EQ(out["host"]["model_name"], modelName);
+  }
+  const long l1 = sysconf(_SC_LEVEL1_DCACHE_SIZE);
+  if (l1 > 0) {
+    EXPECT_EQ(out["host"]["l1d_bytes"], l1);
+  } else {
+    EXPECT_TRUE(out["host"]["l1d_bytes"].is_null());
+  }
 }
 
 }  // namespace
