@@ -45,7 +45,7 @@ void FluidParticles::permute(const std::vector<std::int32_t>& order, ParticleArr
   applyOrder(id, order, i);
 }
 
-void FluidParticles::inCreationOrder(const ParticleArray<double>& field, std::vector<double>& out) const {
+void FluidParticles::inCreationOrder(std::span<const double> field, std::vector<double>& out) const {
   out.resize(field.size());
   for (std::size_t k = 0; k < field.size(); ++k) out[id[k]] = field[k];
 }

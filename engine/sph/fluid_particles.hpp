@@ -6,6 +6,7 @@
 // always written in the same order.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/staggered_allocator.hpp"
@@ -46,7 +47,7 @@ struct FluidParticles {
                ParticleArray<std::int32_t>& indexScratch);
 
   /// Fills `out` (size n) with field[k] placed at id[k]: the creation order used for output.
-  void inCreationOrder(const ParticleArray<double>& field, std::vector<double>& out) const;
+  void inCreationOrder(std::span<const double> field, std::vector<double>& out) const;
 };
 
 }  // namespace rupture::sph

@@ -43,8 +43,8 @@ void RelativeDisplacementBound::reset(const FluidParticles& p, int dimension, do
   }
 }
 
-double RelativeDisplacementBound::evaluate(const FluidParticles& p, const ParticleArray<double>& x0,
-                                           const ParticleArray<double>& y0, const ParticleArray<double>& z0) {
+double RelativeDisplacementBound::evaluate(const FluidParticles& p, std::span<const double> x0,
+                                           std::span<const double> y0, std::span<const double> z0) {
   const std::size_t cells = m_grid.count(), movers = m_movers.size();
   const int dimension = m_dimension;
   const int threads = worthParallel(movers) ? omp_get_max_threads() : 1;

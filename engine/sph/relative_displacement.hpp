@@ -15,6 +15,7 @@
 // sliding along a fixed tube does not count. A maximum is exact in any order, so the rebuild
 // decision is the same for any thread count.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "sph/cell_grid.hpp"
@@ -33,8 +34,8 @@ public:
 
   /// The bound (m) for the displacements (x − x0, y − y0, z − z0) since the last build, over the
   /// interacting pairs closer than the reach.
-  double evaluate(const FluidParticles& p, const ParticleArray<double>& x0, const ParticleArray<double>& y0,
-                  const ParticleArray<double>& z0);
+  double evaluate(const FluidParticles& p, std::span<const double> x0, std::span<const double> y0,
+                  std::span<const double> z0);
 
 private:
   /// A box of displacements; empty while lo > hi.

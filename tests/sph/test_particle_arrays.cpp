@@ -34,25 +34,27 @@ FluidParticles block(std::size_t n) {
 }
 
 TEST(ParticleArrays, FieldsOfALargeStoreStartAtDistinctCacheLinesOfThePage) {
-  // 20,000 particles: 160 kB a field, served by the staggered path (malloc would put every field
-  // 16 bytes into a page: one offset for all 17).
-  FluidParticles p = block(20000);
-  for (std::uintptr_t offset : fieldOffsets(p)) EXPECT_EQ(offset % 64, 0u);  // 64-byte aligned
-  std::vector<std::uintptr_t> offsets = fieldOffsets(p);
-  EXPECT_EQ(std::set<std::uintptr_t>(offsets.begin(), offsets.end()).size(), offsets.size());
+  // From the smallest store the staggered path serves (16 KiB a field) to W3's 164,608 particles;
+  // malloc would put every field of these 16 bytes into a page: one offset for all 17.
+  for (std::size_t n : {2048u, 20000u, 164608u}) {
+    FluidParticles p = block(n);
+    std::vector<std::uintptr_t> offsets = fieldOffsets(p);
+    for (std::uintptr_t offset : offsets) EXPECT_EQ(offset % 64, 0u) << n;  // 64-byte aligned
+    EXPECT_EQ(std::set<std::uintptr_t>(offsets.begin(), offsets.end()).size(), offsets.size()) << n;
 
-  // The re-sort swaps each field's buffer with one scratch buffer: still 17 distinct offsets, and
-  // the contents reordered as asked.
-  std::vector<std::int32_t> reverse(p.size());
-  for (std::size_t k = 0; k < p.size(); ++k) reverse[k] = static_cast<std::int32_t>(p.size() - 1 - k);
-  ParticleArray<double> scratch;
-  ParticleArray<std::int32_t> indexScratch;
-  p.permute(reverse, scratch, indexScratch);
-  offsets = fieldOffsets(p);
-  EXPECT_EQ(std::set<std::uintptr_t>(offsets.begin(), offsets.end()).size(), offsets.size());
-  EXPECT_EQ(p.rho.front(), 1000.0 + 19999.0);
-  EXPECT_EQ(p.rho.back(), 1000.0);
-  EXPECT_EQ(p.id.front(), 19999);
+    // The re-sort swaps each field's buffer with one scratch buffer: still 17 distinct offsets,
+    // and the contents reordered as asked.
+    std::vector<std::int32_t> reverse(n);
+    for (std::size_t k = 0; k < n; ++k) reverse[k] = static_cast<std::int32_t>(n - 1 - k);
+    ParticleArray<double> scratch;
+    ParticleArray<std::int32_t> indexScratch;
+    p.permute(reverse, scratch, indexScratch);
+    offsets = fieldOffsets(p);
+    EXPECT_EQ(std::set<std::uintptr_t>(offsets.begin(), offsets.end()).size(), offsets.size()) << n;
+    EXPECT_EQ(p.rho.front(), 1000.0 + static_cast<double>(n - 1)) << n;
+    EXPECT_EQ(p.rho.back(), 1000.0) << n;
+    EXPECT_EQ(p.id.front(), static_cast<std::int32_t>(n - 1)) << n;
+  }
 }
 
 TEST(ParticleArrays, KeepTheirContentsThroughGrowthCopiesAndShrinking) {
