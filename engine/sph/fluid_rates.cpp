@@ -3,17 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(RUPTURE_SPH_NO_INTRINSICS)
-// GCC 12 reports its own intrinsics' undefined pass-through operands as maybe-uninitialized
-// (a known false positive of GCC 12); the state at the header's lines is what counts.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <immintrin.h>
-#pragma GCC diagnostic pop
-#define RUPTURE_SPH_AVX512 1
-#endif
-
 #include "core/parallel.hpp"
+#include "sph/simd_lanes.hpp"
 
 namespace rupture::sph {
 
@@ -105,172 +96,105 @@ template <bool Diffuse, bool UniformMass>
 }
 
 #ifdef RUPTURE_SPH_AVX512
-/// How far ahead in the neighbour list the AVX-512 loop prefetches (entries).
+/// How far ahead in the neighbour list the vector loop prefetches (entries).
 constexpr int kPrefetch = 16;
 static_assert(kPrefetch + 8 <= NeighbourList::kListPadding, "the loop reads up to kPrefetch + 8 entries past a list");
 
-/// 1/√x (x > 0) from the 14-bit estimate and two Newton steps: 14 → 28 → full double precision
-/// (a few ulp), several times cheaper than vsqrtpd and vdivpd on 512-bit vectors.
-inline __m512d inverseSqrt(__m512d x) {
-  const __m512d half = _mm512_set1_pd(0.5), threeHalves = _mm512_set1_pd(1.5);
-  const __m512d hx = _mm512_mul_pd(half, x);
-  __m512d y = _mm512_rsqrt14_pd(x);
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), threeHalves));
-  return y;
-}
-
-/// 1/x (x > 0): the 14-bit estimate and two Newton steps.
-inline __m512d inverse(__m512d x) {
-  const __m512d two = _mm512_set1_pd(2.0);
-  __m512d y = _mm512_rcp14_pd(x);
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(x, y, two));
-  return y;
-}
-
-/// The 8 records pk[jj[0..7]] as 8 columns (lane l = record l): each 64-byte record is loaded whole
-/// and the 8 × 8 block transposed (24 shuffles: cheaper than 8 gathers).
-struct Columns {
-  __m512d x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
-};
-[[gnu::always_inline]] inline Columns loadColumns(const Packed* __restrict pk, const std::int32_t* jj) {
-  // Transposition indices (permutex2var: 0–7 the first operand, 8–15 the second).
-  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
-  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
-  // Rows: the 8 records [x y z p/ρ² vx vy vz 1/ρ].
-  __m512d r[8];
-  for (int l = 0; l < 8; ++l) r[l] = _mm512_load_pd(&pk[jj[l]].x);
-  __m512d t[8];
-  for (int l = 0; l < 4; ++l) {
-    t[2 * l] = _mm512_unpacklo_pd(r[2 * l], r[2 * l + 1]);     // x z vx vz of rows 2l, 2l+1
-    t[2 * l + 1] = _mm512_unpackhi_pd(r[2 * l], r[2 * l + 1]); // y p vy 1/ρ
-  }
-  const __m512d u0 = _mm512_permutex2var_pd(t[0], lowPairs, t[2]);   // x0-3 vx0-3
-  const __m512d u1 = _mm512_permutex2var_pd(t[0], highPairs, t[2]);  // z0-3 vz0-3
-  const __m512d u2 = _mm512_permutex2var_pd(t[1], lowPairs, t[3]);   // y0-3 vy0-3
-  const __m512d u3 = _mm512_permutex2var_pd(t[1], highPairs, t[3]);  // p0-3 ir0-3
-  const __m512d u4 = _mm512_permutex2var_pd(t[4], lowPairs, t[6]);
-  const __m512d u5 = _mm512_permutex2var_pd(t[4], highPairs, t[6]);
-  const __m512d u6 = _mm512_permutex2var_pd(t[5], lowPairs, t[7]);
-  const __m512d u7 = _mm512_permutex2var_pd(t[5], highPairs, t[7]);
-  return {_mm512_shuffle_f64x2(u0, u4, 0x44), _mm512_shuffle_f64x2(u2, u6, 0x44), _mm512_shuffle_f64x2(u1, u5, 0x44),
-          _mm512_shuffle_f64x2(u3, u7, 0x44), _mm512_shuffle_f64x2(u0, u4, 0xEE), _mm512_shuffle_f64x2(u2, u6, 0xEE),
-          _mm512_shuffle_f64x2(u1, u5, 0xEE), _mm512_shuffle_f64x2(u3, u7, 0xEE)};
-}
-
-/// pairsOf on 8 neighbours at a time. The 8 neighbours' 64-byte records are loaded whole and
-/// transposed (8 × 8 doubles, 24 shuffles: cheaper than 8 gathers), the pair terms computed in
-/// vectors (a lane of a partial block or a skin pair gets F = 0), and the 8 results transposed back
+/// pairsOf in vectors of L::kWidth (4 or 8) neighbours, in blocks of 8: the neighbours' 64-byte
+/// records are loaded whole and transposed into columns (no gathers), the pair terms computed in
+/// vectors (a lane of a partial block or a skin pair gets F = 0), and the results transposed back
 /// into (ax, ay, az, dρ/dt) quadruples added to the neighbours' accumulators, one 256-bit
-/// load-add-store each. The neighbours of one particle are distinct, so the 8 updates of a block
-/// never meet. The sums are deterministic (fixed lane order), whatever the thread count.
-template <bool Diffuse, bool UniformMass>
-[[gnu::always_inline]] inline void pairsOfAvx512(std::size_t i, const std::int32_t* __restrict list, int begin,
-                                                 int end, const Packed* __restrict pk, const double* __restrict rho,
-                                                 const double* __restrict mass, double* __restrict acc, std::size_t lo,
-                                                 const PairConstants& k, double own[4], double& maxMu) {
+/// load-add-store each. The neighbours of one particle are distinct, so the updates of a block
+/// never meet. Lane l of a block sums into lane l of i's sums at either width (simd_lanes.hpp), so
+/// the results are bitwise the same for 4 and 8 lanes and for any thread count.
+template <class L, bool Diffuse, bool UniformMass>
+[[gnu::always_inline]] inline void pairsOfLanes(std::size_t i, const std::int32_t* __restrict list, int begin,
+                                                int end, const Packed* __restrict pk, const double* __restrict rho,
+                                                const double* __restrict mass, double* __restrict acc, std::size_t lo,
+                                                const PairConstants& k, double own[4], double& maxMu) {
+  using Vec = typename L::Vec;
+  constexpr int kWidth = L::kWidth, kParts = 8 / kWidth;
   const Packed& a = pk[i];
-  const __m512d ax = _mm512_set1_pd(a.x), ay = _mm512_set1_pd(a.y), az = _mm512_set1_pd(a.z);
-  const __m512d avx = _mm512_set1_pd(a.vx), avy = _mm512_set1_pd(a.vy), avz = _mm512_set1_pd(a.vz);
-  const __m512d ap = _mm512_set1_pd(a.pressureOverRho2), air = _mm512_set1_pd(a.inverseRho);
-  const __m512d support2 = _mm512_set1_pd(k.support2), tiny = _mm512_set1_pd(1e-300);
-  const __m512d h = _mm512_set1_pd(k.h), twoH = _mm512_set1_pd(k.twoH), kF = _mm512_set1_pd(k.kF);
-  const __m512d eta2 = _mm512_set1_pd(k.eta2), four = _mm512_set1_pd(4.0), zero = _mm512_setzero_pd();
-  const __m512d halfBeta = _mm512_set1_pd(k.halfBeta), halfAlphaC0 = _mm512_set1_pd(k.halfAlphaC0);
-  const __m512d mi = _mm512_set1_pd(UniformMass ? 1.0 : mass[i]);
-  // Transposition indices back to quadruples (permutex2var: 0–7 the first operand, 8–15 the second).
-  const __m512i quadLow = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
-  const __m512i quadHigh = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
-  __m512d sax = zero, say = zero, saz = zero, sdrho = zero, smu = zero;
+  const Vec ax = L::set1(a.x), ay = L::set1(a.y), az = L::set1(a.z);
+  const Vec avx = L::set1(a.vx), avy = L::set1(a.vy), avz = L::set1(a.vz);
+  const Vec ap = L::set1(a.pressureOverRho2), air = L::set1(a.inverseRho);
+  const Vec support2 = L::set1(k.support2), tiny = L::set1(1e-300);
+  const Vec h = L::set1(k.h), twoH = L::set1(k.twoH), kF = L::set1(k.kF);
+  const Vec eta2 = L::set1(k.eta2), four = L::set1(4.0), zero = L::zero();
+  const Vec halfBeta = L::set1(k.halfBeta), halfAlphaC0 = L::set1(k.halfAlphaC0);
+  const Vec mi = L::set1(UniformMass ? 1.0 : mass[i]);
+  Vec sax[kParts], say[kParts], saz[kParts], sdrho[kParts];
+  for (int part = 0; part < kParts; ++part) sax[part] = say[part] = saz[part] = sdrho[part] = zero;
+  Vec smu = zero;
   for (int n0 = begin; n0 < end; n0 += 8) {
-    const int m = std::min(8, end - n0);
+    // Lanes [s, s + kWidth) of the list, summed into part `part` of i's sums. (A loop, not a
+    // lambda: GCC reloaded a lambda's captured constants from memory on every block.)
+#pragma GCC unroll 2
+    for (int part = 0; part < kParts; ++part) {
+    const int s = n0 + part * kWidth;
+    if (part > 0 && s >= end) break;
+    const int m = std::min(kWidth, end - s);
     const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
     // Lanes past the end read the next list's entries (or the padding): valid particles, their F
     // masked to 0 and their scatter skipped.
-    const std::int32_t* jj = list + n0;
-    const __m256i idx = _mm256_maskz_loadu_epi32(valid, jj);  // for the gathers of ρ_b and m_b
+    const std::int32_t* jj = list + s;
     // The records and accumulators of the neighbours kPrefetch entries ahead (they may be the next
     // particle's: the lists lie back to back, padded at the end, neighbour_list.hpp): a
     // neighbour's record is mostly in L3 (the cell-ordered sweep reuses it ~3 MB later).
-    for (int l = 0; l < 8; ++l) {
-      const std::int32_t ahead = list[n0 + kPrefetch + l];
+    for (int l = 0; l < kWidth; ++l) {
+      const std::int32_t ahead = jj[kPrefetch + l];
       __builtin_prefetch(&pk[ahead], 0, 3);
       __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
     }
-    const Columns b = loadColumns(pk, jj);
-    const __m512d bx = b.x, by = b.y, bz = b.z, bp = b.pressureOverRho2, bvx = b.vx, bvy = b.vy, bvz = b.vz,
-                  bir = b.inverseRho;
-    const __m512d dx = _mm512_sub_pd(ax, bx), dy = _mm512_sub_pd(ay, by), dz = _mm512_sub_pd(az, bz);
-    const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
-    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, r2, support2, _CMP_LT_OQ);  // skin pairs: none
-    const __m512d inverseR = inverseSqrt(_mm512_max_pd(r2, tiny));
-    const __m512d rr = _mm512_mul_pd(_mm512_max_pd(r2, tiny), inverseR);
-    const __m512d s = _mm512_max_pd(_mm512_sub_pd(h, rr), zero), tt = _mm512_sub_pd(twoH, rr);
-    const __m512d spline = _mm512_fmsub_pd(_mm512_mul_pd(four, s), s, _mm512_mul_pd(tt, tt));
-    const __m512d F = _mm512_maskz_mul_pd(inside, _mm512_mul_pd(kF, spline), inverseR);
-    const __m512d dvx = _mm512_sub_pd(avx, bvx), dvy = _mm512_sub_pd(avy, bvy), dvz = _mm512_sub_pd(avz, bvz);
-    const __m512d vr = _mm512_fmadd_pd(dvz, dz, _mm512_fmadd_pd(dvy, dy, _mm512_mul_pd(dvx, dx)));
-    const __m512d mu = _mm512_mul_pd(_mm512_mul_pd(h, vr), inverse(_mm512_add_pd(r2, eta2)));
-    const __m512d approach = _mm512_min_pd(mu, zero);
-    const __m512d viscous = _mm512_mul_pd(_mm512_mul_pd(approach, _mm512_fmsub_pd(halfBeta, approach, halfAlphaC0)),
-                                          _mm512_add_pd(air, bir));
-    const __m512d c = _mm512_mul_pd(_mm512_add_pd(_mm512_add_pd(ap, bp), viscous), F);
-    const __m512d fx = _mm512_mul_pd(c, dx), fy = _mm512_mul_pd(c, dy), fz = _mm512_mul_pd(c, dz);
-    const __m512d continuity = _mm512_mul_pd(F, vr);
-    __m512d mj = _mm512_set1_pd(1.0);
-    if constexpr (!UniformMass) mj = _mm512_mask_i32gather_pd(zero, valid, idx, mass, 8);
-    sax = _mm512_fnmadd_pd(mj, fx, sax);
-    say = _mm512_fnmadd_pd(mj, fy, say);
-    saz = _mm512_fnmadd_pd(mj, fz, saz);
-    __m512d od;
+    const typename L::Columns b = L::columns(pk, jj);
+    const Vec dx = L::sub(ax, b.x), dy = L::sub(ay, b.y), dz = L::sub(az, b.z);
+    const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
+    const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
+    const Vec inverseR = inverseSqrt<L>(L::max(r2, tiny));
+    const Vec rr = L::mul(L::max(r2, tiny), inverseR);
+    const Vec s1 = L::max(L::sub(h, rr), zero), tt = L::sub(twoH, rr);
+    const Vec spline = L::fmsub(L::mul(four, s1), s1, L::mul(tt, tt));
+    const Vec F = L::maskzMul(inside, L::mul(kF, spline), inverseR);
+    const Vec dvx = L::sub(avx, b.vx), dvy = L::sub(avy, b.vy), dvz = L::sub(avz, b.vz);
+    const Vec vr = L::fmadd(dvz, dz, L::fmadd(dvy, dy, L::mul(dvx, dx)));
+    const Vec mu = L::mul(L::mul(h, vr), inverse<L>(L::add(r2, eta2)));
+    // Π only for approaching pairs (μ < 0), as min(μ, 0); 1/ρ̄ as the mean of 1/ρ (see pairsOf).
+    const Vec approach = L::min(mu, zero);
+    const Vec viscous = L::mul(L::mul(approach, L::fmsub(halfBeta, approach, halfAlphaC0)), L::add(air, b.inverseRho));
+    const Vec c = L::mul(L::add(L::add(ap, b.pressureOverRho2), viscous), F);
+    const Vec fx = L::mul(c, dx), fy = L::mul(c, dy), fz = L::mul(c, dz);
+    const Vec continuity = L::mul(F, vr);
+    Vec mj = L::set1(1.0);
+    typename L::Index idx{};
+    if constexpr (!UniformMass || Diffuse) idx = L::indices(valid, jj);  // for the gathers of m_b and ρ_b
+    if constexpr (!UniformMass) mj = L::gather(valid, idx, mass);
+    sax[part] = L::fnmadd(mj, fx, sax[part]);
+    say[part] = L::fnmadd(mj, fy, say[part]);
+    saz[part] = L::fnmadd(mj, fz, saz[part]);
+    Vec od;
     if constexpr (Diffuse) {
-      const __m512d rhoj = _mm512_mask_i32gather_pd(zero, valid, idx, rho, 8);
-      const __m512d hydrostatic = _mm512_fmadd_pd(_mm512_set1_pd(k.kz), dz,
-                                                  _mm512_fmadd_pd(_mm512_set1_pd(k.ky), dy,
-                                                                  _mm512_mul_pd(_mm512_set1_pd(k.kx), dx)));
-      const __m512d d = _mm512_mul_pd(
-          _mm512_mul_pd(_mm512_sub_pd(_mm512_sub_pd(_mm512_set1_pd(rho[i]), rhoj), hydrostatic), F),
-          _mm512_set1_pd(k.diffusionScale));
-      sdrho = _mm512_fmadd_pd(mj, _mm512_fmadd_pd(d, bir, continuity), sdrho);
-      od = _mm512_fnmadd_pd(d, air, continuity);
+      const Vec rhoj = L::gather(valid, idx, rho);
+      const Vec hydrostatic = L::fmadd(L::set1(k.kz), dz, L::fmadd(L::set1(k.ky), dy, L::mul(L::set1(k.kx), dx)));
+      const Vec d = L::mul(L::mul(L::sub(L::sub(L::set1(rho[i]), rhoj), hydrostatic), F), L::set1(k.diffusionScale));
+      sdrho[part] = L::fmadd(mj, L::fmadd(d, b.inverseRho, continuity), sdrho[part]);
+      od = L::fnmadd(d, air, continuity);
     } else {
-      sdrho = _mm512_fmadd_pd(mj, continuity, sdrho);
+      sdrho[part] = L::fmadd(mj, continuity, sdrho[part]);
       od = continuity;
     }
-    smu = _mm512_mask_max_pd(smu, inside, smu, _mm512_abs_pd(mu));
-
-    // Back to one (ax, ay, az, dρ/dt) quadruple per neighbour.
-    __m512d ox = fx, oy = fy, oz = fz;
-    if constexpr (!UniformMass) {
-      ox = _mm512_mul_pd(mi, fx);
-      oy = _mm512_mul_pd(mi, fy);
-      oz = _mm512_mul_pd(mi, fz);
-      od = _mm512_mul_pd(mi, od);
-    }
-    const __m512d q0 = _mm512_unpacklo_pd(ox, oy), q1 = _mm512_unpackhi_pd(ox, oy);  // x y of lanes 0 2 4 6 / 1 3 5 7
-    const __m512d q2 = _mm512_unpacklo_pd(oz, od), q3 = _mm512_unpackhi_pd(oz, od);
-    const __m512d v02 = _mm512_permutex2var_pd(q0, quadLow, q2), v46 = _mm512_permutex2var_pd(q0, quadHigh, q2);
-    const __m512d v13 = _mm512_permutex2var_pd(q1, quadLow, q3), v57 = _mm512_permutex2var_pd(q1, quadHigh, q3);
-    const __m256d out[8] = {_mm512_castpd512_pd256(v02), _mm512_castpd512_pd256(v13),
-                            _mm512_extractf64x4_pd(v02, 1), _mm512_extractf64x4_pd(v13, 1),
-                            _mm512_castpd512_pd256(v46), _mm512_castpd512_pd256(v57),
-                            _mm512_extractf64x4_pd(v46, 1), _mm512_extractf64x4_pd(v57, 1)};
-    auto scatter = [&](int l) {
-      double* aj = acc + 4 * (static_cast<std::size_t>(jj[l]) - lo);
-      _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), out[l]));
-    };
-    if (m == 8) {
-      for (int l = 0; l < 8; ++l) scatter(l);
+    smu = L::maskMax(smu, inside, smu, L::abs(mu));
+    if constexpr (UniformMass) {
+      L::addQuadruples(acc, lo, jj, m, fx, fy, fz, od);
     } else {
-      for (int l = 0; l < m; ++l) scatter(l);
+      L::addQuadruples(acc, lo, jj, m, L::mul(mi, fx), L::mul(mi, fy), L::mul(mi, fz), L::mul(mi, od));
+    }
     }
   }
-  own[0] += _mm512_reduce_add_pd(sax);
-  own[1] += _mm512_reduce_add_pd(say);
-  own[2] += _mm512_reduce_add_pd(saz);
-  own[3] += _mm512_reduce_add_pd(sdrho);
-  maxMu = std::max(maxMu, _mm512_reduce_max_pd(smu));
+  own[0] += L::reduceAdd(sax);
+  own[1] += L::reduceAdd(say);
+  own[2] += L::reduceAdd(saz);
+  own[3] += L::reduceAdd(sdrho);
+  maxMu = std::max(maxMu, L::reduceMax(smu));
 }
 #endif
 
@@ -281,43 +205,56 @@ struct WallSums {
   CubicSplineKernel kernel;
   double gx, gy, gz;
 
-  [[gnu::always_inline]] void operator()(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
-                                         const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
 #ifdef RUPTURE_SPH_AVX512
-    // 8 neighbours at a time from their records (loadColumns); lanes past the end read the next
-    // list's entries or the padding (valid particles) and are masked out.
-    const double h = kernel.h();
-    const __m512d vxw = _mm512_set1_pd(xw), vyw = _mm512_set1_pd(yw), vzw = _mm512_set1_pd(zw);
-    const __m512d invH = _mm512_set1_pd(1.0 / h), two = _mm512_set1_pd(2.0), one = _mm512_set1_pd(1.0);
-    const __m512d tiny = _mm512_set1_pd(1e-300), aD = _mm512_set1_pd(kernel.normalisation());
-    const __m512d vgx = _mm512_set1_pd(gx), vgy = _mm512_set1_pd(gy), vgz = _mm512_set1_pd(gz);
-    __m512d sW = _mm512_setzero_pd(), sPW = _mm512_setzero_pd(), sRR = _mm512_setzero_pd();
+  /// L::kWidth neighbours at a time from their records (L::columns), in blocks of 8 as the pair
+  /// loop (the same sums at either width); lanes past the end read the next list's entries or the
+  /// padding (valid particles) and are masked out.
+  template <class L>
+  [[gnu::always_inline]] void sums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
+                                   const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
+    using Vec = typename L::Vec;
+    constexpr int kWidth = L::kWidth, kParts = 8 / kWidth;
+    const Vec vxw = L::set1(xw), vyw = L::set1(yw), vzw = L::set1(zw);
+    const Vec invH = L::set1(1.0 / kernel.h()), two = L::set1(2.0), one = L::set1(1.0);
+    const Vec tiny = L::set1(1e-300), aD = L::set1(kernel.normalisation());
+    const Vec vgx = L::set1(gx), vgy = L::set1(gy), vgz = L::set1(gz);
+    Vec sW[kParts], sPW[kParts], sRR[kParts];
+    for (int part = 0; part < kParts; ++part) sW[part] = sPW[part] = sRR[part] = L::zero();
     for (int n0 = 0; n0 < count; n0 += 8) {
-      const int m = std::min(8, count - n0);
+#pragma GCC unroll 2
+      for (int part = 0; part < kParts; ++part) {
+      const int s = n0 + part * kWidth;
+      if (part > 0 && s >= count) break;
+      const int m = std::min(kWidth, count - s);
       const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
-      const Columns f = loadColumns(pk, list + n0);
-      const __m512d dx = _mm512_sub_pd(vxw, f.x), dy = _mm512_sub_pd(vyw, f.y), dz = _mm512_sub_pd(vzw, f.z);
-      const __m512d r2 = _mm512_max_pd(_mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx))), tiny);
-      const __m512d q = _mm512_mul_pd(_mm512_mul_pd(r2, inverseSqrt(r2)), invH);
-      const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, q, two, _CMP_LT_OQ);
+      const typename L::Columns f = L::columns(pk, list + s);
+      const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
+      const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
+      const Vec q = L::mul(L::mul(r2, inverseSqrt<L>(r2)), invH);
+      const __mmask8 inside = L::less(valid, q, two);
       // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
-      const __m512d q2 = _mm512_mul_pd(q, q);
-      const __m512d nearW = _mm512_fmadd_pd(q2, _mm512_fmsub_pd(_mm512_set1_pd(0.75), q, _mm512_set1_pd(1.5)), one);
-      const __m512d t = _mm512_sub_pd(two, q);
-      const __m512d farW = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(0.25), t), _mm512_mul_pd(t, t));
-      const __mmask8 isNear = _mm512_cmp_pd_mask(q, one, _CMP_LT_OQ);
-      const __m512d W = _mm512_maskz_mul_pd(inside, aD, _mm512_mask_blend_pd(isNear, farW, nearW));
-      const __m512d rho = inverse(f.inverseRho);
-      const __m512d pressure = _mm512_mul_pd(_mm512_mul_pd(f.pressureOverRho2, rho), rho);
-      const __m512d gr = _mm512_fmadd_pd(vgz, dz, _mm512_fmadd_pd(vgy, dy, _mm512_mul_pd(vgx, dx)));
-      sW = _mm512_add_pd(sW, W);
-      sPW = _mm512_fmadd_pd(pressure, W, sPW);
-      sRR = _mm512_fmadd_pd(_mm512_mul_pd(rho, gr), W, sRR);  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
+      const Vec q2 = L::mul(q, q);
+      const Vec nearW = L::fmadd(q2, L::fmsub(L::set1(0.75), q, L::set1(1.5)), one);
+      const Vec t = L::sub(two, q);
+      const Vec farW = L::mul(L::mul(L::set1(0.25), t), L::mul(t, t));
+      const __mmask8 isNear = L::less(0xFF, q, one);
+      const Vec W = L::maskzMul(inside, aD, L::blend(isNear, farW, nearW));
+      const Vec rho = inverse<L>(f.inverseRho);
+      const Vec pressure = L::mul(L::mul(f.pressureOverRho2, rho), rho);
+      const Vec gr = L::fmadd(vgz, dz, L::fmadd(vgy, dy, L::mul(vgx, dx)));
+      sW[part] = L::add(sW[part], W);
+      sPW[part] = L::fmadd(pressure, W, sPW[part]);
+      sRR[part] = L::fmadd(L::mul(rho, gr), W, sRR[part]);  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
+      }
     }
-    sumW = _mm512_reduce_add_pd(sW);
-    sumPW = _mm512_reduce_add_pd(sPW);
-    sumRhoRW = _mm512_reduce_add_pd(sRR);
+    sumW = L::reduceAdd(sW);
+    sumPW = L::reduceAdd(sPW);
+    sumRhoRW = L::reduceAdd(sRR);
+  }
 #else
+  template <class L>
+  void sums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count, const Packed* __restrict pk,
+            double& sumW, double& sumPW, double& sumRhoRW) const {
     sumW = sumPW = sumRhoRW = 0;
     for (int m = 0; m < count; ++m) {
       const Packed& f = pk[list[m]];
@@ -328,9 +265,26 @@ struct WallSums {
       sumPW += f.pressureOverRho2 * rho * rho * W;
       sumRhoRW += rho * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
     }
-#endif
   }
+#endif
 };
+
+#ifndef RUPTURE_SPH_AVX512
+struct PortableLanes {};  // the portable loops (pairsOf): no choice of width
+#endif
+
+/// f.operator()<L>() with the lane type of `width` (4 or 8; 0: this processor's preferred width,
+/// simd_lanes.hpp).
+template <class F>
+void withLanes(int width, F&& f) {
+#ifdef RUPTURE_SPH_AVX512
+  if ((width == 0 ? preferredLaneWidth() : width) == 4) f.template operator()<Lanes4>();
+  else f.template operator()<Lanes8>();
+#else
+  (void)width;
+  f.template operator()<PortableLanes>();
+#endif
+}
 
 /// Particle a's record from its estimates, pressure (Pa) and 1/ρ (m³/kg); 2D: z and v_z are 0.
 Packed recordOf(const FluidParticles& p, std::size_t a, double pressure, double inverseRho, bool is3d) {
@@ -386,19 +340,23 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   //    eq. 27), their density its EOS inverse, and their record.
   const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
   const WallSums wallSums{kernel, gx, gy, gz};
+  auto wallPass = [&]<class L>() {
 #pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
-  for (std::size_t w = 0; w < n; ++w) {
-    if (p.body[w] == kFluid) continue;
-    const double xw = p.x[w], yw = p.y[w], zw = is3d ? p.z[w] : 0.0;
-    double sumW = 0, sumPW = 0, sumRhoRW = 0;
-    if (list.count(w) > 0) wallSums(xw, yw, zw, list.neighbours(w), list.count(w), packed, sumW, sumPW, sumRhoRW);
-    // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
-    const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
-    const double rhow = pw > 0 ? eos.density(pw) : eos.referenceDensity, inverseRho = 1.0 / rhow;
-    p.pressure[w] = pw;
-    p.rhoEst[w] = rhow;
-    packed[w] = recordOf(p, w, pw, inverseRho, is3d);
-  }
+    for (std::size_t w = 0; w < n; ++w) {
+      if (p.body[w] == kFluid) continue;
+      const double xw = p.x[w], yw = p.y[w], zw = is3d ? p.z[w] : 0.0;
+      double sumW = 0, sumPW = 0, sumRhoRW = 0;
+      if (list.count(w) > 0)
+        wallSums.template sums<L>(xw, yw, zw, list.neighbours(w), list.count(w), packed, sumW, sumPW, sumRhoRW);
+      // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
+      const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
+      const double rhow = pw > 0 ? eos.density(pw) : eos.referenceDensity, inverseRho = 1.0 / rhow;
+      p.pressure[w] = pw;
+      p.rhoEst[w] = rhow;
+      packed[w] = recordOf(p, w, pw, inverseRho, is3d);
+    }
+  };
+  withLanes(ws.laneWidth, wallPass);
 
   k.uniformMass = minMass;
   const bool uniform = minMass == maxMass;
@@ -412,7 +370,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   const double* rho = p.rhoEst.data();
   const double* mass = p.mass.data();
   double maxMu = 0;
-  auto chunkLoop = [&]<bool Uniform>() {
+  auto chunkLoop = [&]<class L, bool Uniform>() {
 #pragma omp parallel for schedule(dynamic, 1) reduction(max : maxMu) if (chunks.size() > 1)
     for (std::size_t c = 0; c < chunks.size(); ++c) {
       const NeighbourList::Chunk& ch = chunks[c];
@@ -427,12 +385,12 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
         const int nf = list.fluidCount(i), total = list.count(i);
         double own[4] = {0, 0, 0, 0};
 #ifdef RUPTURE_SPH_AVX512
-        // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks of 8.
+        // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks.
         if (diffuse) {
-          pairsOfAvx512<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
-          pairsOfAvx512<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+          pairsOfLanes<L, true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
+          pairsOfLanes<L, false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
         } else {
-          pairsOfAvx512<false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
+          pairsOfLanes<L, false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
         }
 #else
         if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
@@ -445,8 +403,10 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       maxMu = std::max(maxMu, mu);
     }
   };
-  if (uniform) chunkLoop.template operator()<true>();
-  else chunkLoop.template operator()<false>();
+  withLanes(ws.laneWidth, [&]<class L>() {
+    if (uniform) chunkLoop.template operator()<L, true>();
+    else chunkLoop.template operator()<L, false>();
+  });
 
   // The chunks' buffers added in chunk order: the same sums for any thread count. By spans of
   // particles, each chunk's overlap with the span added as one contiguous (vectorised) run.

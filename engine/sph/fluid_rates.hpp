@@ -39,6 +39,9 @@ struct RateWorkspace {
   std::vector<Packed> packed;
   std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
   std::vector<double> spanForces;  ///< the bodies' forces summed over each span of the last pass
+  /// The vector width of the pair loops, 4 or 8 doubles; 0: this processor's (simd_lanes.hpp).
+  /// Both give bitwise the same rates; only the speed differs. Ignored without AVX-512.
+  int laneWidth = 0;
 };
 
 /// What the pass that stores the rates also does, so that the particles are not swept once more

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sph/fluid_rates.hpp"
@@ -129,12 +130,15 @@ double maxAbs(const std::vector<double>& v) {
 
 TEST(SphPairLoop, HalfListsAndChunkSumsMatchTheDirectSumOverAllPairs) {
   const FluidModel model = testModel();
+  // Both vector widths of the AVX-512 loops (simd_lanes.hpp); the portable loop where there is none.
+  for (int laneWidth : {4, 8})
   for (bool equalMasses : {true, false}) {
     FluidParticles p = jitteredBlock(equalMasses, equalMasses ? 11 : 12);
     NeighbourList list;
     list.build(p, 3, 1.1 * model.kernel().support());
     ASSERT_GE(list.chunks().size(), 4u) << "the block must exercise several chunks";
     RateWorkspace workspace;
+    workspace.laneWidth = laneWidth;
     const RateExtremes extremes = computeRates(p, list, model, workspace);
     const Reference ref = directSums(p, model);
     // Tolerances relative to the largest value: the sums cancel (pressure terms of ~50 pairs).
@@ -142,13 +146,50 @@ TEST(SphPairLoop, HalfListsAndChunkSumsMatchTheDirectSumOverAllPairs) {
     ASSERT_GT(scaleA, 0);
     ASSERT_GT(scaleD, 0);
     for (std::size_t a = 0; a < p.size(); ++a) {
-      EXPECT_NEAR(p.ax[a], ref.ax[a], 1e-10 * scaleA) << "particle " << a << ", equal masses " << equalMasses;
+      EXPECT_NEAR(p.ax[a], ref.ax[a], 1e-10 * scaleA) << "particle " << a << ", equal masses " << equalMasses
+                                                       << ", " << laneWidth << " lanes";
       EXPECT_NEAR(p.ay[a], ref.ay[a], 1e-10 * scaleA) << "particle " << a;
       EXPECT_NEAR(p.az[a], ref.az[a], 1e-10 * scaleA) << "particle " << a;
       EXPECT_NEAR(p.drho[a], ref.drho[a], 1e-10 * scaleD) << "particle " << a;
     }
     EXPECT_NEAR(extremes.maxViscousMu, ref.maxMu, 1e-12 * ref.maxMu);
   }
+}
+
+TEST(SphPairLoop, RatesAreBitwiseIdenticalForFourAndEightLanes) {
+  // Lane l of a block sums into lane l of the particle's sums at either width, and the 8 lanes are
+  // added in one order (simd_lanes.hpp): the width is a matter of speed only. Every variant of the
+  // loop: equal and unequal masses, with and without density diffusion, walls included.
+  for (bool equalMasses : {true, false})
+    for (DiffusionModel diffusion : {DiffusionModel::Fourtakas, DiffusionModel::Off}) {
+      FluidModel model = testModel();
+      model.diffusion = diffusion;
+      ParticleArray<double> at4[5];
+      for (int laneWidth : {4, 8}) {
+        FluidParticles p = jitteredBlock(equalMasses, 14);
+        NeighbourList list;
+        list.build(p, 3, 1.1 * model.kernel().support());
+        RateWorkspace workspace;
+        workspace.laneWidth = laneWidth;
+        const RateExtremes extremes = computeRates(p, list, model, workspace);
+        EXPECT_GT(extremes.maxViscousMu, 0.0);
+        if (laneWidth == 4) {
+          at4[0] = p.ax;
+          at4[1] = p.ay;
+          at4[2] = p.az;
+          at4[3] = p.drho;
+          at4[4] = p.pressure;
+          continue;
+        }
+        const std::string what = std::string(equalMasses ? "equal" : "unequal") + " masses, diffusion " +
+                                 (diffusion == DiffusionModel::Off ? "off" : "on");
+        EXPECT_EQ(p.ax, at4[0]) << what;
+        EXPECT_EQ(p.ay, at4[1]) << what;
+        EXPECT_EQ(p.az, at4[2]) << what;
+        EXPECT_EQ(p.drho, at4[3]) << what;
+        EXPECT_EQ(p.pressure, at4[4]) << what << " (the walls' extrapolated pressures)";
+      }
+    }
 }
 
 TEST(SphPairLoop, RatesAreBitwiseIdenticalForOneTwoAndFourThreads) {
