@@ -29,21 +29,39 @@ int preferredLaneWidth();
 
 #ifdef RUPTURE_SPH_AVX512
 
-/// 8 lanes in one 512-bit register.
-struct Lanes8 {
-  static constexpr int kWidth = 8;
-  using Vec = __m512d;
-  using Index = __m256i;
+/// What both widths share: GCC's vector types (__m512d, __m256d: Width doubles) take the
+/// arithmetic operators and a scalar operand as a broadcast, as the _mm*_add_pd… intrinsics are
+/// defined. (By width, not by type: a template argument would drop the types' may_alias.)
+template <int Width>
+struct VectorOf;
+template <>
+struct VectorOf<8> {
+  using type = __m512d;
+};
+template <>
+struct VectorOf<4> {
+  using type = __m256d;
+};
+
+template <int Width>
+struct LaneArithmetic {
+  using Vec = typename VectorOf<Width>::type;
   /// What the pair loops read of a neighbour, as 8 columns of lanes (lane l = neighbour l).
   struct Columns {
     Vec x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
   };
+  static Vec set1(double v) { return Vec{} + v; }
+  static Vec zero() { return Vec{}; }
+  static Vec add(Vec a, Vec b) { return a + b; }
+  static Vec sub(Vec a, Vec b) { return a - b; }
+  static Vec mul(Vec a, Vec b) { return a * b; }
+};
 
-  static Vec set1(double v) { return _mm512_set1_pd(v); }
-  static Vec zero() { return _mm512_setzero_pd(); }
-  static Vec add(Vec a, Vec b) { return _mm512_add_pd(a, b); }
-  static Vec sub(Vec a, Vec b) { return _mm512_sub_pd(a, b); }
-  static Vec mul(Vec a, Vec b) { return _mm512_mul_pd(a, b); }
+/// 8 lanes in one 512-bit register.
+struct Lanes8 : LaneArithmetic<8> {
+  static constexpr int kWidth = 8;
+  using Index = __m256i;
+
   static Vec min(Vec a, Vec b) { return _mm512_min_pd(a, b); }
   static Vec max(Vec a, Vec b) { return _mm512_max_pd(a, b); }
   static Vec abs(Vec a) { return _mm512_abs_pd(a); }
@@ -135,19 +153,10 @@ struct Lanes8 {
 
 /// 4 lanes in one 256-bit register. A loop over neighbours in blocks of 8 runs two of these per
 /// block, lanes 0–3 and 4–7, each summing into its own half: so the sums are Lanes8's.
-struct Lanes4 {
+struct Lanes4 : LaneArithmetic<4> {
   static constexpr int kWidth = 4;
-  using Vec = __m256d;
   using Index = __m128i;
-  struct Columns {
-    Vec x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
-  };
 
-  static Vec set1(double v) { return _mm256_set1_pd(v); }
-  static Vec zero() { return _mm256_setzero_pd(); }
-  static Vec add(Vec a, Vec b) { return _mm256_add_pd(a, b); }
-  static Vec sub(Vec a, Vec b) { return _mm256_sub_pd(a, b); }
-  static Vec mul(Vec a, Vec b) { return _mm256_mul_pd(a, b); }
   static Vec min(Vec a, Vec b) { return _mm256_min_pd(a, b); }
   static Vec max(Vec a, Vec b) { return _mm256_max_pd(a, b); }
   static Vec abs(Vec a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a); }
