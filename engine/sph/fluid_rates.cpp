@@ -131,63 +131,66 @@ template <class L, bool Diffuse, bool UniformMass>
     // lambda: GCC reloaded a lambda's captured constants from memory on every block.)
 #pragma GCC unroll 2
     for (int part = 0; part < kParts; ++part) {
-    const int s = n0 + part * kWidth;
-    if (part > 0 && s >= end) break;
-    const int m = std::min(kWidth, end - s);
-    const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
-    // Lanes past the end read the next list's entries (or the padding): valid particles, their F
-    // masked to 0 and their scatter skipped.
-    const std::int32_t* jj = list + s;
-    // The records and accumulators of the neighbours kPrefetch entries ahead (they may be the next
-    // particle's: the lists lie back to back, padded at the end, neighbour_list.hpp): a
-    // neighbour's record is mostly in L3 (the cell-ordered sweep reuses it ~3 MB later).
-    for (int l = 0; l < kWidth; ++l) {
-      const std::int32_t ahead = jj[kPrefetch + l];
-      __builtin_prefetch(&pk[ahead], 0, 3);
-      __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
-    }
-    const typename L::Columns b = L::columns(pk, jj);
-    const Vec dx = L::sub(ax, b.x), dy = L::sub(ay, b.y), dz = L::sub(az, b.z);
-    const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
-    const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
-    const Vec inverseR = inverseSqrt<L>(L::max(r2, tiny));
-    const Vec rr = L::mul(L::max(r2, tiny), inverseR);
-    const Vec s1 = L::max(L::sub(h, rr), zero), tt = L::sub(twoH, rr);
-    const Vec spline = L::fmsub(L::mul(four, s1), s1, L::mul(tt, tt));
-    const Vec F = L::maskzMul(inside, L::mul(kF, spline), inverseR);
-    const Vec dvx = L::sub(avx, b.vx), dvy = L::sub(avy, b.vy), dvz = L::sub(avz, b.vz);
-    const Vec vr = L::fmadd(dvz, dz, L::fmadd(dvy, dy, L::mul(dvx, dx)));
-    const Vec mu = L::mul(L::mul(h, vr), inverse<L>(L::add(r2, eta2)));
-    // Π only for approaching pairs (μ < 0), as min(μ, 0); 1/ρ̄ as the mean of 1/ρ (see pairsOf).
-    const Vec approach = L::min(mu, zero);
-    const Vec viscous = L::mul(L::mul(approach, L::fmsub(halfBeta, approach, halfAlphaC0)), L::add(air, b.inverseRho));
-    const Vec c = L::mul(L::add(L::add(ap, b.pressureOverRho2), viscous), F);
-    const Vec fx = L::mul(c, dx), fy = L::mul(c, dy), fz = L::mul(c, dz);
-    const Vec continuity = L::mul(F, vr);
-    Vec mj = L::set1(1.0);
-    typename L::Index idx{};
-    if constexpr (!UniformMass || Diffuse) idx = L::indices(valid, jj);  // for the gathers of m_b and ρ_b
-    if constexpr (!UniformMass) mj = L::gather(valid, idx, mass);
-    sax[part] = L::fnmadd(mj, fx, sax[part]);
-    say[part] = L::fnmadd(mj, fy, say[part]);
-    saz[part] = L::fnmadd(mj, fz, saz[part]);
-    Vec od;
-    if constexpr (Diffuse) {
-      const Vec rhoj = L::gather(valid, idx, rho);
-      const Vec hydrostatic = L::fmadd(L::set1(k.kz), dz, L::fmadd(L::set1(k.ky), dy, L::mul(L::set1(k.kx), dx)));
-      const Vec d = L::mul(L::mul(L::sub(L::sub(L::set1(rho[i]), rhoj), hydrostatic), F), L::set1(k.diffusionScale));
-      sdrho[part] = L::fmadd(mj, L::fmadd(d, b.inverseRho, continuity), sdrho[part]);
-      od = L::fnmadd(d, air, continuity);
-    } else {
-      sdrho[part] = L::fmadd(mj, continuity, sdrho[part]);
-      od = continuity;
-    }
-    smu = L::maskMax(smu, inside, smu, L::abs(mu));
-    if constexpr (UniformMass) {
-      L::addQuadruples(acc, lo, jj, m, fx, fy, fz, od);
-    } else {
-      L::addQuadruples(acc, lo, jj, m, L::mul(mi, fx), L::mul(mi, fy), L::mul(mi, fz), L::mul(mi, od));
-    }
+      const int s = n0 + part * kWidth;
+      if (part > 0 && s >= end) break;
+      const int m = std::min(kWidth, end - s);
+      const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+      // Lanes past the end read the next list's entries (or the padding): valid particles, their F
+      // masked to 0 and their scatter skipped.
+      const std::int32_t* jj = list + s;
+      // The records and accumulators of the neighbours kPrefetch entries ahead (they may be the next
+      // particle's: the lists lie back to back, padded at the end, neighbour_list.hpp): a
+      // neighbour's record is mostly in L3 (the cell-ordered sweep reuses it ~3 MB later).
+      for (int l = 0; l < kWidth; ++l) {
+        const std::int32_t ahead = jj[kPrefetch + l];
+        __builtin_prefetch(&pk[ahead], 0, 3);
+        __builtin_prefetch(acc + 4 * (static_cast<std::size_t>(ahead) - lo), 1, 3);
+      }
+      const typename L::Columns b = L::columns(pk, jj);
+      const Vec dx = L::sub(ax, b.x), dy = L::sub(ay, b.y), dz = L::sub(az, b.z);
+      const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
+      const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
+      const Vec r2Safe = L::max(r2, tiny);  // two particles at one point: F = 0, not NaN
+      const Vec inverseR = inverseSqrt<L>(r2Safe);
+      const Vec rr = L::mul(r2Safe, inverseR);
+      const Vec s1 = L::max(L::sub(h, rr), zero), tt = L::sub(twoH, rr);
+      const Vec spline = L::fmsub(L::mul(four, s1), s1, L::mul(tt, tt));
+      const Vec F = L::maskzMul(inside, L::mul(kF, spline), inverseR);
+      const Vec dvx = L::sub(avx, b.vx), dvy = L::sub(avy, b.vy), dvz = L::sub(avz, b.vz);
+      const Vec vr = L::fmadd(dvz, dz, L::fmadd(dvy, dy, L::mul(dvx, dx)));
+      const Vec mu = L::mul(L::mul(h, vr), inverse<L>(L::add(r2, eta2)));
+      // Π only for approaching pairs (μ < 0), as min(μ, 0); 1/ρ̄ as the mean of 1/ρ (see pairsOf).
+      const Vec approach = L::min(mu, zero);
+      const Vec viscous =
+          L::mul(L::mul(approach, L::fmsub(halfBeta, approach, halfAlphaC0)), L::add(air, b.inverseRho));
+      const Vec c = L::mul(L::add(L::add(ap, b.pressureOverRho2), viscous), F);
+      const Vec fx = L::mul(c, dx), fy = L::mul(c, dy), fz = L::mul(c, dz);
+      const Vec continuity = L::mul(F, vr);
+      Vec mj = L::set1(1.0);
+      typename L::Index idx{};
+      if constexpr (!UniformMass || Diffuse) idx = L::indices(valid, jj);  // for the gathers of m_b and ρ_b
+      if constexpr (!UniformMass) mj = L::gather(valid, idx, mass);
+      sax[part] = L::fnmadd(mj, fx, sax[part]);
+      say[part] = L::fnmadd(mj, fy, say[part]);
+      saz[part] = L::fnmadd(mj, fz, saz[part]);
+      Vec od;
+      if constexpr (Diffuse) {
+        const Vec rhoj = L::gather(valid, idx, rho);
+        const Vec hydrostatic = L::fmadd(L::set1(k.kz), dz, L::fmadd(L::set1(k.ky), dy, L::mul(L::set1(k.kx), dx)));
+        const Vec d =
+            L::mul(L::mul(L::sub(L::sub(L::set1(rho[i]), rhoj), hydrostatic), F), L::set1(k.diffusionScale));
+        sdrho[part] = L::fmadd(mj, L::fmadd(d, b.inverseRho, continuity), sdrho[part]);
+        od = L::fnmadd(d, air, continuity);
+      } else {
+        sdrho[part] = L::fmadd(mj, continuity, sdrho[part]);
+        od = continuity;
+      }
+      smu = L::maskMax(smu, inside, smu, L::abs(mu));
+      if constexpr (UniformMass) {
+        L::addQuadruples(acc, lo, jj, m, fx, fy, fz, od);
+      } else {
+        L::addQuadruples(acc, lo, jj, m, L::mul(mi, fx), L::mul(mi, fy), L::mul(mi, fz), L::mul(mi, od));
+      }
     }
   }
   own[0] += L::reduceAdd(sax);
@@ -223,28 +226,28 @@ struct WallSums {
     for (int n0 = 0; n0 < count; n0 += 8) {
 #pragma GCC unroll 2
       for (int part = 0; part < kParts; ++part) {
-      const int s = n0 + part * kWidth;
-      if (part > 0 && s >= count) break;
-      const int m = std::min(kWidth, count - s);
-      const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
-      const typename L::Columns f = L::columns(pk, list + s);
-      const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
-      const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
-      const Vec q = L::mul(L::mul(r2, inverseSqrt<L>(r2)), invH);
-      const __mmask8 inside = L::less(valid, q, two);
-      // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
-      const Vec q2 = L::mul(q, q);
-      const Vec nearW = L::fmadd(q2, L::fmsub(L::set1(0.75), q, L::set1(1.5)), one);
-      const Vec t = L::sub(two, q);
-      const Vec farW = L::mul(L::mul(L::set1(0.25), t), L::mul(t, t));
-      const __mmask8 isNear = L::less(0xFF, q, one);
-      const Vec W = L::maskzMul(inside, aD, L::blend(isNear, farW, nearW));
-      const Vec rho = inverse<L>(f.inverseRho);
-      const Vec pressure = L::mul(L::mul(f.pressureOverRho2, rho), rho);
-      const Vec gr = L::fmadd(vgz, dz, L::fmadd(vgy, dy, L::mul(vgx, dx)));
-      sW[part] = L::add(sW[part], W);
-      sPW[part] = L::fmadd(pressure, W, sPW[part]);
-      sRR[part] = L::fmadd(L::mul(rho, gr), W, sRR[part]);  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
+        const int s = n0 + part * kWidth;
+        if (part > 0 && s >= count) break;
+        const int m = std::min(kWidth, count - s);
+        const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+        const typename L::Columns f = L::columns(pk, list + s);
+        const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
+        const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
+        const Vec q = L::mul(L::mul(r2, inverseSqrt<L>(r2)), invH);
+        const __mmask8 inside = L::less(valid, q, two);
+        // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
+        const Vec q2 = L::mul(q, q);
+        const Vec nearW = L::fmadd(q2, L::fmsub(L::set1(0.75), q, L::set1(1.5)), one);
+        const Vec t = L::sub(two, q);
+        const Vec farW = L::mul(L::mul(L::set1(0.25), t), L::mul(t, t));
+        const __mmask8 isNear = L::less(0xFF, q, one);
+        const Vec W = L::maskzMul(inside, aD, L::blend(isNear, farW, nearW));
+        const Vec rho = inverse<L>(f.inverseRho);
+        const Vec pressure = L::mul(L::mul(f.pressureOverRho2, rho), rho);
+        const Vec gr = L::fmadd(vgz, dz, L::fmadd(vgy, dy, L::mul(vgx, dx)));
+        sW[part] = L::add(sW[part], W);
+        sPW[part] = L::fmadd(pressure, W, sPW[part]);
+        sRR[part] = L::fmadd(L::mul(rho, gr), W, sRR[part]);  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
       }
     }
     sumW = L::reduceAdd(sW);

@@ -2,7 +2,7 @@
 // The vector widths the SPH pair loops run at with AVX-512: 8 doubles (512-bit registers) or 4
 // (256-bit registers, with AVX-512VL's masks and estimates). Both give the same lane arithmetic,
 // so a loop written once over `Lanes` computes bitwise the same results at either width (the sums
-// of 8 lanes are combined in one fixed order, reduceAdd). Which width is faster depends on the
+// of 8 lanes are combined in one fixed order, sumOfHalves). Which width is faster depends on the
 // processor: Zen 4 runs 512-bit instructions on 256-bit units, so a 512-bit shuffle costs it two,
 // and the 24 shuffles that transpose 8 records outweigh the 16 that transpose 4 twice;
 // processors with 512-bit units prefer 8 (preferredLaneWidth).
@@ -22,9 +22,10 @@
 
 namespace rupture::sph {
 
-/// The width (4 or 8 doubles) the pair loops use on this processor: RUPTURE_SPH_LANES (4 or 8)
-/// if set, else 4 on AMD family 19h (Zen 4: 512-bit instructions split in two 256-bit halves),
-/// 8 elsewhere. Read once. Without AVX-512 the loops are the portable ones and this is not read.
+/// The width (4 or 8 doubles) the pair loops use on this processor: RUPTURE_SPH_LANES (4 or 8;
+/// any other value is ignored) if set, else 4 on AMD family 19h (Zen 4: 512-bit instructions split
+/// in two 256-bit halves), 8 elsewhere. Read once. Without AVX-512 the loops are the portable
+/// ones and do not read it.
 int preferredLaneWidth();
 
 #ifdef RUPTURE_SPH_AVX512
@@ -56,6 +57,29 @@ struct LaneArithmetic {
   static Vec sub(Vec a, Vec b) { return a - b; }
   static Vec mul(Vec a, Vec b) { return a * b; }
 };
+
+/// The sum of 8 lanes held as two halves of 4 (lanes l and l + 4 first, then the two 128-bit
+/// halves, then the two lanes left): the one order of both widths.
+inline double sumOfHalves(__m256d low, __m256d high) {
+  const __m256d s = _mm256_add_pd(high, low);
+  const __m128d t = _mm_add_pd(_mm256_extractf128_pd(s, 1), _mm256_castpd256_pd128(s));
+  return _mm_cvtsd_f64(_mm_add_sd(t, _mm_unpackhi_pd(t, t)));
+}
+
+/// acc[4 (j[l] − lo) …] += out[l] for the first m lanes: one 256-bit load-add-store each.
+template <int Width>
+[[gnu::always_inline]] inline void addQuadruplesEach(double* __restrict acc, std::size_t lo, const std::int32_t* j,
+                                                     int m, const __m256d (&out)[Width]) {
+  auto add = [&](int l) {
+    double* a = acc + 4 * (static_cast<std::size_t>(j[l]) - lo);
+    _mm256_storeu_pd(a, _mm256_add_pd(_mm256_loadu_pd(a), out[l]));
+  };
+  if (m == Width) {
+    for (int l = 0; l < Width; ++l) add(l);
+  } else {
+    for (int l = 0; l < m; ++l) add(l);
+  }
+}
 
 /// 8 lanes in one 512-bit register.
 struct Lanes8 : LaneArithmetic<8> {
@@ -125,30 +149,9 @@ struct Lanes8 : LaneArithmetic<8> {
                             _mm512_extractf64x4_pd(v02, 1), _mm512_extractf64x4_pd(v13, 1),
                             _mm512_castpd512_pd256(v46), _mm512_castpd512_pd256(v57),
                             _mm512_extractf64x4_pd(v46, 1), _mm512_extractf64x4_pd(v57, 1)};
-    addEach(acc, lo, j, m, out);
+    addQuadruplesEach(acc, lo, j, m, out);
   }
 
-  /// (a + b) over 4 lanes, then the two 128-bit halves, then the two lanes left.
-  static double sumOfHalves(__m256d low, __m256d high) {
-    const __m256d s = _mm256_add_pd(high, low);
-    const __m128d t = _mm_add_pd(_mm256_extractf128_pd(s, 1), _mm256_castpd256_pd128(s));
-    return _mm_cvtsd_f64(_mm_add_sd(t, _mm_unpackhi_pd(t, t)));
-  }
-
-  /// acc[4 (j[l] − lo) …] += out[l] for the first m lanes.
-  template <int Width>
-  [[gnu::always_inline]] static void addEach(double* __restrict acc, std::size_t lo, const std::int32_t* j, int m,
-                                             const __m256d (&out)[Width]) {
-    auto add = [&](int l) {
-      double* a = acc + 4 * (static_cast<std::size_t>(j[l]) - lo);
-      _mm256_storeu_pd(a, _mm256_add_pd(_mm256_loadu_pd(a), out[l]));
-    };
-    if (m == Width) {
-      for (int l = 0; l < Width; ++l) add(l);
-    } else {
-      for (int l = 0; l < m; ++l) add(l);
-    }
-  }
 };
 
 /// 4 lanes in one 256-bit register. A loop over neighbours in blocks of 8 runs two of these per
@@ -174,7 +177,7 @@ struct Lanes4 : LaneArithmetic<4> {
     return _mm256_mmask_i32gather_pd(_mm256_setzero_pd(), k, j, base, 8);
   }
   /// Σ of lanes 0–3 of parts[0] and 4–7 of parts[1], in Lanes8's order.
-  static double reduceAdd(const Vec* parts) { return Lanes8::sumOfHalves(parts[0], parts[1]); }
+  static double reduceAdd(const Vec* parts) { return sumOfHalves(parts[0], parts[1]); }
   static double reduceMax(Vec a) {
     const __m128d t = _mm_max_pd(_mm256_extractf128_pd(a, 1), _mm256_castpd256_pd128(a));
     return _mm_cvtsd_f64(_mm_max_sd(t, _mm_unpackhi_pd(t, t)));
@@ -205,7 +208,7 @@ struct Lanes4 : LaneArithmetic<4> {
     const __m256d t2 = _mm256_unpacklo_pd(oz, od), t3 = _mm256_unpackhi_pd(oz, od);
     const __m256d out[4] = {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
                             _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)};
-    Lanes8::addEach(acc, lo, j, m, out);
+    addQuadruplesEach(acc, lo, j, m, out);
   }
 };
 
