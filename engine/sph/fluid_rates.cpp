@@ -230,6 +230,9 @@ struct WallSums {
         if (part > 0 && s >= count) break;
         const int m = std::min(kWidth, count - s);
         const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+        // As the pair loop: the records kPrefetch entries ahead, which may be the next wall's (the
+        // walls' lists lie back to back too).
+        for (int l = 0; l < kWidth; ++l) __builtin_prefetch(&pk[list[s + kPrefetch + l]], 0, 3);
         const typename L::Columns f = L::columns(pk, list + s);
         const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
         const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
@@ -324,39 +327,45 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   k.diffusionScale = 2.0 * model.delta * kernel.h() * eos.soundSpeed;
 
   // 1. Fluid: pressure from the equation of state, and the record the pair loop reads (one cache
-  //    line: position, p/ρ², velocity estimate, 1/ρ). Equal masses (every lattice-built set) save
-  //    the pair loop a load per pair; checked here, over every particle. Dynamic, as the fluid is
-  //    not spread evenly over the cell-ordered particles.
+  //    line: position, p/ρ², velocity estimate, 1/ρ). Boundary particles: the record of a dry wall
+  //    (p = 0, ρ = ρ0), replaced in 2. for those with fluid in reach; no branch on the kind, which
+  //    alternates along the cell-ordered particles (so every particle costs the same: static).
+  //    Equal masses (every lattice-built set) save the pair loop a load per pair; checked here,
+  //    over every particle.
   ws.packed.resize(n);
   Packed* packed = ws.packed.data();
+  const double rho0 = eos.referenceDensity;
   double minMass = n > 0 ? p.mass[0] : 0.0, maxMass = minMass;
-#pragma omp parallel for schedule(dynamic, 4096) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
+#pragma omp parallel for schedule(static) reduction(min : minMass) reduction(max : maxMass) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
     minMass = std::min(minMass, p.mass[a]);
     maxMass = std::max(maxMass, p.mass[a]);
-    if (p.body[a] != kFluid) continue;
-    const double pressure = eos.pressure(p.rhoEst[a]), inverseRho = 1.0 / p.rhoEst[a];
+    const double rho = p.body[a] == kFluid ? p.rhoEst[a] : rho0;
+    const double pressure = eos.pressure(rho), inverseRho = 1.0 / rho;  // p(ρ0) = 0 exactly
+    p.rhoEst[a] = rho;
     p.pressure[a] = pressure;
     packed[a] = recordOf(p, a, pressure, inverseRho, is3d);
   }
-  // 2. Boundary particles: the pressure extrapolated from the fluid around them (Adami et al. 2012,
-  //    eq. 27), their density its EOS inverse, and their record.
+  // 2. Boundary particles with fluid in reach: the pressure extrapolated from the fluid around them
+  //    (Adami et al. 2012, eq. 27), their density its EOS inverse, and their record.
   const double gx = model.gravity[0], gy = model.gravity[1], gz = model.gravity[2];
   const WallSums wallSums{kernel, gx, gy, gz};
+  const std::vector<NeighbourList::WetBoundary>& wet = list.wetBoundary();
   auto wallPass = [&]<class L>() {
 #pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
-    for (std::size_t w = 0; w < n; ++w) {
-      if (p.body[w] == kFluid) continue;
-      const double xw = p.x[w], yw = p.y[w], zw = is3d ? p.z[w] : 0.0;
+    for (std::size_t q = 0; q < wet.size(); ++q) {
+      const NeighbourList::WetBoundary& wall = wet[q];
+      Packed& record = packed[wall.particle];  // position and velocity from 1.
       double sumW = 0, sumPW = 0, sumRhoRW = 0;
-      if (list.count(w) > 0)
-        wallSums.template sums<L>(xw, yw, zw, list.neighbours(w), list.count(w), packed, sumW, sumPW, sumRhoRW);
+      wallSums.template sums<L>(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
       // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
       const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
-      const double rhow = pw > 0 ? eos.density(pw) : eos.referenceDensity, inverseRho = 1.0 / rhow;
-      p.pressure[w] = pw;
-      p.rhoEst[w] = rhow;
-      packed[w] = recordOf(p, w, pw, inverseRho, is3d);
+      if (pw == 0.0) continue;  // the dry record of 1.
+      const double rhow = eos.density(pw), inverseRho = 1.0 / rhow;
+      p.pressure[wall.particle] = pw;
+      p.rhoEst[wall.particle] = rhow;
+      record.pressureOverRho2 = pw * inverseRho * inverseRho;
+      record.inverseRho = inverseRho;
     }
   };
   withLanes(ws.laneWidth, wallPass);

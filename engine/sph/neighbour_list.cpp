@@ -38,6 +38,113 @@ void binParticles(const FluidParticles& p, const CellGrid& g, std::vector<std::i
   for (std::size_t k = 0; k < n; ++k) sorted[cursor[cell[k]]++] = static_cast<std::int32_t>(k);
 }
 
+/// Particles of one cell and kind scanned together (at most kBatch).
+constexpr int kBatch = 8;
+
+/// A batch's particles: index, position, and the neighbours found so far (fluid and boundary
+/// ones apart; counted on past the room, which then only counts).
+struct BatchScan {
+  int k = 0;
+  std::int32_t index[kBatch];
+  double x[kBatch], y[kBatch], z[kBatch];
+  std::int32_t* fluidOut[kBatch];
+  std::int32_t* wallOut[kBatch];
+  int nf[kBatch], nb[kBatch];
+};
+
+/// Which candidates a particle lists (each pair once):
+///   Forward: cells after its own in cell order: fluid and boundary particles;
+///   Centre:  its own cell: fluid of higher index, and boundary particles;
+///   Backward: cells before its own: boundary particles only (their pairs with fluid ones are
+///             listed by those, in their Forward cells);
+///   FluidOnly: a boundary particle's list, all its fluid neighbours.
+enum class ScanMode { Forward, Centre, Backward, FluidOnly };
+
+/// The candidates in sorted order (positions, kinds, indices) and the test against a batch.
+struct CandidateRows {
+  const double* __restrict sx;
+  const double* __restrict sy;
+  const double* __restrict sz;
+  const char* __restrict sFluid;
+  const std::int32_t* __restrict sorted;
+  double cut2;
+  int stride;  // list capacity: entries past it are counted, not written
+
+  /// Appends the candidates of sorted positions [s0, s1) within the cutoff to each particle of the
+  /// batch, by the mode's rule. Both versions list the same neighbours in the same (scan) order.
+  template <ScanMode M>
+  void scan(BatchScan& b, std::int32_t s0, std::int32_t s1) const {
+#ifdef RUPTURE_SPH_AVX512_SCAN
+    // 8 candidates at a time, loaded once for the batch: the distance test and the mode's kind
+    // test as masks, the accepted indices compressed into the lists (no branch per candidate).
+    const __m512d vcut2 = _mm512_set1_pd(cut2);
+    for (std::int32_t s = s0; s < s1; s += kScanWidth) {
+      const __mmask8 live = s1 - s >= kScanWidth ? static_cast<__mmask8>(0xFF)
+                                                 : static_cast<__mmask8>((1u << (s1 - s)) - 1u);
+      const __m512d cx = _mm512_maskz_loadu_pd(live, sx + s);
+      const __m512d cy = _mm512_maskz_loadu_pd(live, sy + s);
+      const __m512d cz = _mm512_maskz_loadu_pd(live, sz + s);
+      const __m128i kinds = _mm_maskz_loadu_epi8(live, sFluid + s);
+      const __mmask8 fluid = static_cast<__mmask8>(_mm_test_epi8_mask(kinds, kinds));
+      const __m256i ids = _mm256_maskz_loadu_epi32(live, sorted + s);
+      for (int q = 0; q < b.k; ++q) {
+        const __m512d dx = _mm512_sub_pd(_mm512_set1_pd(b.x[q]), cx);
+        const __m512d dy = _mm512_sub_pd(_mm512_set1_pd(b.y[q]), cy);
+        const __m512d dz = _mm512_sub_pd(_mm512_set1_pd(b.z[q]), cz);
+        const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
+        const __mmask8 near = _mm512_mask_cmp_pd_mask(live, r2, vcut2, _CMP_LT_OQ);
+        if (near == 0) continue;
+        __mmask8 takeFluid = 0, takeWall = 0;
+        if constexpr (M == ScanMode::Forward) {
+          takeFluid = near & fluid;
+          takeWall = near & static_cast<__mmask8>(~fluid);
+        } else if constexpr (M == ScanMode::Centre) {
+          takeFluid = near & fluid & _mm256_cmpgt_epi32_mask(ids, _mm256_set1_epi32(b.index[q]));
+          takeWall = near & static_cast<__mmask8>(~fluid);
+        } else if constexpr (M == ScanMode::Backward) {
+          takeWall = near & static_cast<__mmask8>(~fluid);
+        } else {
+          takeFluid = near & fluid;
+        }
+        int& nf = b.nf[q];
+        int& nb = b.nb[q];
+        if (nf + nb <= stride) {  // room for 8 more in either (room: stride + 8)
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(b.fluidOut[q] + nf), _mm256_maskz_compress_epi32(takeFluid, ids));
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(b.wallOut[q] + nb), _mm256_maskz_compress_epi32(takeWall, ids));
+        }
+        nf += __builtin_popcount(takeFluid);
+        nb += __builtin_popcount(takeWall);
+      }
+    }
+#else
+    for (int q = 0; q < b.k; ++q) {
+      int& nf = b.nf[q];
+      int& nb = b.nb[q];
+      for (std::int32_t s = s0; s < s1; ++s) {
+        const std::int32_t j = sorted[s];
+        const bool fluidJ = sFluid[s];
+        if constexpr (M == ScanMode::Centre) {
+          if (fluidJ && j <= b.index[q]) continue;
+        } else if constexpr (M == ScanMode::Backward) {
+          if (fluidJ) continue;
+        } else if constexpr (M == ScanMode::FluidOnly) {
+          if (!fluidJ) continue;
+        }
+        const double dx = b.x[q] - sx[s], dy = b.y[q] - sy[s], dz = b.z[q] - sz[s];
+        if (dx * dx + dy * dy + dz * dz >= cut2) continue;
+        if (fluidJ) {
+          if (nf + nb < stride) b.fluidOut[q][nf] = j;
+          ++nf;
+        } else {
+          if (nf + nb < stride) b.wallOut[q][nb] = j;
+          ++nb;
+        }
+      }
+    }
+#endif
+  }
+};
+
 }  // namespace
 
 const std::vector<std::int32_t>& NeighbourList::cellOrder(const FluidParticles& p, int dimension, double cellSize) {
@@ -99,133 +206,100 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
     // Room for m_stride entries and one vector store past them (the scan writes 8 at a time).
     const std::size_t room = m_stride + kScanWidth;
     int overflow = 0;
+    const std::int32_t* __restrict sorted = m_sorted.data();
+    const std::int32_t* __restrict cellStart = m_cellStart.data();
+    const std::int32_t* __restrict fluidBefore = m_fluidBefore.data();
+    const char* __restrict sFluid = m_sFluid.data();
+    const double* __restrict sx = m_sx.data();
+    const double* __restrict sy = m_sy.data();
+    const double* __restrict sz = m_sz.data();
+    const int stride = static_cast<int>(m_stride);
+    const std::size_t cells = g.count();
 #pragma omp parallel num_threads(threads) reduction(max : overflow) if (threads > 1)
     {
       // Each thread appends the lists of the particles it scans to its own two buffers (fluid
       // particles' lists, boundary particles' lists): written once, where the pair loops read them.
       ThreadLists& mine = m_threadLists[omp_get_thread_num()];
       mine.fluidUsed = mine.wallsUsed = 0;
-      // Boundary neighbours are collected here and moved behind the fluid ones.
-      std::vector<std::int32_t> wallScratch(room);
+      // The particles of one cell and kind are scanned together (a batch): they share the rows of
+      // candidates, which are loaded once for all of them. Each collects its fluid and boundary
+      // neighbours here (room entries each), then its list is copied to the buffer.
+      std::vector<std::int32_t> scratch(2 * kBatch * room);
       // Dynamic: a dry wall particle (no fluid in reach) costs next to nothing and a fluid one a full
       // scan, and in cell order they are not spread evenly; a particle's list is the same whichever
       // thread scans it, and the pair loops find it by pointer (m_start).
-#pragma omp for schedule(dynamic, 512)
-      for (std::size_t i = 0; i < n; ++i) {
-        const double xi = p.x[i], yi = p.y[i], zi = is3d ? p.z[i] : 0.0;
-        const bool fluidI = p.body[i] == kFluid;
-        const int cx = g.coord(xi, 0), cy = g.coord(yi, 1), cz = g.coord(p.z[i], 2);
-        std::vector<std::int32_t>& buffer = fluidI ? mine.fluid : mine.walls;
-        std::size_t& used = fluidI ? mine.fluidUsed : mine.wallsUsed;
-        // Room for this list and the padding; grown (rarely: the buffers live from build to build)
-        // by doubling.
-        if (buffer.size() < used + room + kListPadding) buffer.resize(std::max(2 * buffer.size(), used + room + kListPadding));
-        std::int32_t* out = buffer.data() + used;
-        std::int32_t* walls = wallScratch.data();
-        const int stride = static_cast<int>(m_stride);
-        int nf = 0, nb = 0;
+#pragma omp for schedule(dynamic, 64)
+      for (std::size_t c = 0; c < cells; ++c) {
+        const std::int32_t first = cellStart[c], last = cellStart[c + 1];
+        if (first == last) continue;
+        const int cx = static_cast<int>(c % g.dims[0]), cy = static_cast<int>(c / g.dims[0] % g.dims[1]);
+        const int cz = static_cast<int>(c / (static_cast<std::size_t>(g.dims[0]) * g.dims[1]));
         const int x0 = std::max(cx - 2, 0), x1 = std::min(cx + 2, g.dims[0] - 1);
-        // Candidates of sorted positions [s0, s1). Which ones a particle lists (each pair once):
-        //   Forward: cells after its own in cell order: fluid and boundary particles;
-        //   Centre:  its own cell: fluid of higher index, and boundary particles;
-        //   Backward: cells before its own: boundary particles only (their pairs with fluid ones
-        //             are listed by those, in their Forward cells);
-        //   FluidOnly: a boundary particle's list, all its fluid neighbours.
-        // Both versions list the same neighbours in the same (scan) order.
-        enum Mode { Forward, Centre, Backward, FluidOnly };
-        auto scan = [&]<int M>(std::int32_t s0, std::int32_t s1) {
-#ifdef RUPTURE_SPH_AVX512_SCAN
-          // 8 candidates at a time: the distance test and the mode's kind test as masks, the
-          // accepted indices compressed into the list (no branch per candidate).
-          const __m512d vx = _mm512_set1_pd(xi), vy = _mm512_set1_pd(yi), vz = _mm512_set1_pd(zi);
-          const __m512d vcut2 = _mm512_set1_pd(cut2);
-          const __m256i vi = _mm256_set1_epi32(static_cast<std::int32_t>(i));
-          for (std::int32_t s = s0; s < s1; s += kScanWidth) {
-            const __mmask8 live = s1 - s >= kScanWidth ? static_cast<__mmask8>(0xFF)
-                                                       : static_cast<__mmask8>((1u << (s1 - s)) - 1u);
-            const __m512d dx = _mm512_sub_pd(vx, _mm512_maskz_loadu_pd(live, m_sx.data() + s));
-            const __m512d dy = _mm512_sub_pd(vy, _mm512_maskz_loadu_pd(live, m_sy.data() + s));
-            const __m512d dz = _mm512_sub_pd(vz, _mm512_maskz_loadu_pd(live, m_sz.data() + s));
-            const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
-            const __mmask8 near = _mm512_mask_cmp_pd_mask(live, r2, vcut2, _CMP_LT_OQ);
-            if (near == 0) continue;
-            const __m128i kinds = _mm_maskz_loadu_epi8(live, m_sFluid.data() + s);
-            const __mmask8 fluid = static_cast<__mmask8>(_mm_test_epi8_mask(kinds, kinds));
-            const __m256i ids = _mm256_maskz_loadu_epi32(live, m_sorted.data() + s);
-            __mmask8 takeFluid = 0, takeWall = 0;
-            if constexpr (M == Forward) {
-              takeFluid = near & fluid;
-              takeWall = near & static_cast<__mmask8>(~fluid);
-            } else if constexpr (M == Centre) {
-              takeFluid = near & fluid & _mm256_cmpgt_epi32_mask(ids, vi);
-              takeWall = near & static_cast<__mmask8>(~fluid);
-            } else if constexpr (M == Backward) {
-              takeWall = near & static_cast<__mmask8>(~fluid);
-            } else {
-              takeFluid = near & fluid;
+        for (const bool fluidBatch : {true, false}) {
+          for (std::int32_t from = first; from < last;) {
+            // The next batch: up to kBatch particles of this kind, by sorted position.
+            std::int32_t members[kBatch];
+            int k = 0;
+            for (; from < last && k < kBatch; ++from)
+              if ((sFluid[from] != 0) == fluidBatch) members[k++] = from;
+            if (k == 0) break;
+            BatchScan batch;
+            batch.k = k;
+            for (int q = 0; q < k; ++q) {
+              const std::int32_t m = members[q];
+              batch.index[q] = sorted[m];
+              batch.x[q] = sx[m];
+              batch.y[q] = sy[m];
+              batch.z[q] = sz[m];
+              batch.fluidOut[q] = scratch.data() + (2 * q) * room;
+              batch.wallOut[q] = scratch.data() + (2 * q + 1) * room;
+              batch.nf[q] = batch.nb[q] = 0;
             }
-            if (nf + nb <= stride) {  // room for 8 more in either (slot and scratch: stride + 8)
-              _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + nf), _mm256_maskz_compress_epi32(takeFluid, ids));
-              _mm256_storeu_si256(reinterpret_cast<__m256i*>(walls + nb), _mm256_maskz_compress_epi32(takeWall, ids));
-            }
-            nf += __builtin_popcount(takeFluid);
-            nb += __builtin_popcount(takeWall);
-          }
-#else
-          for (std::int32_t s = s0; s < s1; ++s) {
-            const std::int32_t j = m_sorted[s];
-            const bool fluidJ = m_sFluid[s];
-            if constexpr (M == Centre) {
-              if (fluidJ && static_cast<std::size_t>(j) <= i) continue;
-            } else if constexpr (M == Backward) {
-              if (fluidJ) continue;
-            } else if constexpr (M == FluidOnly) {
-              if (!fluidJ) continue;
-            }
-            const double dx = xi - m_sx[s], dy = yi - m_sy[s], dz = zi - m_sz[s];
-            if (dx * dx + dy * dy + dz * dz >= cut2) continue;
-            if (fluidJ) {
-              if (nf + nb < stride) out[nf] = j;
-              ++nf;
-            } else {
-              if (nf + nb < stride) walls[nb] = j;
-              ++nb;
+            const CandidateRows rows{sx, sy, sz, sFluid, sorted, cut2, stride};
+            auto fluidIn = [&](std::int32_t s0, std::int32_t s1) { return fluidBefore[s1] - fluidBefore[s0]; };
+            for (int za = std::max(cz - 2, 0); za <= std::min(cz + 2, g.dims[2] - 1); ++za)
+              for (int yb = std::max(cy - 2, 0); yb <= std::min(cy + 2, g.dims[1] - 1); ++yb) {
+                const std::size_t row = (static_cast<std::size_t>(za) * g.dims[1] + yb) * g.dims[0];
+                // Cells x0..x1 of one row are contiguous in the sorted order.
+                const std::int32_t s0 = cellStart[row + x0], s1 = cellStart[row + x1 + 1];
+                if (!fluidBatch) {
+                  if (fluidIn(s0, s1) > 0) rows.scan<ScanMode::FluidOnly>(batch, s0, s1);
+                  continue;
+                }
+                const int order = za != cz ? za - cz : yb - cy;  // rows after (> 0) or before (< 0) its own
+                if (order > 0) {
+                  rows.scan<ScanMode::Forward>(batch, s0, s1);
+                } else if (order < 0) {
+                  if (fluidIn(s0, s1) < s1 - s0) rows.scan<ScanMode::Backward>(batch, s0, s1);
+                } else {
+                  if (fluidIn(s0, first) < first - s0) rows.scan<ScanMode::Backward>(batch, s0, first);
+                  rows.scan<ScanMode::Centre>(batch, first, last);
+                  rows.scan<ScanMode::Forward>(batch, last, s1);
+                }
+              }
+            std::vector<std::int32_t>& buffer = fluidBatch ? mine.fluid : mine.walls;
+            std::size_t& used = fluidBatch ? mine.fluidUsed : mine.wallsUsed;
+            for (int q = 0; q < k; ++q) {
+              const int nf = batch.nf[q], nb = batch.nb[q], total = nf + nb;
+              if (total > stride) {
+                overflow = std::max(overflow, total);
+                continue;
+              }
+              // Room for this list and the padding; grown (rarely: the buffers live from build to
+              // build) by doubling.
+              if (buffer.size() < used + total + kListPadding)
+                buffer.resize(std::max(2 * buffer.size(), used + total + kListPadding));
+              std::int32_t* out = buffer.data() + used;
+              std::copy(batch.fluidOut[q], batch.fluidOut[q] + nf, out);
+              std::copy(batch.wallOut[q], batch.wallOut[q] + nb, out + nf);
+              const std::int32_t i = batch.index[q];
+              m_count[i] = total;
+              m_fluidCount[i] = nf;
+              m_where[i] = {static_cast<std::int32_t>(omp_get_thread_num()), used};
+              used += static_cast<std::size_t>(total);
             }
           }
-#endif
-        };
-        auto fluidIn = [&](std::int32_t s0, std::int32_t s1) { return m_fluidBefore[s1] - m_fluidBefore[s0]; };
-        for (int a = std::max(cz - 2, 0); a <= std::min(cz + 2, g.dims[2] - 1); ++a)
-          for (int b = std::max(cy - 2, 0); b <= std::min(cy + 2, g.dims[1] - 1); ++b) {
-            const std::size_t row = (static_cast<std::size_t>(a) * g.dims[1] + b) * g.dims[0];
-            // Cells x0..x1 of one row are contiguous in the sorted order.
-            const std::int32_t s0 = m_cellStart[row + x0], s1 = m_cellStart[row + x1 + 1];
-            if (!fluidI) {
-              if (fluidIn(s0, s1) > 0) scan.template operator()<FluidOnly>(s0, s1);
-              continue;
-            }
-            const int order = a != cz ? a - cz : b - cy;  // rows after (> 0) or before (< 0) its own
-            if (order > 0) {
-              scan.template operator()<Forward>(s0, s1);
-            } else if (order < 0) {
-              if (fluidIn(s0, s1) < s1 - s0) scan.template operator()<Backward>(s0, s1);
-            } else {
-              const std::int32_t c0 = m_cellStart[row + cx], c1 = m_cellStart[row + cx + 1];
-              if (fluidIn(s0, c0) < c0 - s0) scan.template operator()<Backward>(s0, c0);
-              scan.template operator()<Centre>(c0, c1);
-              scan.template operator()<Forward>(c1, s1);
-            }
-          }
-        const int total = nf + nb;
-        if (total > stride) {
-          overflow = std::max(overflow, total);
-          continue;
         }
-        std::copy(walls, walls + nb, out + nf);
-        m_count[i] = total;
-        m_fluidCount[i] = nf;
-        m_where[i] = {static_cast<std::int32_t>(omp_get_thread_num()), used};
-        used += static_cast<std::size_t>(total);
       }
       // Padded with particle 0: the pair loops load and prefetch up to kListPadding entries past a
       // list, which are the next list's in the buffer or these.
@@ -244,6 +318,9 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
     const ThreadLists& owner = m_threadLists[m_where[i].thread];
     m_start[i] = (m_isFluid[i] ? owner.fluid.data() : owner.walls.data()) + m_where[i].offset;
   }
+  m_wetBoundary.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!m_isFluid[i] && m_count[i] > 0) m_wetBoundary.push_back({static_cast<std::int32_t>(i), m_count[i], m_start[i]});
   splitIntoChunks();
 }
 

@@ -33,6 +33,15 @@ public:
   const std::int32_t* neighbours(std::size_t i) const { return m_start[i]; }
   int count(std::size_t i) const { return m_count[i]; }
   int fluidCount(std::size_t i) const { return m_fluidCount[i]; }
+  /// A boundary particle with fluid in reach (a non-empty list): the only ones whose pressure the
+  /// fluid sets. Its list's place and length beside its index, so that the wall pass reads one
+  /// array in sequence rather than three at scattered places.
+  struct WetBoundary {
+    std::int32_t particle = 0, count = 0;
+    const std::int32_t* neighbours = nullptr;
+  };
+  /// The wet boundary particles, in index order.
+  const std::vector<WetBoundary>& wetBoundary() const { return m_wetBoundary; }
   /// A contiguous range of particles [begin, end) of the pair loop, and the range [lo, hi] of
   /// particles its pairs touch (the particles and their listed neighbours).
   struct Chunk {
@@ -70,6 +79,7 @@ private:
   std::vector<Where> m_where;                  // particle i's list: its thread's buffer, offset
   std::vector<const std::int32_t*> m_start;    // particle i's list
   std::vector<std::int32_t> m_count, m_fluidCount;
+  std::vector<WetBoundary> m_wetBoundary;
   std::vector<char> m_isFluid;
   std::vector<Chunk> m_chunks;
 
