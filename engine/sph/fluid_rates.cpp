@@ -153,9 +153,9 @@ template <class L, bool Diffuse, bool UniformMass>
       const Vec dx = L::sub(ax, b.x), dy = L::sub(ay, b.y), dz = L::sub(az, b.z);
       const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
       const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
-      const Vec r2Safe = L::max(r2, tiny);  // two particles at one point: F = 0, not NaN
-      const Vec inverseR = inverseSqrt<L>(r2Safe);
-      const Vec rr = L::mul(r2Safe, inverseR);
+      const Vec r2Safe = L::max(r2, tiny);  // two particles at one point: a finite F (and x_ab = 0), not NaN
+      Vec inverseR, rr;
+      inverseSqrtAndRoot<L>(r2Safe, inverseR, rr);
       const Vec near = L::fmsub(threeKF, rr, fourHKF), tt = L::sub(twoH, rr);  // the two pieces (PairConstants)
       const Vec far = L::maskzMul(inside, L::mul(minusKF, tt), L::mul(tt, inverseR));  // 0 for skin pairs
       const Vec F = L::blend(L::less(inside, rr, h), far, near);
@@ -164,8 +164,8 @@ template <class L, bool Diffuse, bool UniformMass>
       const Vec mu = L::mul(L::mul(h, vr), inverse<L>(L::add(r2, eta2)));
       // Π only for approaching pairs (μ < 0), as min(μ, 0); 1/ρ̄ as the mean of 1/ρ (see pairsOf).
       const Vec approach = L::min(mu, zero);
-      const Vec viscous =
-          L::mul(L::mul(approach, L::fmsub(halfBeta, approach, halfAlphaC0)), L::add(air, b.inverseRho));
+      const Vec viscous =  // two products side by side, then one: a shorter chain after μ
+          L::mul(L::mul(approach, L::add(air, b.inverseRho)), L::fmsub(halfBeta, approach, halfAlphaC0));
       const Vec c = L::mul(L::add(L::add(ap, b.pressureOverRho2), viscous), F);
       const Vec fx = L::mul(c, dx), fy = L::mul(c, dy), fz = L::mul(c, dz);
       const Vec continuity = L::mul(F, vr);

@@ -224,6 +224,19 @@ template <class L>
   return L::fmadd(L::mul(y, e), series, y);
 }
 
+/// 1/√x and √x (x > 0) from one estimate: √x = x y (1 + e/2 + 3e²/8 + 5e³/16), fused as 1/√x is,
+/// rather than x times 1/√x, which would add a multiplication to the chain that waits on √x.
+template <class L>
+[[gnu::always_inline]] inline void inverseSqrtAndRoot(typename L::Vec x, typename L::Vec& inverse,
+                                                      typename L::Vec& root) {
+  const auto y = L::rsqrt14(x);
+  const auto xy = L::mul(x, y);
+  const auto e = L::fnmadd(xy, y, L::set1(1.0));
+  const auto series = L::fmadd(L::fmadd(L::set1(5.0 / 16.0), e, L::set1(3.0 / 8.0)), e, L::set1(0.5));
+  inverse = L::fmadd(L::mul(y, e), series, y);
+  root = L::fmadd(L::mul(xy, e), series, xy);
+}
+
 /// 1/x (x > 0) from the 14-bit estimate y: with e = 1 − x y, 1/x = y/(1 − e) = y (1 + e)(1 + e²)
 /// + O(e⁴): double precision to an ulp or two, as two Newton steps, in a shorter chain.
 template <class L>
