@@ -76,7 +76,8 @@ struct CandidateRows {
   void scan(BatchScan& b, std::int32_t s0, std::int32_t s1) const {
 #ifdef RUPTURE_SPH_AVX512_SCAN
     // 8 candidates at a time, loaded once for the batch: the distance test and the mode's kind
-    // test as masks, the accepted indices compressed into the lists (no branch per candidate).
+    // test as masks, the accepted indices compressed into the lists; no branch per candidate, nor
+    // on whether any is near (a store of nothing costs less than the mispredictions: 29 -> 28 ms).
     const __m512d vcut2 = _mm512_set1_pd(cut2);
     for (std::int32_t s = s0; s < s1; s += kScanWidth) {
       const __mmask8 live = s1 - s >= kScanWidth ? static_cast<__mmask8>(0xFF)
@@ -93,7 +94,6 @@ struct CandidateRows {
         const __m512d dz = _mm512_sub_pd(_mm512_set1_pd(b.z[q]), cz);
         const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
         const __mmask8 near = _mm512_mask_cmp_pd_mask(live, r2, vcut2, _CMP_LT_OQ);
-        if (near == 0) continue;
         __mmask8 takeFluid = 0, takeWall = 0;
         if constexpr (M == ScanMode::Forward) {
           takeFluid = near & fluid;
