@@ -5,7 +5,8 @@
 // by its fluid particle. A fluid particle's list holds those fluid neighbours first, then all its
 // boundary neighbours; the pair loop computes each pair once and adds it to both particles
 // (fluid_rates.cpp). The scan for fluid–fluid pairs covers only the cells after a particle's own
-// (half the stencil). Boundary particles interact with fluid only; a boundary particle's list
+// (half the stencil); the particles of one cell and kind are scanned together, sharing the loads of
+// their candidate rows. Boundary particles interact with fluid only; a boundary particle's list
 // holds all its fluid neighbours, for the pressure extrapolation only (those pairs are also in the
 // fluid particles' lists).
 // The cutoff is the kernel support plus a skin; SphSystem rebuilds when interacting particles may
@@ -62,11 +63,12 @@ private:
   std::size_t m_stride = 0;  // list capacity per particle in the search
   double m_cutoff = 0;
   // The lists as the search writes them: each thread's, back to back in the order it scanned the
-  // particles (blocks of 512 in index order), the fluid particles' and the boundary particles' in
-  // two buffers, each padded at the end. So the pair loop reads its lists as a sequential stream
-  // (~10 MB on W3, not one line per particle of a fixed-stride table, which its time waited on),
-  // the wall extrapolation reads only the walls', and nothing is copied after the search. The
-  // buffers live from build to build (no allocation once they have grown).
+  // cells (blocks of 64 cells in cell order, which is the particles' order after a re-sort), the
+  // fluid particles' and the boundary particles' in two buffers, each padded at the end. So the
+  // pair loop reads its lists as a sequential stream (~10 MB on W3, not one line per particle of a
+  // fixed-stride table, which its time waited on), the wall extrapolation reads only the walls',
+  // and nothing is copied after the search (a list goes once from the cell's scratch, in L1, to its
+  // buffer). The buffers live from build to build (no allocation once they have grown).
   struct ThreadLists {
     std::vector<std::int32_t> fluid, walls;
     std::size_t fluidUsed = 0, wallsUsed = 0;
