@@ -154,8 +154,7 @@ template <class L, bool Diffuse, bool UniformMass>
       const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
       const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
       const Vec r2Safe = L::max(r2, tiny);  // two particles at one point: a finite F (and x_ab = 0), not NaN
-      Vec inverseR, rr;
-      inverseSqrtAndRoot<L>(r2Safe, inverseR, rr);
+      const auto [rr, inverseR] = rootAndInverse<L>(r2Safe);
       const Vec near = L::fmsub(threeKF, rr, fourHKF), tt = L::sub(twoH, rr);  // the two pieces (PairConstants)
       const Vec far = L::maskzMul(inside, L::mul(minusKF, tt), L::mul(tt, inverseR));  // 0 for skin pairs
       const Vec F = L::blend(L::less(inside, rr, h), far, near);
@@ -239,7 +238,7 @@ struct WallSums {
         const typename L::Columns f = L::columns(pk, list + s);
         const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
         const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
-        const Vec q = L::mul(L::mul(r2, inverseSqrt<L>(r2)), invH);
+        const Vec q = L::mul(rootAndInverse<L>(r2).root, invH);
         const __mmask8 inside = L::less(valid, q, two);
         // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
         const Vec q2 = L::mul(q, q);

@@ -212,29 +212,23 @@ struct Lanes4 : LaneArithmetic<4> {
   }
 };
 
-/// 1/√x (x > 0) from the 14-bit estimate y and one correction of fourth order: with
-/// e = 1 − x y² (|e| < 2⁻¹³), 1/√x = y (1 − e)^(−½) = y (1 + e/2 + 3e²/8 + 5e³/16 + O(e⁴)), so the
-/// result is within an ulp or two of double precision (e⁴ ≈ 2⁻⁵²), as two Newton steps, with two
-/// operations and one link of the dependency chain fewer.
+/// √x and 1/√x (x > 0) from the 14-bit estimate y of 1/√x and one correction of fourth order:
+/// with e = 1 − x y² (|e| < 2⁻¹³), 1/√x = y (1 − e)^(−½) = y (1 + e/2 + 3e²/8 + 5e³/16 + O(e⁴)),
+/// so each is within an ulp or two of double precision (e⁴ ≈ 2⁻⁵²), as two Newton steps would be,
+/// in a shorter chain. √x = x y (1 + …) is fused the same way rather than taken as x times 1/√x,
+/// which would add a multiplication to the chain that waits on it (the pair loop's r). A caller
+/// that reads one of the two pays for that one only (GCC drops the other).
 template <class L>
-[[gnu::always_inline]] inline typename L::Vec inverseSqrt(typename L::Vec x) {
-  const auto y = L::rsqrt14(x);
-  const auto e = L::fnmadd(x, L::mul(y, y), L::set1(1.0));
-  const auto series = L::fmadd(L::fmadd(L::set1(5.0 / 16.0), e, L::set1(3.0 / 8.0)), e, L::set1(0.5));
-  return L::fmadd(L::mul(y, e), series, y);
-}
-
-/// 1/√x and √x (x > 0) from one estimate: √x = x y (1 + e/2 + 3e²/8 + 5e³/16), fused as 1/√x is,
-/// rather than x times 1/√x, which would add a multiplication to the chain that waits on √x.
+struct RootAndInverse {
+  typename L::Vec root, inverse;
+};
 template <class L>
-[[gnu::always_inline]] inline void inverseSqrtAndRoot(typename L::Vec x, typename L::Vec& inverse,
-                                                      typename L::Vec& root) {
+[[gnu::always_inline]] inline RootAndInverse<L> rootAndInverse(typename L::Vec x) {
   const auto y = L::rsqrt14(x);
   const auto xy = L::mul(x, y);
   const auto e = L::fnmadd(xy, y, L::set1(1.0));
   const auto series = L::fmadd(L::fmadd(L::set1(5.0 / 16.0), e, L::set1(3.0 / 8.0)), e, L::set1(0.5));
-  inverse = L::fmadd(L::mul(y, e), series, y);
-  root = L::fmadd(L::mul(xy, e), series, xy);
+  return {L::fmadd(L::mul(xy, e), series, xy), L::fmadd(L::mul(y, e), series, y)};
 }
 
 /// 1/x (x > 0) from the 14-bit estimate y: with e = 1 − x y, 1/x = y/(1 − e) = y (1 + e)(1 + e²)
