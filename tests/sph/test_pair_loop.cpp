@@ -65,6 +65,7 @@ FluidParticles jitteredBlock(bool equalMasses, std::uint64_t seed) {
 
 struct Reference {
   std::vector<double> ax, ay, az, drho;
+  std::vector<double> pressure, rho;  // the boundary particles' extrapolated ones among them
   double maxMu = 0;
 };
 
@@ -94,6 +95,8 @@ Reference directSums(const FluidParticles& p, const FluidModel& model) {
     rho[w] = pressure[w] > 0 ? eos.density(pressure[w]) : eos.referenceDensity;
   }
   Reference ref;
+  ref.pressure = pressure;
+  ref.rho = rho;
   ref.ax.assign(n, 0);
   ref.ay.assign(n, 0);
   ref.az.assign(n, 0);
@@ -154,6 +157,18 @@ TEST(SphPairLoop, HalfListsAndChunkSumsMatchTheDirectSumOverAllPairs) {
       EXPECT_NEAR(p.drho[a], ref.drho[a], 1e-10 * scaleD) << "particle " << a;
     }
     EXPECT_NEAR(extremes.maxViscousMu, ref.maxMu, 1e-12 * ref.maxMu);
+    // The walls' extrapolated pressure and its density, wet (fluid in reach) and dry (the floor's
+    // lowest layer: p = 0, ρ = ρ0) alike.
+    const double scaleP = maxAbs(ref.pressure);
+    std::size_t wet = 0, dry = 0;
+    for (std::size_t w = 0; w < p.size(); ++w) {
+      if (p.isFluid(w)) continue;
+      (ref.pressure[w] > 0 ? wet : dry) += 1;
+      EXPECT_NEAR(p.pressure[w], ref.pressure[w], 1e-10 * scaleP) << "boundary particle " << w;
+      EXPECT_NEAR(p.rhoEst[w], ref.rho[w], 1e-12 * model.eos.referenceDensity) << "boundary particle " << w;
+    }
+    EXPECT_GT(wet, 0u);
+    EXPECT_GT(dry, 0u);
   }
 }
 
