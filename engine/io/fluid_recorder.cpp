@@ -40,14 +40,23 @@ void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::strin
   f.setAttribute(base, "trigger", trigger);
   f.setAttribute(base, "time_unit", std::string("s"));
   f.setAttribute(base, "step_unit", std::string("1"));
+  // A snapshot of millions of particles takes seconds to gather and compress: a cancel is honoured
+  // between the passes that gather it and between the slabs of its datasets (the file is then
+  // marked incomplete, this snapshot partial).
+  const Cancellation& cancel = system.cancel;
   std::vector<double> x, y, z, vx, vy, vz, rho, pressure(n);
   p.inCreationOrder(p.x, x); p.inCreationOrder(p.y, y); p.inCreationOrder(p.z, z);
+  cancel.throwIfRequested();
   p.inCreationOrder(p.vx, vx); p.inCreationOrder(p.vy, vy); p.inCreationOrder(p.vz, vz);
+  cancel.throwIfRequested();
   p.inCreationOrder(p.rho, rho);
   for (std::size_t k = 0; k < n; ++k) pressure[k] = system.model.eos.pressure(rho[k]);
+  cancel.throwIfRequested();
   std::vector<std::int32_t> body(n);
   for (std::size_t k = 0; k < n; ++k) body[p.id[k]] = p.body[k];
-  std::vector<double> position = interleave(x, y, z), velocity = interleave(vx, vy, vz);
+  std::vector<double> position = interleave(x, y, z);
+  cancel.throwIfRequested();
+  std::vector<double> velocity = interleave(vx, vy, vz);
   if (m > 0) {
     position.insert(position.end(), structure.position.begin(), structure.position.end());
     velocity.insert(velocity.end(), structure.velocity.begin(), structure.velocity.end());
@@ -55,6 +64,11 @@ void FluidRecorder::writeSnapshot(const sph::SphSystem& system, const std::strin
     pressure.resize(total, 0.0);
     body.insert(body.end(), structure.body.begin(), structure.body.end());
   }
+  struct BetweenParts {
+    Hdf5File& file;
+    BetweenParts(Hdf5File& f, const Cancellation& c) : file(f) { f.setBetweenParts([c] { c.throwIfRequested(); }); }
+    ~BetweenParts() { file.setBetweenParts({}); }
+  } betweenParts(f, cancel);
   f.writeDataset(base + "/position", position, {total, 3}, "m");
   f.writeDataset(base + "/velocity", velocity, {total, 3}, "m/s");
   f.writeDataset(base + "/density", rho, {total}, "kg/m^3");

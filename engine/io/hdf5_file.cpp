@@ -4,6 +4,7 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <string_view>
 #include <type_traits>
@@ -169,6 +170,9 @@ std::size_t product(const std::vector<std::size_t>& dims) {
 constexpr hsize_t kChunkTargetBytes = 256 * 1024;
 
 /// Chunk shape: the full dataset, shrunk along the leading dimensions until it fits the target.
+// Rows written between two calls of the hook (Hdf5File::setBetweenParts): about 4 MiB.
+constexpr hsize_t kSlabBytes = hsize_t{4} << 20;
+
 std::vector<hsize_t> chunkShape(const std::vector<hsize_t>& dims, std::size_t elementBytes) {
   std::vector<hsize_t> chunk(dims.size());
   for (std::size_t i = 0; i < dims.size(); ++i) chunk[i] = std::max<hsize_t>(dims[i], 1);
@@ -219,7 +223,8 @@ void readScalarAttribute(hid_t file, const std::string& fileName, const std::str
 template <class T>
 void writeTypedDataset(hid_t file, const std::string& fileName, const std::string& path,
                        const std::vector<T>& data, const std::vector<std::size_t>& dims,
-                       const std::string& unit, hid_t fileType, hid_t memType) {
+                       const std::string& unit, hid_t fileType, hid_t memType,
+                       const std::function<void()>& betweenParts) {
   if (dims.empty()) fail(fileName, path, "dataset needs at least one dimension");
   if (product(dims) != data.size()) {
     fail(fileName, path,
@@ -265,9 +270,29 @@ void writeTypedDataset(hid_t file, const std::string& fileName, const std::strin
                                  dcpl.get(), H5P_DEFAULT),
                       fileName, path, "cannot create dataset"),
               H5Dclose);
-  if (!empty) {
+  if (!empty && !betweenParts) {
     checkRc(H5Dwrite(dset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), fileName,
             path, "cannot write dataset");
+  } else if (!empty) {
+    // In slabs of whole chunks along the first dimension, the hook between them: a dataset of
+    // millions of rows takes a second or more to compress. The stored values are the same.
+    hsize_t rowValues = 1;
+    for (std::size_t i = 1; i < shape.size(); ++i) rowValues *= shape[i];
+    const hsize_t slabRows = chunk[0] * std::max<hsize_t>(1, kSlabBytes / (chunk[0] * rowValues * sizeof(T)));
+    for (hsize_t row = 0; row < shape[0]; row += slabRows) {
+      betweenParts();
+      std::vector<hsize_t> start(shape.size(), 0), count = shape;
+      start[0] = row;
+      count[0] = std::min(slabRows, shape[0] - row);
+      Handle fileSpace(checkId(H5Dget_space(dset.get()), fileName, path, "cannot get dataspace"), H5Sclose);
+      checkRc(H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+              fileName, path, "cannot select rows");
+      Handle memSpace(checkId(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), fileName, path,
+                              "cannot create dataspace"),
+                      H5Sclose);
+      checkRc(H5Dwrite(dset.get(), memType, memSpace.get(), fileSpace.get(), H5P_DEFAULT, data.data() + row * rowValues),
+              fileName, path, "cannot write dataset");
+    }
   }
   writeStringAttribute(dset.get(), fileName, attrLabel(path, "unit"), "unit", unit);
 }
@@ -305,6 +330,14 @@ Hdf5File Hdf5File::create(const std::string& path) {
   return Hdf5File(checkId(id, path, "", "cannot create file"), path);
 }
 
+Hdf5File Hdf5File::createBuffered(const std::string& path) {
+  silenceAutoPrint();
+  Handle fapl = writerFapl(path);
+  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, 1), path, "", "cannot select the in-memory driver");
+  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  return Hdf5File(checkId(id, path, "", "cannot create file"), path);
+}
+
 Hdf5File Hdf5File::openReadOnly(const std::string& path) {
   silenceAutoPrint();
   const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -319,7 +352,8 @@ Hdf5File Hdf5File::openReadWrite(const std::string& path) {
 }
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
-    : m_id(std::exchange(other.m_id, -1)), m_path(std::move(other.m_path)) {}
+    : m_id(std::exchange(other.m_id, -1)), m_path(std::move(other.m_path)),
+      m_betweenParts(std::move(other.m_betweenParts)) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   if (this != &other) {
@@ -329,6 +363,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
     }
     m_id = std::exchange(other.m_id, -1);
     m_path = std::move(other.m_path);
+    m_betweenParts = std::move(other.m_betweenParts);
   }
   return *this;
 }
@@ -351,8 +386,12 @@ void Hdf5File::close() {
   unsigned intent = 0;
   if (H5Fget_intent(id, &intent) >= 0 && (intent & H5F_ACC_RDWR) != 0 && H5Fflush(id, H5F_SCOPE_LOCAL) < 0) {
     const std::string detail = innermostHdf5Message();
+    // Only the POSIX driver's handle is a descriptor (the core driver's points at its memory).
+    const hid_t fapl = H5Fget_access_plist(id);
+    const bool posix = fapl >= 0 && H5Pget_driver(fapl) == H5FD_SEC2;
+    if (fapl >= 0) H5Pclose(fapl);
     void* handle = nullptr;
-    if (H5Fget_vfd_handle(id, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
+    if (posix && H5Fget_vfd_handle(id, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
       [[maybe_unused]] const int rc = ::ftruncate(*static_cast<int*>(handle), 0);
     if (H5Fclose(id) < 0) H5Eclear2(H5E_DEFAULT);
     throw Hdf5Error("HDF5: cannot write file '" + m_path + "' (its content is lost): " + detail);
@@ -564,19 +603,19 @@ std::vector<std::string> Hdf5File::listAttributes(const std::string& objPath) co
 void Hdf5File::writeDataset(const std::string& path, const std::vector<double>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, m_betweenParts);
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::int32_t>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I32LE, H5T_NATIVE_INT32);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I32LE, H5T_NATIVE_INT32, m_betweenParts);
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8, m_betweenParts);
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::string>& data, const std::string& unit) {

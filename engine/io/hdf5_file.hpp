@@ -6,6 +6,7 @@
 // checked by a static_assert in the .cpp.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ class Hdf5File {
 public:
   /// Creates (truncating) a file. New objects use file format v2 and later (H5MD recommends it).
   static Hdf5File create(const std::string& path);
+  /// Creates (truncating) a file that HDF5 builds in memory (its core driver) and writes to `path`
+  /// only when closed, in one pass: a disk that fills up fails that write (close() throws), never
+  /// an object copy half way through.
+  static Hdf5File createBuffered(const std::string& path);
   static Hdf5File openReadOnly(const std::string& path);
   static Hdf5File openReadWrite(const std::string& path);
 
@@ -72,6 +77,10 @@ public:
                     const std::vector<std::size_t>& dims, const std::string& unit);
   void writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
                     const std::vector<std::size_t>& dims, const std::string& unit);
+  /// Called between the slabs (about 4 MiB each) in which numeric datasets are then written, and
+  /// before the first: it may throw to abandon a long write (a cancelled run's snapshot), which
+  /// leaves that dataset partly written. Empty (the default): each dataset in one write.
+  void setBetweenParts(std::function<void()> hook) { m_betweenParts = std::move(hook); }
   /// A 1-D dataset of variable-length UTF-8 strings (text columns of a table), contiguous, with
   /// the string attribute "unit" ("" for text); replaces an existing dataset at path.
   void writeDataset(const std::string& path, const std::vector<std::string>& data, const std::string& unit);
@@ -103,6 +112,7 @@ private:
 
   std::int64_t m_id = -1;  ///< hid_t of the open file, -1 once closed
   std::string m_path;
+  std::function<void()> m_betweenParts;
 };
 
 }  // namespace rupture::io

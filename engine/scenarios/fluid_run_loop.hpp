@@ -7,10 +7,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "io/fluid_recorder.hpp"
 #include "io/fluid_spec.hpp"
+#include "io/result_file.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/run_support.hpp"
 #include "sph/sph_system.hpp"
@@ -37,9 +39,15 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     snapshot("time " + formatNumber(run.snapshotTimes[nextSnapshot]));
     while (nextSnapshot < run.snapshotTimes.size() && s.time >= run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) ++nextSnapshot;
   };
+  s.cancel = &control.cancel;  // list builds and snapshots poll it between their passes
   row();
   std::size_t lastRowStep = s.steps;
-  snapshotsDue();
+  try {
+    snapshotsDue();
+  } catch (const RunCancelled&) {
+    out.stopReason = "cancelled";
+    return out;
+  }
   double nextOutput = interval;
   auto lastReport = Clock::now();
   while (true) {
@@ -51,7 +59,14 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     const double left = run.endTime - s.time;
     if (dt > left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
-    advance(dt);
+    try {
+      advance(dt);
+    } catch (const RunCancelled&) {
+      // Stopped inside a step (a list build of millions of particles): the state is half a step
+      // on and not for use, so no last row is taken from it.
+      out.stopReason = "cancelled";
+      return out;
+    }
     out.minTimeStep = std::min(out.minTimeStep, dt);
     out.maxTimeStep = std::max(out.maxTimeStep, dt);
     afterStep(dt);
@@ -60,7 +75,12 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
       lastRowStep = s.steps;
       while (nextOutput <= s.time * (1 + 1e-12)) nextOutput += interval;
     }
-    snapshotsDue();
+    try {
+      snapshotsDue();
+    } catch (const RunCancelled&) {  // between a snapshot's datasets: the state itself is whole
+      out.stopReason = "cancelled";
+      return out;
+    }
     if ((s.steps & 15) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
       lastReport = Clock::now();
       reportProgress(control, s.time / run.endTime);
@@ -74,6 +94,32 @@ template <class Row, class Snapshot, class AfterStep>
 FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
                               Snapshot&& snapshot, AfterStep&& afterStep) {
   return runFluidLoop(s, run, control, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
+}
+
+/// The set-up of an SPH run (particles, walls, bodies, the first lists and rates) with the system
+/// polling control.cancel: returns the set-up's value, or nullopt when it was cancelled, after
+/// writing a file that holds the spec and a summary saying so (marked incomplete) and setting
+/// `cancelled` to the outcome to return.
+template <class Setup>
+auto setUpFluidRun(sph::SphSystem& s, RunControl& control, const std::string& resultPath, const std::string& scenario,
+                   const nlohmann::json& resolvedSpec, const nlohmann::json& inputSpec,
+                   std::chrono::steady_clock::time_point wallStart, RunOutcome& cancelled, Setup&& setup)
+    -> std::optional<decltype(setup())> {
+  s.cancel = &control.cancel;
+  try {
+    return setup();
+  } catch (const RunCancelled&) {
+    io::ResultFile result(resultPath, scenario);
+    result.writeSpec(resolvedSpec, inputSpec);
+    const nlohmann::json summary = {
+        {"completed", 0}, {"stop_reason", "cancelled"},
+        {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}};
+    result.writeAttributes("/summary", summary, {{"completed", "1"}, {"stop_reason", ""}, {"wall_time_s", "s"}});
+    result.finish(false);
+    logStage(control, "cancelled while setting up: file marked incomplete");
+    cancelled = {summary, false};
+    return std::nullopt;
+  }
 }
 
 /// What a fluid run tracked while it ran, for the summary every SPH scenario reports.

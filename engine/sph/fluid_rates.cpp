@@ -387,6 +387,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
   auto chunkLoop = [&]<class L, bool Uniform>() {
 #pragma omp parallel for schedule(dynamic, 1) reduction(max : maxMu) if (chunks.size() > 1)
     for (std::size_t c = 0; c < chunks.size(); ++c) {
+      if (ws.cancel.requested()) continue;
       const NeighbourList::Chunk& ch = chunks[c];
       double* acc = ws.sums.data() + offset[c];
       // Zeroed here, just before its sums, rather than by the reduction after reading it: the

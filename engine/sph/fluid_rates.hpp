@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "sph/fluid_model.hpp"
 #include "sph/fluid_particles.hpp"
 #include "sph/neighbour_list.hpp"
@@ -42,6 +43,9 @@ struct RateWorkspace {
   /// The vector width of the pair loops, 4 or 8 doubles; 0: this processor's (simd_lanes.hpp).
   /// Both give bitwise the same rates; only the speed differs. Ignored without AVX-512.
   int laneWidth = 0;
+  /// Polled before each chunk of the pair loop (a pass over millions of particles takes over a
+  /// second): when set, the remaining chunks are skipped and the rates are not for use.
+  Cancellation cancel;
 };
 
 /// What the pass that stores the rates also does, so that the particles are not swept once more

@@ -162,7 +162,7 @@ std::size_t NeighbourList::totalPairs() const {
   return 2 * total;
 }
 
-void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff) {
+void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff, const Cancellation& cancel) {
   const std::size_t n = p.size();
   m_cutoff = cutoff;
   // Cells of half the cutoff and a ±2 stencil: 125 (3D) half-size cells hold about half the
@@ -231,7 +231,7 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
 #pragma omp for schedule(dynamic, 64)
       for (std::size_t c = 0; c < cells; ++c) {
         const std::int32_t first = cellStart[c], last = cellStart[c + 1];
-        if (first == last) continue;
+        if (first == last || cancel.requested()) continue;
         const int cx = static_cast<int>(c % g.dims[0]), cy = static_cast<int>(c / g.dims[0] % g.dims[1]);
         const int cz = static_cast<int>(c / (static_cast<std::size_t>(g.dims[0]) * g.dims[1]));
         const int x0 = std::max(cx - 2, 0), x1 = std::min(cx + 2, g.dims[0] - 1);
@@ -308,6 +308,7 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff)
         std::fill_n(buffer->data() + used, kListPadding, 0);
       }
     }
+    if (cancel.requested()) return;  // half scanned: unusable, and the caller knows
     if (overflow == 0) break;
     m_stride = static_cast<std::size_t>(overflow) + overflow / 4 + 8;
   }

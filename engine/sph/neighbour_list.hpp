@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "sph/fluid_particles.hpp"
 
 namespace rupture::sph {
@@ -24,7 +25,9 @@ public:
   static constexpr int kListPadding = 32;
 
   /// Builds the lists of every particle within `cutoff` (m). dimension 2 ignores z.
-  void build(const FluidParticles& p, int dimension, double cutoff);
+  /// Polls `cancel` for every cell scanned (a build of millions of particles takes over a second):
+  /// when it is set, returns at once with the lists unusable (the caller must not read them).
+  void build(const FluidParticles& p, int dimension, double cutoff, const Cancellation& cancel = {});
 
   /// A permutation that puts particles in cell order (z-, then y-, then x-major cells of edge
   /// `cellSize`), so that neighbours are close in memory: FluidParticles::permute(order). Valid

@@ -34,10 +34,15 @@ void SphSystem::refreshMembers() {
 void SphSystem::rebuildLists() {
   const double cutoff = model.kernel().support() + listSkin();
   if (m_builds % static_cast<std::size_t>(std::max(1, sortEvery)) == 0) {
-    particles.permute(m_list.cellOrder(particles, model.dimension, 0.5 * cutoff), m_permuteScratch, m_permuteIndexScratch);
+    cancel.throwIfRequested();
+    const std::vector<std::int32_t>& order = m_list.cellOrder(particles, model.dimension, 0.5 * cutoff);
+    cancel.throwIfRequested();
+    particles.permute(order, m_permuteScratch, m_permuteIndexScratch);
     refreshMembers();
   }
-  m_list.build(particles, model.dimension, cutoff);
+  cancel.throwIfRequested();
+  m_list.build(particles, model.dimension, cutoff, cancel);
+  cancel.throwIfRequested();
   std::vector<char> moves(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) moves[b] = bodies[b].motion != BodyMotion::Fixed;
   m_relativeMove.reset(particles, model.dimension, cutoff, moves);
@@ -58,7 +63,9 @@ void SphSystem::rebuildLists() {
 
 void SphSystem::evaluateRates(double halfKick) {
   m_forces.resize(bodies.size());
+  m_workspace.cancel = cancel;
   m_extremes = computeRates(particles, m_list, model, m_workspace, {halfKick, m_forces});
+  cancel.throwIfRequested();  // chunks were skipped: the rates and the kick are not for use
   // The impulse over the step, trapezoid as the fluid's kicks: the force at t is still in place.
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     for (int a = 0; a < 3; ++a) bodies[b].impulse[a] += halfKick * (bodies[b].force[a] + m_forces[b][a]);
@@ -96,6 +103,7 @@ void SphSystem::initialise() {
   particles.rhoEst = particles.rho;
   m_builds = 0;
   rebuildLists();
+  cancel.throwIfRequested();
   evaluateRates(0.0);
 }
 

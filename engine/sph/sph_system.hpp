@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "sph/fluid_model.hpp"
 #include "sph/fluid_particles.hpp"
 #include "sph/fluid_rates.hpp"
@@ -30,6 +31,9 @@ public:
   /// 0.06, 0.10 and 0.12 were not distinguishable from it (bench/README.md).
   double skinFraction = 0.08;
   int sortEvery = 4;          ///< re-sort particles in cell order every this many list builds
+  /// Polled between the passes of a list build and of initialise() (each well under a second at
+  /// millions of particles): a set flag throws RunCancelled, after which the system is not for use.
+  Cancellation cancel;
 
   /// Builds the neighbour lists and the rates at t = 0. Call once particles and bodies are set.
   void initialise();

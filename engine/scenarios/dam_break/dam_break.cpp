@@ -33,8 +33,15 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
   control.progress.store(0.0);
   const int dim = spec.dimension;
   sph::SphSystem s;
-  const DamBreakLattice g = buildDamBreak(s, spec);
-  s.initialise();
+  RunOutcome cancelled;
+  const std::optional<DamBreakLattice> built =
+      setUpFluidRun(s, control, resultPath, "dam-break", toJson(spec), json, wallStart, cancelled, [&] {
+        DamBreakLattice lattice = buildDamBreak(s, spec);
+        s.initialise();
+        return lattice;
+      });
+  if (!built) return cancelled;
+  const DamBreakLattice& g = *built;
   const std::size_t fluidCount = static_cast<std::size_t>(
       std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
   logStage(control, "dam break: " + std::to_string(fluidCount) + " fluid and " +

@@ -28,7 +28,8 @@ DamBreakLattice buildDamBreak(sph::SphSystem& s, const DamBreakSpec& spec) {
   s.bodies[0].name = "tank";
   auto hydrostatic = [&](double vertical) { return eos.density(rho0 * spec.gravity * (g.H() - vertical)); };
   const int j0 = dim == 3 ? -layers : 0, j1 = dim == 3 ? g.nW + layers : 1;
-  for (int k = -layers; k < g.nT; ++k)
+  for (int k = -layers; k < g.nT; ++k) {
+    s.cancel.throwIfRequested();  // one layer: at most a few hundred thousand sites
     for (int j = j0; j < j1; ++j)
       for (int i = -layers; i < g.nL + layers; ++i) {
         const double x = (i + 0.5) * dx, across = (j + 0.5) * dx, v = (k + 0.5) * dx;
@@ -42,6 +43,7 @@ DamBreakLattice buildDamBreak(sph::SphSystem& s, const DamBreakSpec& spec) {
           s.particles.add(px, py, pz, mass, hydrostatic(v), sph::kFluid);
         }
       }
+  }
   return g;
 }
 

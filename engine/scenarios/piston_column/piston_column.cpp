@@ -36,8 +36,15 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
   const int dim = spec.dimension;
 
   sph::SphSystem s;
-  const ColumnLattice g = buildPistonColumn(s, spec);
-  s.initialise();
+  RunOutcome cancelled;
+  const std::optional<ColumnLattice> built =
+      setUpFluidRun(s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] {
+        ColumnLattice lattice = buildPistonColumn(s, spec);
+        s.initialise();
+        return lattice;
+      });
+  if (!built) return cancelled;
+  const ColumnLattice& g = *built;
   const std::size_t fluidCount = static_cast<std::size_t>(
       std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
   const sph::RigidBody& piston = s.bodies[kColumnPiston];
@@ -104,7 +111,8 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
   const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
-  recorder.writeSnapshot(s, "final");
+  // A cancelled run ends at once: no final snapshot of millions of particles (seconds to write).
+  if (loop.stopReason != "cancelled") recorder.writeSnapshot(s, "final");
 
   const sph::PistonShock shock = sph::pistonShock(s.model.eos, std::max(v0, 1e-12));
   nlohmann::json summary = {

@@ -25,7 +25,8 @@ ColumnLattice buildPistonColumn(sph::SphSystem& s, const PistonColumnSpec& spec)
   const int n = g.nR + layers;
   const int j0 = dim == 3 ? -n : 0, j1 = dim == 3 ? n : 1;
   std::size_t crossSection = 0;
-  for (int k = -layers; k < top; ++k)
+  for (int k = -layers; k < top; ++k) {
+    s.cancel.throwIfRequested();  // one layer: at most a few hundred thousand sites
     for (int j = j0; j < j1; ++j)
       for (int i = -n; i < n; ++i) {
         const double x = (i + 0.5) * dx, y = dim == 3 ? (j + 0.5) * dx : 0.0, v = (k + 0.5) * dx;
@@ -42,6 +43,7 @@ ColumnLattice buildPistonColumn(sph::SphSystem& s, const PistonColumnSpec& spec)
           s.particles.add(px, py, pz, mass, rho0, kColumnPiston);
         }
       }
+  }
   g.area = static_cast<double>(crossSection) * std::pow(dx, dim - 1);
   sph::RigidBody& piston = s.bodies[kColumnPiston];
   piston.axis = {0, 0, 0};

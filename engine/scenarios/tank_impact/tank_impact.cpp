@@ -102,13 +102,25 @@ RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPa
   lattice.pistonMass = spec.impactor.mass;
   lattice.pistonSpeed = spec.impactor.speed;
   lattice.gravity = spec.gravity;
-  const TankLattice g = buildTankLattice(s, lattice);
-  s.initialise();
+  // The plate is built inside the cancellable set-up too: at fine spacings it holds a million nodes.
+  std::optional<SphShell> plateBuilt;
+  const PlateGeometry geometry = plateGeometry(spec.plate);
+  RunOutcome cancelled;
+  const std::optional<TankLattice> built =
+      setUpFluidRun(s, control, resultPath, "tank-impact", toJson(spec), json, wallStart, cancelled, [&] {
+        TankLattice tank = buildTankLattice(s, lattice);
+        s.initialise();
+        s.cancel.throwIfRequested();
+        plateBuilt.emplace(buildPlate(spec.plate, geometry));
+        s.cancel.throwIfRequested();
+        return tank;
+      });
+  if (!built) return cancelled;
+  const TankLattice& g = *built;
   const sph::RigidBody& piston = s.bodies[kTankPiston];
 
   // The plate and the contact.
-  const PlateGeometry geometry = plateGeometry(spec.plate);
-  SphShell plate = buildPlate(spec.plate, geometry);
+  SphShell& plate = *plateBuilt;
   const double nodeSpacing = geometry.nodes.spacing;
   const fsi::ContactGeometry contact = fsi::contactGeometry(dx, t, nodeSpacing);
   fsi::FluidShellCoupling coupling(s, plate, spec.contact.method, contact);
@@ -202,7 +214,8 @@ RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPa
   };
   auto advance = [&](double dt) { coupling.step(dt); };
   const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep, advance);
-  snapshot("final");
+  // A cancelled run ends at once: no final snapshot of millions of particles (seconds to write).
+  if (loop.stopReason != "cancelled") snapshot("final");
 
   // The crack paths: reference positions of the fractured nodes in the order they failed.
   const std::vector<std::array<double, 2>> path = crackPath(plate, geometry);

@@ -28,7 +28,8 @@ TankLattice buildTankLattice(sph::SphSystem& s, const TankLatticeParams& q) {
   std::size_t crossSection = 0;
   // The cylinder goes down `layers` layers past the water's lower face, around the plate's clamped
   // rim, so that no water squeezes out between the wall and the plate.
-  for (int k = -layers; k < top; ++k)
+  for (int k = -layers; k < top; ++k) {
+    s.cancel.throwIfRequested();  // one layer: at most a few hundred thousand sites
     for (int j = -n; j < n; ++j)
       for (int i = -n; i < n; ++i) {
         const double x = (i + 0.5) * dx, y = (j + 0.5) * dx, z = g.bottom + (k + 0.5) * dx;
@@ -44,6 +45,7 @@ TankLattice buildTankLattice(sph::SphSystem& s, const TankLatticeParams& q) {
           s.particles.add(x, y, z, mass, rho0, kTankPiston);
         }
       }
+  }
   g.area = static_cast<double>(crossSection) * dx * dx;
   sph::RigidBody& piston = s.bodies[kTankPiston];
   piston.axis = {0, 0, -1};  // into the column
