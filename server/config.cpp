@@ -1,6 +1,8 @@
 #include "config.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <fstream>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -111,6 +113,19 @@ const std::vector<Option>& options() {
       {"min-free-bytes", "RUPTURE_MIN_FREE_BYTES", "BYTES",
        "free space the data directory must keep: below it, queued runs wait instead of starting", "268435456",
        intSetter(&ServerConfig::minFreeBytes, 0, std::numeric_limits<long long>::max())},
+      {"max-run-memory", "RUPTURE_MAX_RUN_MEMORY", "BYTES",
+       "most memory one run may need, from the spec's estimate (particles, bonds, neighbour lists, "
+       "snapshots); larger runs get 400. 0 = 3/4 of the machine's memory divided by the workers",
+       "0", intSetter(&ServerConfig::maxRunMemory, 0, std::numeric_limits<long long>::max())},
+      {"max-queued-runs", "RUPTURE_MAX_QUEUED_RUNS", "N",
+       "most runs waiting to start in the whole server; a submission that would pass it gets 503 with Retry-After",
+       "10000", intSetter(&ServerConfig::maxQueuedRuns, 1, 10'000'000)},
+      {"max-renders", "RUPTURE_MAX_RENDERS", "N",
+       "PNG plots rendered at the same time; as many more wait, further ones get 503 with Retry-After",
+       "2", intSetter(&ServerConfig::maxRenders, 1, 64)},
+      {"max-render-pixels", "RUPTURE_MAX_RENDER_PIXELS", "N",
+       "largest PNG plot in pixels (width x height x scale^2); larger requests get 400", "8000000",
+       intSetter(&ServerConfig::maxRenderPixels, 76'800, 100'000'000)},
       {"token", "RUPTURE_TOKEN", "SECRET",
        "when set, POST and DELETE need 'Authorization: Bearer SECRET' (prefer the variable: "
        "flags show in ps)",
@@ -202,6 +217,34 @@ int effectiveWorkers(const ServerConfig& config) {
   if (config.workers > 0) return config.workers;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   return std::max(1, cores / std::max(1, config.threadsPerRun));
+}
+
+long long effectiveRunMemory(const ServerConfig& config) {
+  if (config.maxRunMemory > 0) return config.maxRunMemory;
+  long long total = 0;
+  {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    long long kib = 0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit) {
+      if (key == "MemTotal:") { total = kib * 1024; break; }
+    }
+  }
+  // A container's limit (cgroup v2) is what the kernel enforces, when it is lower.
+  if (std::ifstream limit("/sys/fs/cgroup/memory.max"); limit) {
+    std::string text;
+    limit >> text;
+    if (!text.empty() && text != "max") {
+      try {
+        const long long cgroup = std::stoll(text);
+        if (cgroup > 0 && (total == 0 || cgroup < total)) total = cgroup;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  if (total <= 0) total = 8LL << 30;  // unknown: assume a small machine
+  return std::max(64LL << 20, total / 4 * 3 / effectiveWorkers(config));
 }
 
 EnvLookup processEnvironment() {

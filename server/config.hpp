@@ -19,6 +19,10 @@ struct ServerConfig {
   std::size_t maxRequestBytes = 1 << 20;  ///< largest request body accepted (413 above)
   long long maxElements = 5'000'000;      ///< most elements/particles one run may hold (400 above)
   long long minFreeBytes = 256LL << 20;   ///< free disk in the data directory below which no run starts
+  long long maxRunMemory = 0;             ///< B one run may need (spec estimate; 400 above); 0 = defaultRunMemory()
+  int maxQueuedRuns = 10'000;             ///< accepted runs waiting in the whole server (503 above)
+  int maxRenders = 2;                     ///< PNG renders at once; as many more may wait, the rest get 503
+  long long maxRenderPixels = 8'000'000;  ///< largest PNG (width x height x scale^2 px; 400 above)
   std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
   int httpThreads = 8;                    ///< threads answering HTTP requests
   bool logRequests = false;               ///< one line per request on stderr
@@ -41,6 +45,11 @@ struct ServerConfig {
 
 /// Worker threads actually started: `workers` when set, otherwise max(1, cores / threadsPerRun).
 int effectiveWorkers(const ServerConfig& config);
+
+/// The memory one run may need: `maxRunMemory` when set, otherwise 3/4 of the machine's memory
+/// (MemTotal, or the cgroup's memory.max when lower) shared by the workers, since they may all run
+/// at once.
+long long effectiveRunMemory(const ServerConfig& config);
 
 struct ConfigResult {
   ServerConfig config;

@@ -20,4 +20,13 @@ std::optional<std::string> readFile(const std::filesystem::path& path);
 /// Size of a regular file, or nullopt when it does not exist or is not a regular file.
 std::optional<std::uintmax_t> regularFileSize(const std::filesystem::path& path);
 
+/// The error is the disk filling up (HDF5 and SQLite report errno 28 in their own words).
+bool isDiskFull(const std::string& message);
+
+/// Bytes as people read them, with the exact count for machines: "1.9 GiB (2040109465 B)".
+std::string formatBytes(double bytes);
+
+/// Bytes free to this process on the filesystem holding `path`, or nullopt when it cannot be told.
+std::optional<std::uintmax_t> availableBytes(const std::filesystem::path& path);
+
 }  // namespace rupture::server

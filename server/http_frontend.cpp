@@ -23,6 +23,7 @@
 
 #include "log.hpp"
 #include "problem.hpp"
+#include "utf8.hpp"
 
 namespace rupture::server {
 namespace {
@@ -102,6 +103,13 @@ Framing frameRequest(const std::string& in, const FrontendLimits& limits) {
   bool first = true;
   std::optional<std::size_t> contentLength;
   bool chunked = false, expect = false;
+  int hostLines = 0;
+  auto reject = [&f](int status, std::string detail) {
+    f.kind = Framing::Reject;
+    f.status = status;
+    f.detail = std::move(detail);
+    return f;
+  };
   while (true) {
     const std::size_t eol = in.find('\n', pos);
     if (eol == std::string::npos) {
@@ -130,6 +138,16 @@ Framing frameRequest(const std::string& in, const FrontendLimits& limits) {
     if (colon == std::string_view::npos) continue;
     const std::string_view name = line.substr(0, colon);
     const std::string value = trim(line.substr(colon + 1));
+    // cpp-httplib keeps a header value up to its first NUL: "Bearer <token>\0x" would pass as the
+    // token, and two different keys "k\0y" and "k\0z" as one (RFC 9110 §5.5 forbids NUL anyway).
+    if (line.find('\0') != std::string_view::npos)
+      return reject(400, "the header '" + toValidUtf8(std::string(name.substr(0, std::min<std::size_t>(name.find('\0'), 100)))) +
+                             "' holds a NUL byte, which HTTP header fields may not contain");
+    if (equalsNoCase(name, "Host") && ++hostLines > 1)
+      return reject(400, "the request has more than one Host header (RFC 9112 §3.2: exactly one)");
+    // cpp-httplib drops a header whose value is empty: a retry would then be taken as a new job.
+    if (equalsNoCase(name, "Idempotency-Key") && value.empty())
+      return reject(400, "Idempotency-Key is empty; it must be 1 to 200 visible ASCII characters (a UUID is a good choice)");
     if (equalsNoCase(name, "Content-Length")) {
       const bool digits = !value.empty() && value.size() <= 18 &&
                           std::all_of(value.begin(), value.end(), [](char c) { return c >= '0' && c <= '9'; });

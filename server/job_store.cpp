@@ -132,7 +132,7 @@ constexpr const char* kJobColumns =
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts, replicate, stage";
+    "attempts, replicate, stage, spec_is_patch";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -163,7 +163,7 @@ RunRecord readRun(const Stmt& q) {
   RunRecord r;
   r.key = {q.i64(0), static_cast<int>(q.i64(1))};
   r.swept = q.json(2);
-  r.spec = q.json(3);
+  (q.i64(15) != 0 ? r.specPatch : r.spec) = q.json(3);
   r.status = statusFrom(q.text(4));
   r.progress = q.dbl(5);
   r.summary = q.json(6);
@@ -255,6 +255,9 @@ void JobStore::migrate() {
   if (!hasColumn("jobs", "study")) exec("ALTER TABLE jobs ADD COLUMN study TEXT");
   if (!hasColumn("runs", "replicate")) exec("ALTER TABLE runs ADD COLUMN replicate INTEGER NOT NULL DEFAULT 0");
   if (!hasColumn("runs", "stage")) exec("ALTER TABLE runs ADD COLUMN stage TEXT NOT NULL DEFAULT ''");
+  // 1: runs.spec holds a JSON Patch against the job's base spec (the inputs are stored once per job).
+  if (!hasColumn("runs", "spec_is_patch"))
+    exec("ALTER TABLE runs ADD COLUMN spec_is_patch INTEGER NOT NULL DEFAULT 0");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
@@ -284,7 +287,37 @@ std::optional<IdempotentJob> JobStore::jobForIdempotencyKey(const std::string& k
   return IdempotentJob{q.i64(0), q.text(1)};
 }
 
+Json jobBaseSpec(const std::string& processId, const Json& inputs) {
+  Json base = Json::object();
+  base["scenario"] = processId;
+  for (const auto& [key, value] : inputs.items()) {
+    if (key != "scenario") base[key] = value;
+  }
+  return base;
+}
+
+Json runSpec(const JobRecord& job, const RunRecord& run) {
+  if (!run.spec.is_null() || run.specPatch.is_null()) return run.spec;
+  return jobBaseSpec(job.processId, job.inputs).patch(run.specPatch);
+}
+
+namespace {
+
+/// Each run's spec as the text of its patch against the job's base spec, computed before the store
+/// is locked (a diff walks the whole spec).
+std::vector<std::string> specPatches(const std::string& processId, const Json& inputs,
+                                     const std::vector<std::pair<Json, Json>>& runs) {
+  const Json base = jobBaseSpec(processId, inputs);
+  std::vector<std::string> out;
+  out.reserve(runs.size());
+  for (const auto& run : runs) out.push_back(Json::diff(base, run.second).dump());
+  return out;
+}
+
+}  // namespace
+
 CreatedJob JobStore::createJobOnce(const NewJob& job) {
+  const std::vector<std::string> patches = specPatches(job.processId, job.inputs, job.runs);
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);
@@ -304,12 +337,12 @@ CreatedJob JobStore::createJobOnce(const NewJob& job) {
   insertJob.run();
   const std::int64_t id = sqlite3_last_insert_rowid(m_db);
   Stmt insertRun(m_db,
-                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate) "
-                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?)");
+                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate, spec_is_patch) "
+                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?, 1)");
   for (std::size_t k = 0; k < job.runs.size(); ++k) {
     insertRun.reset();
     insertRun.bind(1, id).bind(2, static_cast<int>(k)).bind(3, job.runs[k].first.dump())
-        .bind(4, job.runs[k].second.dump()).bind(5, now)
+        .bind(4, patches[k]).bind(5, now)
         .bind(6, k < job.replicates.size() ? job.replicates[k] : 0);
     insertRun.run();
   }
@@ -383,7 +416,14 @@ std::optional<RunRecord> JobStore::run(RunKey key) {
   Stmt q(m_db, (std::string("SELECT ") + kRunColumns + " FROM runs WHERE job_id = ? AND idx = ?").c_str());
   q.bind(1, key.job).bind(2, key.index);
   if (!q.step()) return std::nullopt;
-  return readRun(q);
+  RunRecord r = readRun(q);
+  if (r.spec.is_null() && !r.specPatch.is_null()) {
+    Stmt j(m_db, "SELECT process_id, inputs FROM jobs WHERE id = ?");
+    j.bind(1, key.job);
+    if (!j.step()) throw std::runtime_error("job store: run " + std::to_string(key.index) + " has no job");
+    r.spec = jobBaseSpec(j.text(0), j.json(1)).patch(r.specPatch);
+  }
+  return r;
 }
 
 std::vector<RunKey> JobStore::queuedRuns() {
@@ -426,6 +466,9 @@ std::vector<std::int64_t> JobStore::jobsAwaitingRefinement() {
 
 std::vector<int> JobStore::appendRuns(std::int64_t jobId, const std::vector<std::pair<Json, Json>>& runs,
                                       const std::vector<int>& replicates, const Json& study) {
+  const std::optional<JobRecord> job = this->job(jobId);
+  if (!job) throw std::runtime_error("job store: no job " + std::to_string(jobId) + " to append runs to");
+  const std::vector<std::string> patches = specPatches(job->processId, job->inputs, runs);
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);
@@ -436,12 +479,12 @@ std::vector<int> JobStore::appendRuns(std::int64_t jobId, const std::vector<std:
     if (q.step()) next = static_cast<int>(q.i64(0));
   }
   Stmt insertRun(m_db,
-                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate) "
-                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?)");
+                 "INSERT INTO runs(job_id, idx, swept, spec, status, updated, replicate, spec_is_patch) "
+                 "VALUES(?, ?, ?, ?, 'accepted', ?, ?, 1)");
   std::vector<int> indices;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     insertRun.reset();
-    insertRun.bind(1, jobId).bind(2, next).bind(3, runs[k].first.dump()).bind(4, runs[k].second.dump())
+    insertRun.bind(1, jobId).bind(2, next).bind(3, runs[k].first.dump()).bind(4, patches[k])
         .bind(5, now).bind(6, k < replicates.size() ? replicates[k] : 0);
     insertRun.run();
     indices.push_back(next++);

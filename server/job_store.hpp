@@ -33,7 +33,12 @@ struct RunKey {
 struct RunRecord {
   RunKey key;
   Json swept;           ///< array of swept values, aligned with JobRecord::sweptPaths
-  Json spec;            ///< the full spec this run executes
+  /// The full spec this run executes. run(key) always fills it; runs(jobId) leaves it null for a run
+  /// stored as a patch (every run since the store keeps each job's inputs once): use runSpec().
+  Json spec;
+  /// The run's spec as a JSON Patch (RFC 6902) against its job's base spec (jobBaseSpec); null for a
+  /// run stored whole by an older server.
+  Json specPatch;
   Status status = Status::Accepted;
   double progress = 0;  ///< [0, 1]
   Json summary;         ///< object of scalars once successful, else null
@@ -65,6 +70,13 @@ struct JobRecord {
   Json study;
 };
 
+/// The spec every run of a job starts from: {"scenario": processId} followed by the inputs as
+/// posted (without their own "scenario"). Sweeps, replicates and refinement change it by paths.
+Json jobBaseSpec(const std::string& processId, const Json& inputs);
+
+/// The full spec of `run` of `job`: its stored spec, or the job's base spec with the run's patch.
+Json runSpec(const JobRecord& job, const RunRecord& run);
+
 /// A running run's progress as its watcher sees it.
 struct RunProgress {
   RunKey key;
@@ -79,7 +91,9 @@ struct NewJob {
   Json sweptPaths;
   Json inputs;
   Json sweep;
-  std::vector<std::pair<Json, Json>> runs;  ///< (swept values, full spec) per run, in run order
+  /// (swept values, full spec) per run, in run order. The store keeps the inputs once and each
+  /// run's difference from them (a JSON Patch), so a large description is not stored per run.
+  std::vector<std::pair<Json, Json>> runs;
   std::vector<int> replicates;  ///< replicate index per run (empty: all 0)
   Json study;                   ///< JobRecord::study (null: none)
   std::string idempotencyKey;  ///< the POST's Idempotency-Key header, "" when none
@@ -126,7 +140,10 @@ public:
   std::optional<JobRecord> job(std::int64_t id);
   /// Newest first. `total` receives the number of jobs matching the filter, before paging.
   std::vector<JobRecord> listJobs(const JobFilter& filter, std::int64_t& total);
+  /// A job's runs in index order, without materialising their specs (RunRecord::spec is null for
+  /// runs stored as patches: runSpec(job, run) gives it).
   std::vector<RunRecord> runs(std::int64_t jobId);
+  /// One run, its full spec included.
   std::optional<RunRecord> run(RunKey key);
 
   /// Accepted runs of jobs not dismissed, in execution order (job id, then run index).

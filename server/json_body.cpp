@@ -43,6 +43,11 @@ Json parseJsonBody(const std::string& body) {
     const std::string& path = e.field();
     const bool inInputs = path.rfind("inputs.", 0) == 0;
     const std::string field = inInputs ? path.substr(7) : path;
+    if (e.kind() == rupture::io::JsonLimitError::Kind::NotFinite)
+      throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
+                     "the value '" + truncateUtf8(e.value(), 40) + "' at '" + path + "' (byte " + std::to_string(e.byte()) +
+                         ") is not JSON: JSON has no NaN or Infinity numbers; send a finite number, or leave the field out for its default",
+                     field, Json{{"in", inInputs ? "inputs" : "body"}, {"byte", e.byte()}, {"value", truncateUtf8(e.value(), 40)}, {"allowed", e.allowed()}});
     throw ApiError(400, problem::kInvalidJson, "Invalid JSON",
                    "the number at '" + path + "' is outside the range of a double (about 1.8e308); numbers must be finite",
                    field, Json{{"in", inInputs ? "inputs" : "body"}, {"byte", e.byte()}});

@@ -41,6 +41,8 @@ inline constexpr const char* kForbiddenOrigin = "urn:rupture:problem:forbidden-o
 inline constexpr const char* kUnsupportedMediaType = "urn:rupture:problem:unsupported-media-type";
 inline constexpr const char* kIdempotencyKeyReused = "urn:rupture:problem:idempotency-key-reused";
 inline constexpr const char* kUnavailable = "urn:rupture:problem:unavailable";
+inline constexpr const char* kInsufficientStorage = "urn:rupture:problem:insufficient-storage";
+inline constexpr const char* kQueueFull = "urn:rupture:problem:queue-full";
 inline constexpr const char* kInternal = "urn:rupture:problem:internal-error";
 }  // namespace problem
 

@@ -120,6 +120,21 @@ std::optional<RefinePlan> parseRefinePlan(const Json* member, const std::string&
                       "refine.quantity must name a numeric result scalar of the runs, e.g. \"peak_stress\"");
   }
   plan.quantity = quantity->get<std::string>();
+  // Only a number the scenario declares can be refined on: anything else would end the study with
+  // "no successful run reported it" after the first round has run.
+  if (const rupture::ScenarioInfo* info = rupture::findScenario(scenario)) {
+    Json allowed = Json::array();
+    for (const rupture::ResultField& f : info->summary) {
+      if (!f.unit.empty() && f.name.back() != '*') allowed.push_back(f.name);
+    }
+    const rupture::ResultField* field = rupture::findResultField(info->summary, plan.quantity);
+    if (!field || field->unit.empty()) {
+      throw refineError("refine.quantity", *quantity,
+                        "refine.quantity '" + plan.quantity + "' is not a numeric result of the " + scenario +
+                            " scenario; allowed: " + allowed.dump(),
+                        allowed);
+    }
+  }
 
   const auto budget = member->find("max_runs");
   const long long most = static_cast<long long>(maxRuns) - static_cast<long long>(initialRuns);
@@ -267,8 +282,8 @@ RefinementRound planRefinementRound(const RefinePlan& plan, std::size_t axis,
 
 // ---------------------------------------------------------------------------------------------
 
-RefinementDriver::RefinementDriver(JobStore& store, Executor& executor, double maxElements)
-    : m_store(store), m_executor(executor), m_maxElements(maxElements) {}
+RefinementDriver::RefinementDriver(JobStore& store, Executor& executor, double maxElements, double maxMemoryBytes)
+    : m_store(store), m_executor(executor), m_maxElements(maxElements), m_maxMemoryBytes(maxMemoryBytes) {}
 
 RefinementDriver::~RefinementDriver() { stop(); }
 
@@ -368,11 +383,11 @@ void RefinementDriver::refineJob(std::int64_t jobId) {
   try {
     for (const RefinementPoint& point : round.points) {
       for (std::size_t a = 0; a < paths.size(); ++a) onePoint.axes[a].values = Json::array({point.swept[a]});
-      const std::vector<SweepPoint> points = expandSweep(job->processId, job->inputs, onePoint, 1);
-      const std::vector<ReplicatedPoint> expanded = expandReplicates(points, replicates, job->processId);
+      std::vector<SweepPoint> points = expandSweep(job->processId, job->inputs, onePoint, 1);
+      const std::vector<ReplicatedPoint> expanded = expandReplicates(std::move(points), replicates, job->processId);
       std::vector<SweepPoint> specs;
       for (const ReplicatedPoint& rp : expanded) specs.push_back(rp.point);
-      validateSweepPoints(specs, onePoint, m_maxElements);
+      validateSweepPoints(specs, onePoint, m_maxElements, m_maxMemoryBytes);
       Json indices = Json::array();
       for (const ReplicatedPoint& rp : expanded) {
         runs.emplace_back(rp.point.swept, rp.point.spec);

@@ -20,6 +20,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -90,7 +91,8 @@ RefinementRound planRefinementRound(const RefinePlan& plan, std::size_t axis,
 /// every half second; stop() before the executor stops.
 class RefinementDriver {
 public:
-  RefinementDriver(JobStore& store, Executor& executor, double maxElements);
+  RefinementDriver(JobStore& store, Executor& executor, double maxElements,
+                   double maxMemoryBytes = std::numeric_limits<double>::infinity());
   ~RefinementDriver();
   RefinementDriver(const RefinementDriver&) = delete;
   RefinementDriver& operator=(const RefinementDriver&) = delete;
@@ -107,6 +109,7 @@ private:
   JobStore& m_store;
   Executor& m_executor;
   double m_maxElements;
+  double m_maxMemoryBytes;
   std::mutex m_mutex;
   std::condition_variable m_wake;
   bool m_stopping = false;

@@ -113,18 +113,18 @@ ReplicatePlan parseReplicatePlan(const Json* member, const std::string& scenario
   return plan;
 }
 
-std::vector<ReplicatedPoint> expandReplicates(const std::vector<SweepPoint>& points, const ReplicatePlan& plan,
+std::vector<ReplicatedPoint> expandReplicates(std::vector<SweepPoint> points, const ReplicatePlan& plan,
                                               const std::string& scenario) {
   std::vector<ReplicatedPoint> out;
+  out.reserve(points.size() * static_cast<std::size_t>(plan.requested() ? plan.count : 1));
   if (!plan.requested()) {
-    for (const SweepPoint& p : points) out.push_back({p, 0});
+    for (SweepPoint& p : points) out.push_back({std::move(p), 0});  // specs can be large: no copies
     return out;
   }
   const nlohmann::json schema = schemaOf(scenario);
   const nlohmann::json* node = schemaNodeAt(schema, plan.vary);
   const auto segments = splitPath(plan.vary);
-  out.reserve(points.size() * static_cast<std::size_t>(plan.count));
-  for (const SweepPoint& p : points) {
+  for (SweepPoint& p : points) {
     long long base = 0;
     if (const Json* v = findAtPath(p.spec, plan.vary); v && v->is_number_integer()) {
       base = v->get<long long>();
@@ -141,7 +141,7 @@ std::vector<ReplicatedPoint> expandReplicates(const std::vector<SweepPoint>& poi
                            Json());
     }
     for (int r = 0; r < plan.count; ++r) {
-      ReplicatedPoint rp{p, r};
+      ReplicatedPoint rp{r + 1 < plan.count ? p : std::move(p), r};
       // Walk to the parent, creating objects (the field may be absent and defaulted).
       Json* parent = &rp.point.spec;
       for (std::size_t i = 0; i + 1 < segments.size(); ++i) {

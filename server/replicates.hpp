@@ -35,7 +35,7 @@ struct ReplicatedPoint {
 
 /// Each point N times, the varied field set to base + r. Throws ApiError(400) naming
 /// replicates.vary when a point has no base value (not in the inputs, no schema default).
-std::vector<ReplicatedPoint> expandReplicates(const std::vector<SweepPoint>& points, const ReplicatePlan& plan,
+std::vector<ReplicatedPoint> expandReplicates(std::vector<SweepPoint> points, const ReplicatePlan& plan,
                                               const std::string& scenario);
 
 /// The JSON Schema node of a dotted spec path (through "properties" and "items"), or nullptr.

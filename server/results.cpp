@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "files.hpp"
+#include "public_message.hpp"
 #include "io/hdf5_file.hpp"
 #include "rupture/result_fields.hpp"
 #include "summary.hpp"
@@ -71,6 +73,66 @@ void writeSummaryTable(Hdf5File& out, const SummaryTable& table) {
 
 }  // namespace
 
+namespace {
+
+/// Merged files up to this size are built in memory and written when closed: a disk that fills up
+/// meanwhile fails that write, never HDF5 half way through an object copy (HDF5 1.10.8 crashed
+/// there, inside H5Ocopy). Larger ones are built in place after the space check.
+constexpr std::uintmax_t kInMemoryMergeBytes = 256u << 20;
+
+ApiError noRoomForMerge(std::uintmax_t needed, std::optional<std::uintmax_t> available) {
+  return ApiError(507, problem::kInsufficientStorage, "Insufficient Storage",
+                  "the server's data disk has no room for this job's merged results file (it needs about " +
+                      formatBytes(static_cast<double>(needed)) + ", " +
+                      (available ? formatBytes(static_cast<double>(*available)) : std::string("an unknown amount")) +
+                      " is free); retry once space is freed, or download the runs one by one (/jobs/{id}/runs/{k}/results)",
+                  "", Json{{"needed_bytes", needed}, {"available_bytes", available ? Json(*available) : Json()}, {"retry_after_s", 60}});
+}
+
+void writeMergedFile(Hdf5File& out, const JobRecord& job, const std::vector<RunRecord>& runs, const fs::path& dataDir) {
+  const SummaryTable table = buildSummary(job, runs);
+  writeSummaryTable(out, table);
+  for (const RunRecord& run : runs) {
+    if (run.status != Status::Successful || run.resultPath.empty()) continue;
+    out.copyFileInto((dataDir / run.resultPath).string(), "/run-" + std::to_string(run.key.index));
+  }
+  out.setAttribute("/", "job_id", std::int64_t{job.id});
+  out.setAttribute("/", "process_id", job.processId);
+  out.setAttribute("/", "name", job.name);
+  out.setAttribute("/", "status", std::string(toString(job.status)));
+  out.setAttribute("/", "sweep_mode", job.sweepMode);
+  out.setAttribute("/", "swept_paths", job.sweptPaths.dump());
+  out.setAttribute("/", "inputs", job.inputs.dump());
+  out.setAttribute("/", "created", job.created);
+  out.setAttribute("/", "runs_total", std::int64_t{job.runsTotal});
+  if (job.study.is_object()) out.setAttribute("/", "study", job.study.dump());  // replicates, refinement record
+  std::int64_t included = 0;
+  for (const RunRecord& run : runs) {
+    if (run.status != Status::Successful || run.resultPath.empty()) continue;
+    const std::string group = "/run-" + std::to_string(run.key.index);
+    out.setAttribute(group, "sweep.run_index", std::int64_t{run.key.index});
+    out.setAttribute(group, "sweep.values", run.swept.dump());
+    out.setAttribute(group, "sweep.spec", runSpec(job, run).dump());
+    out.setAttribute(group, "sweep.summary", run.summary.dump());
+    if (job.study.is_object() && job.study.contains("replicates"))
+      out.setAttribute(group, "sweep.replicate", std::int64_t{run.replicate});
+    for (std::size_t i = 0; i < job.sweptPaths.size() && i < run.swept.size(); ++i) {
+      const std::string name = "sweep." + job.sweptPaths[i].get<std::string>();
+      const Json& v = run.swept[i];
+      if (v.is_number_integer()) out.setAttribute(group, name, v.get<std::int64_t>());
+      else if (v.is_number()) out.setAttribute(group, name, v.get<double>());
+      else if (v.is_string()) out.setAttribute(group, name, v.get<std::string>());
+      else out.setAttribute(group, name, v.dump());
+      const std::string unit = table.columnInfo(job.sweptPaths[i].get<std::string>()).unit;
+      if (!unit.empty()) out.setAttribute(group, name + "_unit", unit);
+    }
+    ++included;
+  }
+  out.setAttribute("/", "runs_included", included);
+}
+
+}  // namespace
+
 fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs, const fs::path& dataDir) {
   // One builder at a time: HDF5 serialises calls anyway, and two requests for the same job must not
   // both write the file.
@@ -83,50 +145,35 @@ fs::path mergedResults(const JobRecord& job, const std::vector<RunRecord>& runs,
   const fs::path part = dir / "results.h5.part";
   std::error_code ec;
   fs::remove(part, ec);
-  {
-    Hdf5File out = Hdf5File::create(part.string());
-    const SummaryTable table = buildSummary(job, runs);
-    writeSummaryTable(out, table);
-    for (const RunRecord& run : runs) {
-      if (run.status != Status::Successful || run.resultPath.empty()) continue;
-      out.copyFileInto((dataDir / run.resultPath).string(), "/run-" + std::to_string(run.key.index));
-    }
-    out.setAttribute("/", "job_id", std::int64_t{job.id});
-    out.setAttribute("/", "process_id", job.processId);
-    out.setAttribute("/", "name", job.name);
-    out.setAttribute("/", "status", std::string(toString(job.status)));
-    out.setAttribute("/", "sweep_mode", job.sweepMode);
-    out.setAttribute("/", "swept_paths", job.sweptPaths.dump());
-    out.setAttribute("/", "inputs", job.inputs.dump());
-    out.setAttribute("/", "created", job.created);
-    out.setAttribute("/", "runs_total", std::int64_t{job.runsTotal});
-    if (job.study.is_object()) out.setAttribute("/", "study", job.study.dump());  // replicates, refinement record
-    std::int64_t included = 0;
-    for (const RunRecord& run : runs) {
-      if (run.status != Status::Successful || run.resultPath.empty()) continue;
-      const std::string group = "/run-" + std::to_string(run.key.index);
-      out.setAttribute(group, "sweep.run_index", std::int64_t{run.key.index});
-      out.setAttribute(group, "sweep.values", run.swept.dump());
-      out.setAttribute(group, "sweep.spec", run.spec.dump());
-      out.setAttribute(group, "sweep.summary", run.summary.dump());
-      if (job.study.is_object() && job.study.contains("replicates"))
-        out.setAttribute(group, "sweep.replicate", std::int64_t{run.replicate});
-      for (std::size_t i = 0; i < job.sweptPaths.size() && i < run.swept.size(); ++i) {
-        const std::string name = "sweep." + job.sweptPaths[i].get<std::string>();
-        const Json& v = run.swept[i];
-        if (v.is_number_integer()) out.setAttribute(group, name, v.get<std::int64_t>());
-        else if (v.is_number()) out.setAttribute(group, name, v.get<double>());
-        else if (v.is_string()) out.setAttribute(group, name, v.get<std::string>());
-        else out.setAttribute(group, name, v.dump());
-        const std::string unit = table.columnInfo(job.sweptPaths[i].get<std::string>()).unit;
-        if (!unit.empty()) out.setAttribute(group, name + "_unit", unit);
-      }
-      ++included;
-    }
-    out.setAttribute("/", "runs_included", included);
-    out.close();
+  // The merged file holds copies of the run files and a table: check the room before writing.
+  std::uintmax_t inputs = 0;
+  for (const RunRecord& run : runs) {
+    if (run.status != Status::Successful || run.resultPath.empty()) continue;
+    inputs += regularFileSize(dataDir / run.resultPath).value_or(0);
   }
-  renameDurable(part, target);
+  const std::uintmax_t needed = inputs + inputs / 16 + (std::uintmax_t{1} << 20);
+  const std::optional<std::uintmax_t> available = availableBytes(dir);
+  if (available && *available < needed) throw noRoomForMerge(needed, available);
+  try {
+    {
+      Hdf5File out = inputs <= kInMemoryMergeBytes ? Hdf5File::createBuffered(part.string()) : Hdf5File::create(part.string());
+      writeMergedFile(out, job, runs, dataDir);
+      out.close();
+    }
+    renameDurable(part, target);
+  } catch (const ApiError&) {
+    fs::remove(part, ec);
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove(part, ec);
+    fs::remove(target, ec);
+    const std::optional<std::uintmax_t> now = availableBytes(dir);
+    if (isDiskFull(e.what()) || (now && *now < needed)) throw noRoomForMerge(needed, now);
+    throw ApiError(503, problem::kUnavailable, "Service Unavailable",
+                   "the job's merged results file could not be built (" + publicMessage(e.what()) +
+                       "); retry later, or download the runs one by one (/jobs/{id}/runs/{k}/results)",
+                   "", Json{{"retry_after_s", 30}});
+  }
   return target;
 }
 

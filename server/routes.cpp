@@ -27,6 +27,7 @@
 #include "replicates.hpp"
 #include "summary.hpp"
 #include "plot_png.hpp"
+#include "render_gate.hpp"
 #include "svg_plot.hpp"
 #include "tar_archive.hpp"
 #include "io/xdmf_writer.hpp"
@@ -67,6 +68,11 @@ void sendJson(Response& res, const Json& doc, int status = 200) {
 void sendProblem(const Request& req, Response& res, const ApiError& error) {
   res.status = error.status();
   if (error.status() == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"rupture\"");
+  // Try-again answers say when: the problem's retry_after_s, else a few seconds.
+  if (error.status() == 503 || error.status() == 507) {
+    const Json& after = error.extra().contains("retry_after_s") ? error.extra()["retry_after_s"] : Json(5);
+    res.set_header("Retry-After", after.is_number_integer() ? after.dump() : "5");
+  }
   if (error.status() == 416 && error.extra().contains("size")) {
     res.set_header("Content-Range", "bytes */" + error.extra()["size"].dump());
   }
@@ -494,7 +500,7 @@ public:
     const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
     const ReplicatePlan replicates = parseReplicatePlan(member("replicates"), scenario, plan);
     const std::size_t maxRuns = static_cast<std::size_t>(m_ctx.config.maxRuns);
-    const std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
+    std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
     if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
       const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
       throw ApiError(400, problem::kTooManyRuns, "Too many runs",
@@ -503,12 +509,21 @@ public:
                          " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
                      "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
     }
-    const std::vector<ReplicatedPoint> replicated = expandReplicates(sweepPoints, replicates, scenario);
+    // Every spec holds the whole inputs (a large description, many probes): moved, never copied.
+    std::vector<ReplicatedPoint> replicated = expandReplicates(std::move(sweepPoints), replicates, scenario);
     std::vector<SweepPoint> points;
-    for (const ReplicatedPoint& rp : replicated) points.push_back(rp.point);
-    validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements));
+    std::vector<int> replicateIndex;
+    points.reserve(replicated.size());
+    for (ReplicatedPoint& rp : replicated) {
+      points.push_back(std::move(rp.point));
+      replicateIndex.push_back(rp.replicate);
+    }
+    replicated.clear();
+    const std::size_t runCount = points.size();
+    requireQueueRoom(runCount);
+    validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements), m_ctx.maxRunMemory);
     const std::optional<RefinePlan> refine =
-        parseRefinePlan(member("refine"), scenario, plan, replicates.count, points.size(), maxRuns);
+        parseRefinePlan(member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
 
     NewJob job;
     job.processId = scenario;
@@ -518,10 +533,12 @@ public:
     for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
     job.inputs = inputs;
     job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
-    for (const ReplicatedPoint& rp : replicated) {
-      job.runs.emplace_back(rp.point.swept, rp.point.spec);
-      job.replicates.push_back(rp.replicate);
+    job.runs.reserve(runCount);
+    for (std::size_t k = 0; k < runCount; ++k) {
+      job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));
+      job.replicates.push_back(replicateIndex[k]);
     }
+    points.clear();
     if (replicates.requested() || refine) {
       job.study = Json::object();
       if (replicates.requested()) job.study["replicates"] = replicates.toJson();
@@ -538,8 +555,8 @@ public:
       return;
     }
     const std::int64_t id = created.id;
-    m_ctx.scheduler->enqueue(id, static_cast<int>(points.size()));
-    logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(points.size()) +
+    m_ctx.scheduler->enqueue(id, static_cast<int>(runCount));
+    logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(runCount) +
             " run(s)" + (name.empty() ? "" : ", \"" + name + "\""));
 
     auto record = m_ctx.store->job(id);
@@ -832,7 +849,7 @@ public:
     std::string ids;
     for (const ComparedJob& j : jobs) ids += (ids.empty() ? "" : ", ") + std::to_string(j.job.id);
     plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids + " - mean, 95 % CI";
-    sendPlot(req, res, table, plot);
+    sendPlot(req, res, table, plot, *m_ctx.renders);
   }
 
   void summarySvg(const Request& req, Response& res) {
@@ -856,7 +873,7 @@ public:
     readPlotOptions(req, table, plot);
     plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - job " + std::to_string(job.id) +
                  (job.name.empty() ? "" : " (" + job.name + ")") + (replicated ? " - mean, 95 % CI" : "");
-    sendPlot(req, res, table, plot);
+    sendPlot(req, res, table, plot, *m_ctx.renders);
   }
 
   // -- shared checks ---------------------------------------------------------------------------
@@ -873,6 +890,26 @@ public:
   }
 
 private:
+  /// Queued work is bounded for the whole server (--max-queued-runs): a job that can never fit is
+  /// the client's mistake (400); one that fits once the queue drains is told to come back (503).
+  void requireQueueRoom(std::size_t runs) {
+    const auto limit = static_cast<std::size_t>(m_ctx.config.maxQueuedRuns);
+    if (runs > limit) {
+      throw ApiError(400, problem::kTooManyRuns, "Too many runs",
+                     "the job has " + std::to_string(runs) + " runs; this server queues at most " +
+                         std::to_string(limit) + " runs in all (--max-queued-runs)",
+                     "sweep", Json{{"in", "body"}, {"runs", runs}, {"max_queued_runs", limit}});
+    }
+    const auto queued = static_cast<std::size_t>(std::max(0, m_ctx.store->queueDepth()));
+    if (queued + runs > limit) {
+      throw ApiError(503, problem::kQueueFull, "Queue full",
+                     "the server has " + std::to_string(queued) + " runs waiting and queues at most " +
+                         std::to_string(limit) + " (--max-queued-runs); this job's " + std::to_string(runs) +
+                         " runs fit once some have started: retry later",
+                     "", Json{{"queued_runs", queued}, {"max_queued_runs", limit}, {"retry_after_s", 60}});
+    }
+  }
+
   /// The Idempotency-Key header: 1 to 200 visible ASCII characters, or "" when absent.
   static std::string idempotencyKeyOf(const Request& req) {
     if (!req.has_header("Idempotency-Key")) return "";
@@ -1012,8 +1049,23 @@ private:
     }
   }
 
+  /// A PNG of width x height x scale² pixels at most the cap (--max-render-pixels): the
+  /// parameter that makes it larger is named.
+  static void requireRenderable(const PlotRequest& plot, int scale, long long maxPixels) {
+    const long long pixels = static_cast<long long>(plot.width) * plot.height * scale * scale;
+    if (pixels <= maxPixels) return;
+    const char* field = scale > 1 ? "scale" : "width";
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "a PNG of " + std::to_string(plot.width * scale) + " x " + std::to_string(plot.height * scale) +
+                       " pixels (width x height x scale) is larger than this server renders (" +
+                       std::to_string(maxPixels) + " pixels, --max-render-pixels); lower " + field +
+                       ", or ask for SVG (format=svg), which has no size limit",
+                   field, Json{{"in", "query"}, {"pixels", pixels}, {"max_pixels", maxPixels}});
+  }
+
   /// The plot as SVG, or with ?format=png&scale=1..4 as PNG.
-  static void sendPlot(const Request& req, Response& res, const SummaryTable& table, const PlotRequest& plot) {
+  static void sendPlot(const Request& req, Response& res, const SummaryTable& table, const PlotRequest& plot,
+                       RenderGate& gate) {
     const std::string format = req.has_param("format") ? req.get_param_value("format") : "svg";
     if (format != "svg" && format != "png") {
       throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
@@ -1021,8 +1073,10 @@ private:
                      Json{{"in", "query"}, {"value", format}, {"allowed", Json::array({"svg", "png"})}});
     }
     const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
+    if (format == "png") requireRenderable(plot, scale, gate.maxPixels());
     const std::string svg = rupture::server::summarySvg(table, plot);
     if (format == "png") {
+      const RenderGate::Slot slot = gate.acquire();
       res.set_content(renderPng(svg, plot.width * scale, plot.height * scale), "image/png");
     } else {
       res.set_content(svg, "image/svg+xml");
@@ -1115,6 +1169,13 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
         sendProblem(req, res, ApiError(400, problem::kInvalidRequest, "Invalid request",
                                        "the request holds a value the server cannot use: " +
                                            truncateUtf8(e.what(), 300)));
+      } catch (const std::bad_alloc&) {
+        // Not the client's mistake and not a bug: the machine is short of memory right now.
+        logLine("out of memory answering " + req.method + " " + toValidUtf8(req.path));
+        sendProblem(req, res, ApiError(503, problem::kUnavailable, "Service Unavailable",
+                                       "the server could not get the memory this request needs right now; "
+                                       "retry later (other requests or runs are using it)",
+                                       "", Json{{"retry_after_s", 30}}));
       } catch (const std::exception& e) {
         sendInternalError(req, res, e.what());
       } catch (...) {
@@ -1239,6 +1300,15 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
     std::string what = "unknown exception";
     try {
       if (ep) std::rethrow_exception(ep);
+    } catch (const std::bad_alloc&) {
+      try {
+        sendProblem(req, res, ApiError(503, problem::kUnavailable, "Service Unavailable",
+                                       "the server could not get the memory this request needs right now; retry later",
+                                       "", Json{{"retry_after_s", 30}}));
+        return;
+      } catch (...) {
+        what = "out of memory";
+      }
     } catch (const std::exception& e) {
       what = e.what();
     } catch (...) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "config.hpp"
@@ -14,6 +15,8 @@
 namespace rupture::server {
 
 /// What the handlers need; owned by RuptureServer.
+class RenderGate;
+
 struct ServerContext {
   ServerConfig config;
   std::filesystem::path dataDir;     ///< the database (rupture.sqlite) and, locally, the run files
@@ -21,6 +24,8 @@ struct ServerContext {
   JobStore* store = nullptr;
   Executor* scheduler = nullptr;
   std::atomic<bool> stopping{false};
+  double maxRunMemory = 0;  ///< B one run may need (config.maxRunMemory or this machine's share; inf with Slurm)
+  std::shared_ptr<RenderGate> renders;  ///< bounds the PNG renders running and waiting
   std::chrono::steady_clock::time_point startedAt = std::chrono::steady_clock::now();
 };
 

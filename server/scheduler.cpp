@@ -32,13 +32,6 @@ void removeQuietly(const fs::path& p) {
   fs::remove(p, ec);
 }
 
-/// The error is the disk filling up (HDF5 and SQLite report errno 28 in their own words).
-bool isDiskFull(const std::string& message) {
-  for (const char* sign : {"No space left on device", "errno = 28", "database or disk is full"})
-    if (message.find(sign) != std::string::npos) return true;
-  return false;
-}
-
 // A run that failed because the disk filled up goes back to the queue (where it waits for the
 // floor) at most this many times in all before it is recorded failed.
 constexpr int kDiskFullAttempts = 3;
@@ -295,6 +288,30 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
         outcome.message = "the run ended without completing (nobody cancelled it)";
         logLine(describe(key) + " ended incomplete after " + elapsed() + " s");
       }
+    }
+  } catch (const std::bad_alloc&) {
+    // Say where and how much, not a bare "std::bad_alloc": the estimate the admission check used.
+    removeLeftovers();
+    std::string stage;
+    {
+      std::lock_guard lock(m_mutex);
+      if (auto it = m_stages.find(key); it != m_stages.end()) stage = it->second;
+    }
+    std::string estimate;
+    try {
+      if (auto run = m_store.run(key)) {
+        const rupture::RunEstimate e = rupture::estimateRun(nlohmann::json(run->spec));
+        if (e.memoryBytes > 0) estimate = "; the spec's estimate was " + formatBytes(e.memoryBytes) + " (set by " + e.field + ")";
+      }
+    } catch (const std::exception&) {
+    }
+    if (control->cancel) {
+      outcome.kind = stopping() ? Outcome::Kind::Requeued : Outcome::Kind::Dismissed;
+    } else {
+      outcome.message = "out of memory" + (stage.empty() ? std::string(" while setting up the run") : " after the stage '" + stage + "'") +
+                        estimate + "; the machine could not give the run the memory it asked for (other runs share it): "
+                        "retry when fewer runs are running, or make the run smaller";
+      logLine(describe(key) + " failed: " + outcome.message);
     }
   } catch (const std::exception& e) {
     const bool diskFull = isDiskFull(e.what()) || !diskHasRoom();

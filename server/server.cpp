@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <cerrno>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <netdb.h>
@@ -13,6 +14,7 @@
 
 #include <httplib.h>
 
+#include "render_gate.hpp"
 #include "log.hpp"
 #include "scheduler.hpp"
 #include "slurm_executor.hpp"
@@ -92,8 +94,16 @@ RuptureServer::RuptureServer(ServerConfig config) {
   }
   m_context.store = m_store.get();
   m_context.scheduler = m_scheduler.get();
+  // Memory per run: the operator's figure, else this machine's share per worker. Slurm runs on
+  // other machines, whose memory the batch system manages: no default limit there.
+  if (m_context.config.maxRunMemory == 0 && m_context.config.executor != "slurm")
+    m_context.config.maxRunMemory = effectiveRunMemory(m_context.config);
+  const double runMemory = m_context.config.maxRunMemory > 0 ? static_cast<double>(m_context.config.maxRunMemory)
+                                                             : std::numeric_limits<double>::infinity();
+  m_context.maxRunMemory = runMemory;
+  m_context.renders = std::make_shared<RenderGate>(m_context.config.maxRenders, m_context.config.maxRenderPixels);
   m_refinement = std::make_unique<RefinementDriver>(*m_store, *m_scheduler,
-                                                    static_cast<double>(m_context.config.maxElements));
+                                                    static_cast<double>(m_context.config.maxElements), runMemory);
 
   const ServerConfig& c = m_context.config;
   FrontendLimits limits;

@@ -125,15 +125,15 @@ void SlurmExecutor::submit(std::int64_t jobId, const std::vector<int>& indices) 
   try {
     const fs::path dir = jobDir(jobId);
     fs::create_directories(dir / "slurm");
-    std::map<int, Json> specs;
-    for (const RunRecord& run : m_store.runs(jobId)) specs[run.key.index] = run.spec;
     for (int k : indices) {
       const RunKey key{jobId, k};
       for (const char* stale : {".slurm", ".status", ".h5", ".summary.json", ".partial.h5", ".progress.json", ".log"}) {
         std::error_code ec;
         fs::remove(runPath(key, stale), ec);
       }
-      writeFileAtomic(runPath(key, ".spec.json"), specs.at(k).dump(2) + "\n");
+      const std::optional<RunRecord> run = m_store.run(key);  // one spec in memory at a time
+      if (!run) throw std::runtime_error("run " + std::to_string(k) + " of job " + std::to_string(jobId) + " is not in the store");
+      writeFileAtomic(runPath(key, ".spec.json"), run->spec.dump(2) + "\n");
     }
     std::size_t count = 0;
     for (const auto& entry : fs::directory_iterator(dir / "slurm")) count += entry.path().extension() == ".sbatch";

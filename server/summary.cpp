@@ -32,16 +32,20 @@ std::string csvValue(const Json& v) {
 
 std::string csvTextCell(const std::string& text) {
   std::string cell = text;
-  // Spreadsheets evaluate a cell starting with = + - @ (or a tab or CR before one) as a formula;
-  // a leading apostrophe makes it text. A cell that is a plain number ("-1.5") stays a number.
-  if (!cell.empty() && std::string_view("=+-@\t\r").find(cell.front()) != std::string_view::npos) {
+  // Spreadsheets evaluate a cell starting with = + - @ (or a tab or CR) as a formula, also after
+  // leading spaces or line feeds, which they skip; a leading apostrophe makes it text. A cell that
+  // is a plain number ("-1.5") stays a number.
+  const std::size_t first = cell.find_first_not_of(" \t\r\n\v\f");
+  const bool trigger = (!cell.empty() && (cell.front() == '\t' || cell.front() == '\r')) ||
+                       (first != std::string::npos && std::string_view("=+-@").find(cell[first]) != std::string_view::npos);
+  if (trigger) {
     double number = 0;
     const bool plus = cell.front() == '+';  // from_chars takes '-' but not '+'
-    const char* first = cell.data() + (plus ? 1 : 0);
+    const char* begin = cell.data() + (plus ? 1 : 0);
     const char* last = cell.data() + cell.size();
-    auto [ptr, ec] = std::from_chars(first, last, number);
+    auto [ptr, ec] = std::from_chars(begin, last, number);
     const bool plainNumber =
-        first != last && !(plus && (*first == '-' || *first == '+')) && ec == std::errc() && ptr == last;
+        begin != last && !(plus && (*begin == '-' || *begin == '+')) && ec == std::errc() && ptr == last;
     if (!plainNumber) cell.insert(0, 1, '\'');
   }
   if (cell.find_first_of(",\"\r\n") == std::string::npos) return cell;
@@ -122,7 +126,7 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
   const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
   Json schema = Json::object();
   if (scenario) schema = rupture::scenarioSchema(job.processId);
-  const int dimension = rupture::specDimension(schema, runs.empty() ? Json::object() : runs.front().spec);
+  const int dimension = rupture::specDimension(schema, runs.empty() ? Json::object() : runSpec(job, runs.front()));
   for (const std::string& p : table.sweptPaths) {
     table.info[p] = {rupture::specFieldUnit(schema, p), rupture::specFieldLabel(schema, p), ""};
   }

@@ -7,6 +7,8 @@
 #include <charconv>
 #include <limits>
 
+#include "files.hpp"
+#include "job_store.hpp"
 #include "rupture/run.hpp"
 
 namespace rupture::server {
@@ -159,11 +161,7 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
                        " per job (--max-runs)",
                    "sweep", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
   }
-  Json base = Json::object();
-  base["scenario"] = scenario;
-  for (const auto& [key, value] : inputs.items()) {
-    if (key != "scenario") base[key] = value;
-  }
+  const Json base = jobBaseSpec(scenario, inputs);
   // Check every path against the base once, so the error names the path, not a point.
   std::vector<std::vector<std::string>> segments;
   for (const SweepAxis& axis : plan.axes) {
@@ -194,26 +192,44 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
   return points;
 }
 
-void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements) {
+void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
+                         double maxMemoryBytes) {
   for (std::size_t k = 0; k < points.size(); ++k) {
+    double memoryEstimate = -1;  // set when the point is refused for memory
     try {
       const nlohmann::json spec(points[k].spec);
       const rupture::RunEstimate estimate = rupture::estimateRun(spec);  // validates first
-      if (estimate.particles > maxElements) {
-        std::string pointer = "/" + estimate.field;
+      auto valueAt = [&](const std::string& field) {
+        std::string pointer = "/" + field;
         std::replace(pointer.begin(), pointer.end(), '.', '/');
         const nlohmann::json::json_pointer at(pointer);
+        return spec.contains(at) ? spec.at(at).dump() : std::string("(default)");
+      };
+      if (estimate.particles > maxElements) {
         std::ostringstream allowed;
         allowed << "a run of at most " << maxElements << " elements (this server's --max-elements); this spec needs about "
                 << std::llround(estimate.particles) << " elements and " << std::llround(estimate.memoryBytes / 1048576.0)
                 << " MiB of memory";
-        throw rupture::SpecError(estimate.field, spec.contains(at) ? spec.at(at).dump() : "(default)", allowed.str());
+        throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
+      }
+      if (estimate.memoryBytes > maxMemoryBytes) {
+        std::ostringstream allowed;
+        allowed << "a run needing at most " << formatBytes(maxMemoryBytes)
+                << " of memory (this server's --max-run-memory); this spec needs about " << formatBytes(estimate.memoryBytes)
+                << " for about " << std::llround(estimate.particles) << " elements (" << estimate.basis
+                << "): make " << estimate.field << " larger or the sample smaller";
+        memoryEstimate = estimate.memoryBytes;
+        throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
       }
     } catch (const rupture::SpecError& e) {
       Json extra = Json::object();
       extra["in"] = "inputs";
       extra["value"] = e.value();
       extra["allowed"] = e.allowed();
+      if (memoryEstimate >= 0) {
+        extra["estimated_memory_bytes"] = std::llround(memoryEstimate);
+        extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes);
+      }
       std::string where;
       if (!plan.axes.empty()) {
         Json swept = Json::object();

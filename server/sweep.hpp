@@ -45,9 +45,11 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
                                     const SweepPlan& plan, std::size_t maxRuns);
 
 /// Validates every expanded spec with rupture::validateSpec, and its size (rupture::estimateRun)
-/// against maxElements. Throws ApiError(400) for the first bad point, naming the field, the value,
-/// what is allowed, the point's index and its swept values.
-void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements);
+/// against maxElements and its memory estimate against maxMemoryBytes. Throws ApiError(400) for the
+/// first bad point, naming the field, the value, what is allowed (with the estimate in bytes), the
+/// point's index and its swept values.
+void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
+                         double maxMemoryBytes);
 
 /// "a.b.0.c" -> {"a","b","0","c"}; empty segments are an error (returns empty vector).
 std::vector<std::string> splitPath(const std::string& path);

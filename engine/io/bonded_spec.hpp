@@ -15,10 +15,11 @@ namespace rupture::io {
 SampleSpec parseSample(const SpecReader& root);
 /// Elements the sample builder will make (packing fraction × box / mean element, less the pores).
 double estimatedElements(const SampleSpec& sample);
-/// Peak memory of a run on that sample, from measured bytes per element (B).
-double estimatedMemoryBytes(const SampleSpec& sample);
-/// The RunEstimate of a bonded scenario on that sample (field "sample.element_radius").
-RunEstimate estimateBondedRun(const SampleSpec& sample);
+/// Peak memory of a run of that material on that sample (B): measured bytes per element, plus
+/// measured bytes per bond for peridynamic horizons (tens to hundreds of bonds per site).
+double estimatedMemoryBytes(const SampleSpec& sample, const MaterialSpec& material);
+/// The RunEstimate of a bonded scenario (field "sample.element_radius" or "sample.spacing").
+RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& material);
 /// Reads "material" from the spec root (dimension-independent).
 MaterialSpec parseMaterial(const SpecReader& root);
 

@@ -4,9 +4,14 @@
 #include <cmath>
 #include <string>
 
+#include "core/format_number.hpp"
+
 namespace rupture::io {
 
-RunEstimate estimateFluidRun(double particles) { return {particles, 1e3 * particles, "resolution.spacing"}; }
+RunEstimate estimateFluidRun(double particles) {
+  return {particles, kFluidBytesPerParticle * particles, "resolution.spacing",
+          formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
+}
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
   FluidSpec f;

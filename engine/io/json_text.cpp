@@ -1,5 +1,7 @@
 #include "io/json_text.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -18,7 +20,7 @@ public:
   using string_t = typename Json::string_t;
   using binary_t = typename Json::binary_t;
 
-  explicit PathTrackingSax(Json& result) : m_dom(result, true) {}
+  PathTrackingSax(Json& result, std::string_view text) : m_dom(result, true), m_text(text) {}
 
   bool null() { return value(m_dom.null()); }
   bool boolean(bool v) { return value(m_dom.boolean(v)); }
@@ -53,6 +55,7 @@ public:
     if (e.id == 406)  // number overflow: say which field, not just which bytes
       throw JsonLimitError(JsonLimitError::Kind::NumberOutOfRange, position, path(), token.substr(0, 40),
                            "a number within the range of a double (magnitude below 1.8e308)");
+    if (e.id == 101) notFiniteLiteral(position, token);
     // nlohmann's own DOM parser rethrows `e` by its static type (the base class); keep the real one
     // so callers can catch json::parse_error.
     if (const auto* parse = dynamic_cast<const nlohmann::json::parse_error*>(&e)) throw *parse;
@@ -66,6 +69,29 @@ private:
     std::size_t index = 0;
     std::string key;
   };
+
+  /// NaN, Infinity and -Infinity (as JavaScript and Python's json module write them) are not JSON:
+  /// say so, with the field and the position, instead of a bare syntax error.
+  void notFiniteLiteral(std::size_t position, const std::string&) const {
+    // `position` is just past the character that failed: walk back over the word and its sign.
+    std::size_t start = std::min(position, m_text.size());
+    while (start > 0 && std::isalpha(static_cast<unsigned char>(m_text[start - 1]))) --start;
+    if (start > 0 && (m_text[start - 1] == '-' || m_text[start - 1] == '+')) --start;
+    std::size_t end = start;
+    if (end < m_text.size() && (m_text[end] == '-' || m_text[end] == '+')) ++end;
+    while (end < m_text.size() && std::isalpha(static_cast<unsigned char>(m_text[end]))) ++end;
+    const std::string word(m_text.substr(start, end - start));
+    std::string bare = word.substr(word.empty() || std::isalpha(static_cast<unsigned char>(word[0])) ? 0 : 1);
+    for (char& c : bare) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (bare != "nan" && bare != "infinity" && bare != "inf") return;
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < start; ++i) {
+      if (m_text[i] == '\n') { ++line; column = 1; } else { ++column; }
+    }
+    throw JsonLimitError(JsonLimitError::Kind::NotFinite, start, path(), word,
+                         "a finite JSON number (JSON has no NaN or Infinity; '" + word + "' at line " +
+                             std::to_string(line) + ", column " + std::to_string(column) + ")");
+  }
 
   void enter(bool array, std::size_t) {
     if (m_stack.size() >= static_cast<std::size_t>(kMaxJsonNesting))
@@ -89,13 +115,14 @@ private:
   }
 
   nlohmann::detail::json_sax_dom_parser<Json> m_dom;
+  std::string_view m_text;
   std::vector<Frame> m_stack;
 };
 
 template <class Json>
 Json parseWithPaths(std::string_view text) {
   Json result;
-  PathTrackingSax<Json> sax(result);
+  PathTrackingSax<Json> sax(result, text);
   Json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, true, false);
   return result;
 }

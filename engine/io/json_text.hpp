@@ -19,7 +19,7 @@ constexpr int kMaxJsonNesting = 64;
 /// A JSON text that is well formed but beyond what a spec may hold, at a named field.
 class JsonLimitError : public SpecError {
 public:
-  enum class Kind { NumberOutOfRange, TooDeep };
+  enum class Kind { NumberOutOfRange, TooDeep, NotFinite };
   JsonLimitError(Kind kind, std::size_t byte, std::string field, std::string value, std::string allowed)
       : SpecError(std::move(field), std::move(value), std::move(allowed)), m_kind(kind), m_byte(byte) {}
   Kind kind() const { return m_kind; }
@@ -31,8 +31,8 @@ private:
 };
 
 /// Parses a whole JSON text (every byte, NUL bytes included, is part of it).
-/// Throws JsonLimitError (a SpecError naming the field) for a number outside the double range or
-/// nesting deeper than kMaxJsonNesting, and nlohmann::json::parse_error for anything that is not JSON.
+/// Throws JsonLimitError (a SpecError naming the field) for a number outside the double range, a
+/// NaN or Infinity literal (which JSON does not have), or nesting deeper than kMaxJsonNesting, and nlohmann::json::parse_error for anything that is not JSON.
 nlohmann::json parseJsonText(std::string_view text);
 /// The same, keeping object members in their order in the text (the server's request bodies,
 /// where a sweep's first path varies slowest).

@@ -1,5 +1,6 @@
 #include "io/spec_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -49,6 +50,11 @@ SpecReader::SpecReader(const nlohmann::json& node, std::string path) : m_node(no
 }
 
 std::string SpecReader::pathOf(const std::string& key) const {
+  // An array element read through a one-key wrapper ({"0": element}) is named as the element,
+  // "probes[0]", as every array element is (SpecReader::objects, unknown-key errors).
+  const bool index = !key.empty() && key.size() < 10 &&
+                     std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (index && !m_path.empty()) return m_path + "[" + key + "]";
   return m_path.empty() ? key : m_path + "." + key;
 }
 

@@ -397,7 +397,10 @@ Scenario dynamicTensionScenario() {
   s.info.summary = dynamicTensionSummaryFields();
   s.info.series = dynamicTensionSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseDynamicTensionSpec(spec).sample); };
+  s.estimate = [](const nlohmann::json& spec) {
+    const auto parsed = parseDynamicTensionSpec(spec);
+    return io::estimateBondedRun(parsed.sample, parsed.material);
+  };
   s.run = runDynamicTension;
   return s;
 }

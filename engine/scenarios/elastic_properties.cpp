@@ -214,7 +214,10 @@ Scenario elasticPropertiesScenario() {
       "the fitted beams are reported with the values they achieve.";
   s.info.summary = elasticPropertiesSummaryFields();
   s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseElasticPropertiesSpec(spec).sample); };
+  s.estimate = [](const nlohmann::json& spec) {
+    const auto parsed = parseElasticPropertiesSpec(spec);
+    return io::estimateBondedRun(parsed.sample, parsed.material);
+  };
   s.run = runElasticProperties;
   return s;
 }

@@ -56,6 +56,7 @@ struct RunEstimate {
   double particles = 0;    ///< elements or particles the run will hold (0: the scenario gives no estimate)
   double memoryBytes = 0;  ///< peak resident memory (B), from measured bytes per particle
   std::string field;       ///< the spec field that sets the size, e.g. "sample.element_radius"
+  std::string basis;       ///< what the memory estimate counts, for the error that quotes it
 };
 
 /// The estimate for a valid spec; throws SpecError like validateSpec for an invalid one.

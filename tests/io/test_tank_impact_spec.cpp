@@ -68,7 +68,7 @@ TEST(TankImpactSpec, WaterHeightFollowsThePlateThickness) {
   EXPECT_NEAR(parseTankImpactSpec(j).waterHeight, 0.180, 1e-15);
   EXPECT_NEAR(parseTankImpactSpec(j).gauge[2], 0.0125 + 0.010, 1e-15);
   j["probes"] = {{0.0, 0.0, 0.010}};  // inside the 25 mm plate (its upper face is at z = 12.5 mm)
-  EXPECT_EQ(fieldOf(j), "probes.0");
+  EXPECT_EQ(fieldOf(j), "probes[0]");
   j.erase("probes");
   j["tank"] = {{"water_height", 0.15}};
   EXPECT_DOUBLE_EQ(parseTankImpactSpec(j).waterHeight, 0.15);
@@ -121,7 +121,7 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
   EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.02}}}})), "plate.spacing");
   EXPECT_EQ(fieldOf(with({{"resolution", {{"spacing", 0.0003}}}})), "resolution.spacing");  // ~1e8 particles
   EXPECT_EQ(fieldOf(with({{"gauge", {0.05, 0.0, 0.01}}})), "gauge");                        // in the wall
-  EXPECT_EQ(fieldOf(with({{"probes", {{0.0, 0.0, 0.5}}}})), "probes.0");                   // above the water
+  EXPECT_EQ(fieldOf(with({{"probes", {{0.0, 0.0, 0.5}}}})), "probes[0]");                   // above the water
   EXPECT_EQ(fieldOf(with({{"contact", {{"method", "penalty"}}}})), "contact.method");
   EXPECT_EQ(fieldOf(with({{"impactor", {{"mass", -1.0}}}})), "impactor.mass");
   // Unknown keys: from the schema, with the nearest allowed key.

@@ -36,10 +36,43 @@ TEST(JobStore, CreatesJobsWithAcceptedRunsInOrder) {
   auto runs = store.runs(id);
   ASSERT_EQ(runs.size(), 3u);
   EXPECT_EQ(runs[2].swept, Json::array({3}));
-  EXPECT_EQ(runs[2].spec["loading"]["strain_rate"], 3);
+  // Stored as a patch of the job's inputs, given back whole: by run() and by runSpec().
+  EXPECT_TRUE(runs[2].spec.is_null());
+  EXPECT_EQ(runSpec(*job, runs[2]), threeRunJob().runs[2].second);
+  EXPECT_EQ(store.run({id, 2})->spec, threeRunJob().runs[2].second);
   EXPECT_EQ(store.queuedRuns().size(), 3u);
   EXPECT_EQ(store.queueDepth(), 3);
   EXPECT_FALSE(store.job(id + 100));
+}
+
+TEST(JobStore, RunSpecsAreStoredAsPatchesOfTheInputsAndComeBackBitForBit) {
+  test::TempDir dir;
+  JobStore store((dir.path() / "db.sqlite").string());
+  NewJob job = threeRunJob();
+  job.inputs = Json::parse(R"({"description": "long text", "loading": {"strain_rate": 1, "initial_velocity": "VL"},
+                               "probes": [[0, 1], [2, 3]], "run": {"max_strain": 0.01}})");
+  job.runs.clear();
+  // A changed value, an added member (at the end, in order), a changed array element, a removed member.
+  Json a = jobBaseSpec(job.processId, job.inputs);
+  a["loading"]["strain_rate"] = 2.5;
+  Json b = a;
+  b["loading"]["extra"] = {{"x", 1}};
+  b["probes"][1][0] = 7.0;
+  Json c = a;
+  c.erase("run");
+  for (const Json& spec : {a, b, c}) job.runs.emplace_back(Json::array({0}), spec);
+  const auto id = store.createJob(job);
+  const auto record = store.job(id);
+  ASSERT_TRUE(record);
+  const auto runs = store.runs(id);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(store.run({id, k})->spec.dump(), job.runs[static_cast<std::size_t>(k)].second.dump()) << k;  // order too
+    EXPECT_EQ(runSpec(*record, runs[static_cast<std::size_t>(k)]).dump(), job.runs[static_cast<std::size_t>(k)].second.dump()) << k;
+    EXPECT_EQ(runs[static_cast<std::size_t>(k)].specPatch.dump().find("long text"), std::string::npos);  // the inputs once
+  }
+  const std::vector<int> added = store.appendRuns(id, {{Json::array({1}), b}}, {0}, Json::object());
+  ASSERT_EQ(added, std::vector<int>({3}));
+  EXPECT_EQ(store.run({id, 3})->spec.dump(), b.dump());
 }
 
 TEST(JobStore, StatusRollsUpFromRuns) {

@@ -39,7 +39,7 @@ TEST(SphHttp, ScenariosAreServedAndBadSpecsGet400NamingTheField) {
   expectProblem(post("dam-break", bad), 400, "fluid.sound_speed");
   bad = smallDamBreak();
   bad["probes"] = {{0.3, 0.01}};
-  expectProblem(post("dam-break", bad), 400, "probes.0");
+  expectProblem(post("dam-break", bad), 400, "probes[0]");
   bad = smallDamBreak();
   bad["run"]["end_time"] = -1.0;
   expectProblem(post("dam-break", bad), 400, "run.end_time");

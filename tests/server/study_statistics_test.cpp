@@ -388,6 +388,10 @@ TEST(StudyRequests, RefineFieldsAreChecked) {
   expectBadRequest([&] { parseRefinePlan(&b, sc, sweep, 1, 3, 100); }, "refine.spacing", "\"auto\", \"log\"");
   b = with("quantity", "");
   expectBadRequest([&] { parseRefinePlan(&b, sc, sweep, 1, 3, 100); }, "refine.quantity", "result scalar");
+  b = with("quantity", "nope");  // well formed, but no result the scenario declares
+  expectBadRequest([&] { parseRefinePlan(&b, sc, sweep, 1, 3, 100); }, "refine.quantity", "\"peak_stress\"");
+  b = with("quantity", "stop_reason");  // declared, but text
+  expectBadRequest([&] { parseRefinePlan(&b, sc, sweep, 1, 3, 100); }, "refine.quantity", "not a numeric result");
   b = with("per_round", 17);
   expectBadRequest([&] { parseRefinePlan(&b, sc, sweep, 1, 3, 100); }, "refine.per_round", "1 to 16");
   b = with("step", 2);

@@ -71,7 +71,7 @@ DamBreakSpec parseDamBreakSpec(const nlohmann::json& json) {
     const bool inside = p[0] >= 0 && p[0] <= g.tankLength && vertical >= 0 && vertical <= g.tankHeight &&
                         (s.dimension == 2 || (p[1] >= 0 && p[1] <= *g.width));
     if (!inside)
-      throw SpecError("probes." + std::to_string(k), io::describeValue(io::probesJson({p}, s.dimension)[0]),
+      throw SpecError("probes[" + std::to_string(k) + "]", io::describeValue(io::probesJson({p}, s.dimension)[0]),
                       std::string("a point inside the tank: x in [0, ") + formatNumber(g.tankLength) + "] m" +
                           (s.dimension == 3 ? ", y in [0, " + formatNumber(*g.width) + "] m" : "") + ", " +
                           (s.dimension == 3 ? "z" : "y") + " in [0, " + formatNumber(g.tankHeight) + "] m");

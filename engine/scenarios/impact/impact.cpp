@@ -302,7 +302,10 @@ Scenario impactScenario() {
   s.info.summary = impactSummaryFields();
   s.info.series = impactSeriesFields();
   s.validate = [](const nlohmann::json& spec) { parseImpactSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateBondedRun(parseImpactSpec(spec).sample); };
+  s.estimate = [](const nlohmann::json& spec) {
+    const auto parsed = parseImpactSpec(spec);
+    return io::estimateBondedRun(parsed.sample, parsed.material);
+  };
   s.run = runImpact;
   return s;
 }

@@ -93,7 +93,7 @@ PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
     const double radial = s.dimension == 3 ? std::hypot(p[0], p[1]) : std::fabs(p[0]);
     const double vertical = s.dimension == 3 ? p[2] : p[1];
     if (!(radial <= R && vertical >= 0 && vertical <= s.columnHeight))
-      throw SpecError("probes." + std::to_string(k), io::describeValue(io::probesJson({p}, s.dimension)[0]),
+      throw SpecError("probes[" + std::to_string(k) + "]", io::describeValue(io::probesJson({p}, s.dimension)[0]),
                       "a point inside the water column: " +
                           std::string(s.dimension == 3 ? "sqrt(x^2 + y^2)" : "|x|") + " <= " + formatNumber(R) + " m, " +
                           (s.dimension == 3 ? "z" : "y") + " in [0, " + formatNumber(s.columnHeight) +

@@ -227,7 +227,7 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
   s.gauge = parsePoint(json, "gauge", s.gauge);
   requireInsideWater(s.gauge, "gauge", R, bottom, H);
   s.probes = io::parseProbes(json, 3);
-  for (std::size_t k = 0; k < s.probes.size(); ++k) requireInsideWater(s.probes[k], "probes." + std::to_string(k), R, bottom, H);
+  for (std::size_t k = 0; k < s.probes.size(); ++k) requireInsideWater(s.probes[k], "probes[" + std::to_string(k) + "]", R, bottom, H);
   return s;
 }
 
