@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/format_number.hpp"
+#include "io/run_estimate.hpp"
 #include "lattice/lattice_geometry.hpp"
 #include "lattice/spring_mapping.hpp"
 
@@ -75,14 +76,14 @@ double pmbBondsPerSite(const SampleSpec& s, const MaterialSpec& m) {
 
 double estimatedMemoryBytes(const SampleSpec& s, const MaterialSpec& m) {
   const double perElement = s.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D;
-  return estimatedElements(s) * (perElement + pmbBondsPerSite(s, m) * kBytesPerPmbBond);
+  return kRunBaseBytes + estimatedElements(s) * (perElement + pmbBondsPerSite(s, m) * kBytesPerPmbBond);
 }
 
 RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& material) {
   RunEstimate e{estimatedElements(sample), estimatedMemoryBytes(sample, material),
                 sample.lattice == "random" ? "sample.element_radius" : "sample.spacing", ""};
   std::ostringstream basis;
-  basis << (sample.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D) << " B per element";
+  basis << "32 MiB and " << (sample.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D) << " B per element";
   if (const double bonds = pmbBondsPerSite(sample, material); bonds > 0)
     basis << " and " << kBytesPerPmbBond << " B per bond, " << std::lround(bonds)
           << " bonds per site at horizon_factor " << material.pmb.horizonFactor;

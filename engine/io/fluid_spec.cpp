@@ -5,12 +5,13 @@
 #include <string>
 
 #include "core/format_number.hpp"
+#include "io/run_estimate.hpp"
 
 namespace rupture::io {
 
 RunEstimate estimateFluidRun(double particles) {
-  return {particles, kFluidBytesPerParticle * particles, "resolution.spacing",
-          formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
+  return {particles, kRunBaseBytes + kFluidBytesPerParticle * particles, "resolution.spacing",
+          "32 MiB and " + formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
 }
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
