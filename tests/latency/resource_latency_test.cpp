@@ -20,11 +20,10 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using test::expectProblem;
 using test::getJson;
+using test::kExecutePath;
 using test::LiveServer;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 /// Polls /health on its own connection until stopped; keeps every answer's latency.
 class HealthProbe {
@@ -97,7 +96,7 @@ TEST(ResourceLatency, AThousandRunJobWithAMegabyteDescriptionIsStoredOnceAndHeal
   const std::uintmax_t before = treeBytes(live.dataDir());
   HealthProbe probe(live.port());
   const auto t0 = Clock::now();
-  auto res = test::postJson(*client, kExecute, body);
+  auto res = test::postJson(*client, kExecutePath, body);
   const double seconds = secondsSince(t0);
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   probe.stop();

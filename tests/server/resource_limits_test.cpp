@@ -16,10 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::expectProblem;
+using test::kExecutePath;
 using test::getJson;
 using test::LiveServer;
-
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 // -- 1. the merged file on a full disk --------------------------------------------------------------
 
@@ -86,7 +85,7 @@ TEST(ResourceLimits, AdmissionRefusesARunWhoseMemoryEstimateExceedsTheLimitNamin
   {
     LiveServer live([](ServerConfig& c) { c.maxRunMemory = 1LL << 30; });
     auto client = live.client();
-    const Json problem = expectProblem(test::postJson(*client, kExecute, Json{{"inputs", wide}}), 400, "sample.spacing");
+    const Json problem = expectProblem(test::postJson(*client, kExecutePath, Json{{"inputs", wide}}), 400, "sample.spacing");
     EXPECT_EQ(problem.value("estimated_memory_bytes", 0LL), std::llround(wideBytes)) << problem.dump();
     EXPECT_EQ(problem.value("max_run_memory_bytes", 0LL), 1LL << 30);
     EXPECT_NE(problem.value("detail", "").find("--max-run-memory"), std::string::npos) << problem.dump();
@@ -101,14 +100,14 @@ TEST(ResourceLimits, AdmissionRefusesARunWhoseMemoryEstimateExceedsTheLimitNamin
       c.minFreeBytes = std::numeric_limits<long long>::max();  // nothing starts: admission only
     });
     auto client = live.client();
-    auto accepted = test::postJson(*client, kExecute, Json{{"inputs", small}});
+    auto accepted = test::postJson(*client, kExecutePath, Json{{"inputs", small}});
     ASSERT_TRUE(accepted);
     EXPECT_EQ(accepted->status, 201) << accepted->body;
   }
   {
     LiveServer live([&](ServerConfig& c) { c.maxRunMemory = static_cast<long long>(smallBytes * 0.99); });
     auto client = live.client();
-    const Json problem = expectProblem(test::postJson(*client, kExecute, Json{{"inputs", small}}), 400, "sample.element_radius");
+    const Json problem = expectProblem(test::postJson(*client, kExecutePath, Json{{"inputs", small}}), 400, "sample.element_radius");
     EXPECT_EQ(problem.value("estimated_memory_bytes", 0LL), std::llround(smallBytes));
   }
 }
@@ -137,15 +136,15 @@ TEST(ResourceLimits, QueuedRunsAreBoundedForTheWholeServer) {
   auto client = live.client();
   Json rates = Json::array({1e5, 2e5, 3e5});
   const Json body = {{"inputs", test::smallInputs()}, {"sweep", {{"loading.strain_rate", rates}}}};
-  auto first = test::postJson(*client, kExecute, body);
+  auto first = test::postJson(*client, kExecutePath, body);
   ASSERT_TRUE(first);
   EXPECT_EQ(first->status, 201);
-  auto second = test::postJson(*client, kExecute, body);  // 3 + 3 > 5: wait for room
+  auto second = test::postJson(*client, kExecutePath, body);  // 3 + 3 > 5: wait for room
   const Json problem = expectProblem(second, 503);
   EXPECT_EQ(second->get_header_value("Retry-After"), "60");
   EXPECT_EQ(problem.value("queued_runs", 0), 3);
   Json six = Json::array({1e5, 2e5, 3e5, 4e5, 5e5, 6e5});
-  expectProblem(test::postJson(*client, kExecute, Json{{"inputs", test::smallInputs()}, {"sweep", {{"loading.strain_rate", six}}}}),
+  expectProblem(test::postJson(*client, kExecutePath, Json{{"inputs", test::smallInputs()}, {"sweep", {{"loading.strain_rate", six}}}}),
                 400, "sweep");  // could never fit
 }
 
@@ -178,7 +177,7 @@ TEST(ResourceLimits, NanAndInfinityLiteralsAre400NamingThePositionAndTheField) {
   for (const std::string literal : {"NaN", "Infinity", "-Infinity"}) {
     const std::string body = "{\"inputs\": {\"loading\": {\"strain_rate\": " + literal + "}}}";
     const std::string response = test::rawExchange(
-        port, "POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: " +
+        port, "POST " + kExecutePath + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: " +
                   std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
     EXPECT_EQ(test::rawStatus(response), 400) << response;
     const Json problem = Json::parse(test::rawBody(response));

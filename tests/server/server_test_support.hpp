@@ -64,6 +64,8 @@ inline bool waitFor(const std::function<bool()>& done, double seconds) {
 
 /// The scenario the end-to-end tests drive.
 inline constexpr const char* kScenario = "dynamic-tension";
+/// Where jobs of kScenario are submitted.
+inline const std::string kExecutePath = std::string("/processes/") + kScenario + "/execution";
 
 inline fs::path exampleFile() { return fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"; }
 
