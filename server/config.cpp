@@ -120,6 +120,10 @@ const std::vector<Option>& options() {
       {"max-queued-runs", "RUPTURE_MAX_QUEUED_RUNS", "N",
        "most runs waiting to start in the whole server; a submission that would pass it gets 503 with Retry-After",
        "10000", intSetter(&ServerConfig::maxQueuedRuns, 1, 10'000'000)},
+      {"max-queued-bytes", "RUPTURE_MAX_QUEUED_BYTES", "BYTES",
+       "most bytes of inputs (descriptions, probes, ...) that unfinished jobs may hold in the whole server; "
+       "a submission that would pass it gets 503 with Retry-After",
+       "1073741824", intSetter(&ServerConfig::maxQueuedBytes, 1, std::numeric_limits<long long>::max())},
       {"max-renders", "RUPTURE_MAX_RENDERS", "N",
        "PNG plots rendered at the same time; as many more wait, further ones get 503 with Retry-After",
        "2", intSetter(&ServerConfig::maxRenders, 1, 64)},

@@ -514,6 +514,12 @@ int JobStore::queueDepth() {
   return q.step() ? static_cast<int>(q.i64(0)) : 0;
 }
 
+long long JobStore::queuedInputBytes() {
+  std::lock_guard lock(m_mutex);
+  Stmt q(m_db, "SELECT COALESCE(SUM(LENGTH(CAST(inputs AS BLOB))), 0) FROM jobs WHERE status IN ('accepted', 'running')");
+  return q.step() ? q.i64(0) : 0;
+}
+
 int JobStore::runningCount() {
   std::lock_guard lock(m_mutex);
   Stmt q(m_db, "SELECT COUNT(*) FROM runs WHERE status = 'running'");

@@ -186,6 +186,8 @@ public:
 
   /// Number of accepted runs in jobs not dismissed.
   int queueDepth();
+  /// Bytes of the stored inputs of the jobs not finished yet (accepted or running).
+  long long queuedInputBytes();
   /// Number of runs recorded as running.
   int runningCount();
 

@@ -520,7 +520,7 @@ public:
     }
     replicated.clear();
     const std::size_t runCount = points.size();
-    requireQueueRoom(runCount);
+    requireQueueRoom(runCount, inputs.dump().size());
     validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements), m_ctx.maxRunMemory);
     const std::optional<RefinePlan> refine =
         parseRefinePlan(member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
@@ -890,9 +890,25 @@ public:
   }
 
 private:
-  /// Queued work is bounded for the whole server (--max-queued-runs): a job that can never fit is
-  /// the client's mistake (400); one that fits once the queue drains is told to come back (503).
-  void requireQueueRoom(std::size_t runs) {
+  /// Queued work is bounded for the whole server, in runs (--max-queued-runs) and in stored bytes
+  /// of inputs (--max-queued-bytes): a job that can never fit is the client's mistake (400); one
+  /// that fits once the queue drains is told to come back (503).
+  void requireQueueRoom(std::size_t runs, std::size_t inputBytes) {
+    const auto byteLimit = static_cast<std::size_t>(m_ctx.config.maxQueuedBytes);
+    if (inputBytes > byteLimit) {
+      throw ApiError(400, problem::kPayloadTooLarge, "Inputs too large",
+                     "the job's inputs take " + std::to_string(inputBytes) + " bytes; this server holds at most " +
+                         std::to_string(byteLimit) + " bytes of inputs of unfinished jobs (--max-queued-bytes)",
+                     "inputs", Json{{"in", "body"}, {"input_bytes", inputBytes}, {"max_queued_bytes", byteLimit}});
+    }
+    const auto queuedBytes = static_cast<std::size_t>(std::max(0LL, m_ctx.store->queuedInputBytes()));
+    if (queuedBytes + inputBytes > byteLimit) {
+      throw ApiError(503, problem::kQueueFull, "Queue full",
+                     "unfinished jobs hold " + std::to_string(queuedBytes) + " bytes of inputs and this server holds at most " +
+                         std::to_string(byteLimit) + " (--max-queued-bytes); this job's " + std::to_string(inputBytes) +
+                         " bytes fit once some jobs have finished: retry later",
+                     "", Json{{"queued_bytes", queuedBytes}, {"max_queued_bytes", byteLimit}, {"retry_after_s", 60}});
+    }
     const auto limit = static_cast<std::size_t>(m_ctx.config.maxQueuedRuns);
     if (runs > limit) {
       throw ApiError(400, problem::kTooManyRuns, "Too many runs",

@@ -148,6 +148,34 @@ TEST(ResourceLimits, QueuedRunsAreBoundedForTheWholeServer) {
                 400, "sweep");  // could never fit
 }
 
+TEST(ResourceLimits, StoredInputsOfUnfinishedJobsAreBoundedForTheWholeServer) {
+  ASSERT_TRUE(test::scenarioAvailable());
+  Json inputs = test::smallInputs();
+  inputs["description"] = std::string(100'000, 'd');
+  const auto bytes = static_cast<long long>(inputs.dump().size());
+  LiveServer live([&](ServerConfig& c) {
+    c.minFreeBytes = std::numeric_limits<long long>::max();  // nothing starts: the jobs stay unfinished
+    c.maxQueuedBytes = bytes * 3 / 2;
+  });
+  auto client = live.client();
+  auto first = test::postJson(*client, kExecutePath, Json{{"inputs", inputs}});
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->status, 201) << first->body;
+  auto second = test::postJson(*client, kExecutePath, Json{{"inputs", inputs}});
+  const Json problem = expectProblem(second, 503);
+  EXPECT_EQ(second->get_header_value("Retry-After"), "60");
+  EXPECT_EQ(problem.value("queued_bytes", 0LL), bytes);
+  inputs["description"] = std::string(200'000, 'd');  // larger than the bound itself
+  expectProblem(test::postJson(*client, kExecutePath, Json{{"inputs", inputs}}), 400, "inputs");
+  // A dismissed job no longer counts: its inputs leave the bound.
+  const std::string job = "/jobs/" + Json::parse(first->body)["jobID"].get<std::string>();
+  ASSERT_EQ(client->Delete(job.c_str())->status, 200);
+  inputs["description"] = std::string(100'000, 'd');
+  auto third = test::postJson(*client, kExecutePath, Json{{"inputs", inputs}});
+  ASSERT_TRUE(third);
+  EXPECT_EQ(third->status, 201) << third->body;
+}
+
 // -- 4. the small deviations -------------------------------------------------------------------------
 
 std::string rawRequest(const std::string& head) { return head + "\r\n"; }
