@@ -520,8 +520,8 @@ public:
     }
     replicated.clear();
     const std::size_t runCount = points.size();
-    requireQueueRoom(runCount, inputs.dump().size());
     validateSweepPoints(points, plan, static_cast<double>(m_ctx.config.maxElements), m_ctx.maxRunMemory);
+    requireQueueRoom(runCount, inputs.dump().size());
     const std::optional<RefinePlan> refine =
         parseRefinePlan(member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
 
@@ -894,35 +894,31 @@ private:
   /// of inputs (--max-queued-bytes): a job that can never fit is the client's mistake (400); one
   /// that fits once the queue drains is told to come back (503).
   void requireQueueRoom(std::size_t runs, std::size_t inputBytes) {
-    const auto byteLimit = static_cast<std::size_t>(m_ctx.config.maxQueuedBytes);
-    if (inputBytes > byteLimit) {
-      throw ApiError(400, problem::kPayloadTooLarge, "Inputs too large",
-                     "the job's inputs take " + std::to_string(inputBytes) + " bytes; this server holds at most " +
-                         std::to_string(byteLimit) + " bytes of inputs of unfinished jobs (--max-queued-bytes)",
-                     "inputs", Json{{"in", "body"}, {"input_bytes", inputBytes}, {"max_queued_bytes", byteLimit}});
-    }
-    const auto queuedBytes = static_cast<std::size_t>(std::max(0LL, m_ctx.store->queuedInputBytes()));
-    if (queuedBytes + inputBytes > byteLimit) {
-      throw ApiError(503, problem::kQueueFull, "Queue full",
-                     "unfinished jobs hold " + std::to_string(queuedBytes) + " bytes of inputs and this server holds at most " +
-                         std::to_string(byteLimit) + " (--max-queued-bytes); this job's " + std::to_string(inputBytes) +
-                         " bytes fit once some jobs have finished: retry later",
-                     "", Json{{"queued_bytes", queuedBytes}, {"max_queued_bytes", byteLimit}, {"retry_after_s", 60}});
-    }
-    const auto limit = static_cast<std::size_t>(m_ctx.config.maxQueuedRuns);
-    if (runs > limit) {
-      throw ApiError(400, problem::kTooManyRuns, "Too many runs",
-                     "the job has " + std::to_string(runs) + " runs; this server queues at most " +
-                         std::to_string(limit) + " runs in all (--max-queued-runs)",
-                     "sweep", Json{{"in", "body"}, {"runs", runs}, {"max_queued_runs", limit}});
-    }
-    const auto queued = static_cast<std::size_t>(std::max(0, m_ctx.store->queueDepth()));
-    if (queued + runs > limit) {
-      throw ApiError(503, problem::kQueueFull, "Queue full",
-                     "the server has " + std::to_string(queued) + " runs waiting and queues at most " +
-                         std::to_string(limit) + " (--max-queued-runs); this job's " + std::to_string(runs) +
-                         " runs fit once some have started: retry later",
-                     "", Json{{"queued_runs", queued}, {"max_queued_runs", limit}, {"retry_after_s", 60}});
+    struct Bound {
+      std::size_t amount, queued, limit;
+      const char *what, *flag, *key, *field, *title;
+    };
+    const Bound bounds[] = {
+        {inputBytes, static_cast<std::size_t>(std::max(0LL, m_ctx.store->queuedInputBytes())),
+         static_cast<std::size_t>(m_ctx.config.maxQueuedBytes), "bytes of inputs", "--max-queued-bytes", "bytes", "inputs",
+         "Inputs too large"},
+        {runs, static_cast<std::size_t>(std::max(0, m_ctx.store->queueDepth())),
+         static_cast<std::size_t>(m_ctx.config.maxQueuedRuns), "runs", "--max-queued-runs", "runs", "sweep", "Too many runs"}};
+    for (const Bound& b : bounds) {
+      const std::string key = b.key, flag = b.flag;
+      if (b.amount > b.limit) {
+        throw ApiError(400, b.key == std::string("runs") ? problem::kTooManyRuns : problem::kPayloadTooLarge, b.title,
+                       "the job has " + std::to_string(b.amount) + " " + b.what + "; unfinished jobs may hold at most " +
+                           std::to_string(b.limit) + " in this server (" + flag + ")",
+                       b.field, Json{{"in", "body"}, {"job_" + key, b.amount}, {"max_queued_" + key, b.limit}});
+      }
+      if (b.queued + b.amount > b.limit) {
+        throw ApiError(503, problem::kQueueFull, "Queue full",
+                       "unfinished jobs hold " + std::to_string(b.queued) + " " + b.what + " and this server allows " +
+                           std::to_string(b.limit) + " (" + flag + "); this job's " + std::to_string(b.amount) +
+                           " fit once some have finished: retry later",
+                       "", Json{{"queued_" + key, b.queued}, {"max_queued_" + key, b.limit}, {"retry_after_s", 60}});
+      }
     }
   }
 

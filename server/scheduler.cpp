@@ -151,9 +151,8 @@ void Scheduler::shutdown() {
 
 bool Scheduler::diskHasRoom() const {
   if (m_minFreeBytes == 0) return true;
-  std::error_code ec;
-  const fs::space_info space = fs::space(m_dataDir, ec);
-  return ec || space.available >= m_minFreeBytes;  // an unknown free space does not stop the queue
+  const std::optional<std::uintmax_t> available = availableBytes(m_dataDir);
+  return !available || *available >= m_minFreeBytes;  // an unknown free space does not stop the queue
 }
 
 int Scheduler::unrecordedOutcomes() const {

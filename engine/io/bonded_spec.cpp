@@ -83,7 +83,7 @@ RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& mate
   RunEstimate e{estimatedElements(sample), estimatedMemoryBytes(sample, material),
                 sample.lattice == "random" ? "sample.element_radius" : "sample.spacing", ""};
   std::ostringstream basis;
-  basis << "32 MiB and " << (sample.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D) << " B per element";
+  basis << formatNumber(kRunBaseBytes / 1048576.0) << " MiB and " << (sample.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D) << " B per element";
   if (const double bonds = pmbBondsPerSite(sample, material); bonds > 0)
     basis << " and " << kBytesPerPmbBond << " B per bond, " << std::lround(bonds)
           << " bonds per site at horizon_factor " << material.pmb.horizonFactor;

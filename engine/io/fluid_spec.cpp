@@ -11,7 +11,7 @@ namespace rupture::io {
 
 RunEstimate estimateFluidRun(double particles) {
   return {particles, kRunBaseBytes + kFluidBytesPerParticle * particles, "resolution.spacing",
-          "32 MiB and " + formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
+          formatNumber(kRunBaseBytes / 1048576.0) + " MiB and " + formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
 }
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {

@@ -55,7 +55,7 @@ public:
     if (e.id == 406)  // number overflow: say which field, not just which bytes
       throw JsonLimitError(JsonLimitError::Kind::NumberOutOfRange, position, path(), token.substr(0, 40),
                            "a number within the range of a double (magnitude below 1.8e308)");
-    if (e.id == 101) notFiniteLiteral(position, token);
+    if (e.id == 101) notFiniteLiteral(position);
     // nlohmann's own DOM parser rethrows `e` by its static type (the base class); keep the real one
     // so callers can catch json::parse_error.
     if (const auto* parse = dynamic_cast<const nlohmann::json::parse_error*>(&e)) throw *parse;
@@ -72,7 +72,7 @@ private:
 
   /// NaN, Infinity and -Infinity (as JavaScript and Python's json module write them) are not JSON:
   /// say so, with the field and the position, instead of a bare syntax error.
-  void notFiniteLiteral(std::size_t position, const std::string&) const {
+  void notFiniteLiteral(std::size_t position) const {
     // `position` is just past the character that failed: walk back over the word and its sign.
     std::size_t start = std::min(position, m_text.size());
     while (start > 0 && std::isalpha(static_cast<unsigned char>(m_text[start - 1]))) --start;

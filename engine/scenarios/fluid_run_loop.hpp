@@ -96,8 +96,9 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
   return runFluidLoop(s, run, control, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
 }
 
-/// The set-up of an SPH run (particles, walls, bodies, the first lists and rates) with the system
-/// polling control.cancel: returns the set-up's value, or nullopt when it was cancelled, after
+/// The set-up of an SPH run with the system polling control.cancel: `setup()` places particles,
+/// walls and bodies (and whatever else the scenario builds), then the first lists and rates are
+/// built (SphSystem::initialise). Returns the set-up's value, or nullopt when it was cancelled, after
 /// writing a file that holds the spec and a summary saying so (marked incomplete) and setting
 /// `cancelled` to the outcome to return.
 template <class Setup>
@@ -107,7 +108,9 @@ auto setUpFluidRun(sph::SphSystem& s, RunControl& control, const std::string& re
     -> std::optional<decltype(setup())> {
   s.cancel = &control.cancel;
   try {
-    return setup();
+    auto built = setup();
+    s.initialise();
+    return built;
   } catch (const RunCancelled&) {
     io::ResultFile result(resultPath, scenario);
     result.writeSpec(resolvedSpec, inputSpec);

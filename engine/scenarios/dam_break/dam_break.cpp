@@ -34,12 +34,8 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
   const int dim = spec.dimension;
   sph::SphSystem s;
   RunOutcome cancelled;
-  const std::optional<DamBreakLattice> built =
-      setUpFluidRun(s, control, resultPath, "dam-break", toJson(spec), json, wallStart, cancelled, [&] {
-        DamBreakLattice lattice = buildDamBreak(s, spec);
-        s.initialise();
-        return lattice;
-      });
+  const std::optional<DamBreakLattice> built = setUpFluidRun(
+      s, control, resultPath, "dam-break", toJson(spec), json, wallStart, cancelled, [&] { return buildDamBreak(s, spec); });
   if (!built) return cancelled;
   const DamBreakLattice& g = *built;
   const std::size_t fluidCount = static_cast<std::size_t>(

@@ -37,12 +37,8 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
 
   sph::SphSystem s;
   RunOutcome cancelled;
-  const std::optional<ColumnLattice> built =
-      setUpFluidRun(s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] {
-        ColumnLattice lattice = buildPistonColumn(s, spec);
-        s.initialise();
-        return lattice;
-      });
+  const std::optional<ColumnLattice> built = setUpFluidRun(
+      s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] { return buildPistonColumn(s, spec); });
   if (!built) return cancelled;
   const ColumnLattice& g = *built;
   const std::size_t fluidCount = static_cast<std::size_t>(

@@ -109,10 +109,8 @@ RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPa
   const std::optional<TankLattice> built =
       setUpFluidRun(s, control, resultPath, "tank-impact", toJson(spec), json, wallStart, cancelled, [&] {
         TankLattice tank = buildTankLattice(s, lattice);
-        s.initialise();
         s.cancel.throwIfRequested();
         plateBuilt.emplace(buildPlate(spec.plate, geometry));
-        s.cancel.throwIfRequested();
         return tank;
       });
   if (!built) return cancelled;
