@@ -43,6 +43,10 @@ struct FakeExecutor {
       struct Leave { std::atomic<int>& c; ~Leave() { --c; } } leave{concurrent};
       const std::string behaviour = spec["behaviour"];
       if (behaviour == "throw" && spec["k"] == 1) throw std::runtime_error("run 1 exploded");
+      if (behaviour == "oom" && spec["k"] == 1) {
+        if (control.log) control.log("building the sample");
+        throw std::bad_alloc();
+      }
       if (behaviour == "incomplete") return rupture::RunOutcome{nlohmann::json::object(), false};
       if (behaviour == "slow") {
         for (int i = 0; i < 1000 && !control.cancel; ++i) {
@@ -79,6 +83,23 @@ TEST(Scheduler, RunsInOrderAndWritesOneFilePerRun) {
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "jobs" / std::to_string(id) / ("run-" + std::to_string(k) + ".partial.h5")));
   }
   EXPECT_EQ(store.run({id, 3})->summary["peak_stress"], 4e6);
+}
+
+TEST(Scheduler, ARunOutOfMemoryFailsNamingItsStageNotABareBadAlloc) {
+  test::TempDir dir;
+  JobStore store((dir.path() / "db.sqlite").string());
+  FakeExecutor fake;
+  Scheduler scheduler(store, dir.path(), 2, 3, fake.executor());
+  scheduler.start();
+  const auto id = store.createJob(jobOf(3, "oom"));
+  scheduler.enqueue(id, 3);
+  ASSERT_TRUE(test::waitFor([&] { return jobDone(store, id); }, 10));
+  EXPECT_EQ(store.run({id, 1})->status, Status::Failed);
+  const std::string error = store.run({id, 1})->error;
+  EXPECT_EQ(error.rfind("out of memory after the stage 'building the sample'", 0), 0u) << error;
+  EXPECT_EQ(error.find("bad_alloc"), std::string::npos) << error;
+  EXPECT_EQ(store.run({id, 0})->status, Status::Successful);
+  EXPECT_EQ(store.run({id, 2})->status, Status::Successful);
 }
 
 TEST(Scheduler, AThrowingRunFailsOnlyItself) {
