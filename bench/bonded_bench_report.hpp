@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 namespace rupture::bench {
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "bonded_bench_report.hpp"
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 namespace rupture::bench {
 

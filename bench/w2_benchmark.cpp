@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "bonded_bench_report.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture::bench {
 

@@ -8,9 +8,10 @@
 
 #include "cli/cli.hpp"
 #include "cli/spec_file.hpp"
-#include "dem/bond_model.hpp"
-#include "dem/calibration.hpp"
-#include "dem/strength_test.hpp"
+#include "bonded/materials/registry.hpp"
+#include "samples/material_assignment.hpp"
+#include "calibration/calibration.hpp"
+#include "calibration/strength_test.hpp"
 #include "io/bonded_spec.hpp"
 
 namespace rupture::cli {
@@ -69,8 +70,10 @@ int calibrateCommand(const Args& args) {
                    {"bonds", report.bonds},
                    {"mean_coordination", report.meanCoordination},
                    {"porosity", report.porosity}};
-  if (material.model != "beam" && (haveYoung || haveStrength))
-    return usageError("calibrate: material.model = \"" + material.model + "\"; allowed: \"beam\" (the calibration fits beams)");
+  const bool calibratable = materialStyle(material.model).calibratable();
+  if (!calibratable && (haveYoung || haveStrength))
+    return usageError("calibrate: material.model = \"" + material.model + "\"; allowed: " +
+                      quotedStyleNames(&MaterialStyle::calibratable) + " (the calibration fits beams)");
   try {
     if (haveYoung) {
       const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson);
@@ -101,7 +104,7 @@ int calibrateCommand(const Args& args) {
       out["target"]["tensile_strength"] = targetStrength;
       out["strength_evaluations"] = fit.evaluations;
     }
-    if (!haveYoung && !haveStrength && material.model != "beam") {
+    if (!haveYoung && !haveStrength && !calibratable) {
       // Lattice and peridynamic laws: elastic properties only (their strength has its own criteria).
       const ElasticProperties measured = measureElasticProperties(sample, sampleSpec);
       out["young_modulus"] = measured.youngModulus;

@@ -3,7 +3,7 @@
 //   static constexpr bool kRotational;   // reads the end orientations and produces torques
 //   BondResponse response(const BondGeometry&) const;   // pure, inline, branch-free
 //   BondStiffness stiffness(const BondGeometry&) const; // for the Gershgorin time step
-// plus its parameters, validated once by the model factory (models/bond_model.cpp). The loop over
+// plus its parameters, validated once by the model factory (bonded/materials/). The loop over
 // bonds, the gather, the failure hand-over to contact, the damage index and the recorder are
 // written once, for every law; a failure criterion (engine/damage/) reads the response.
 namespace rupture {

@@ -3,7 +3,7 @@
 // (engine/damage/): evaluate every bond (one vectorised pass over the bond arrays, per-bond loads
 // stored), then gather the loads onto particles through the incidence lists (one pass over
 // particles). No atomics; the result does not depend on the thread count. The law and criterion
-// are template parameters: the caller dispatches once per loop (dem/bond_model.hpp), never per bond.
+// are template parameters: the caller dispatches once per loop (bonded/bond_model.hpp), never per bond.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -13,7 +13,7 @@
 #include "core/bond_store.hpp"
 #include "core/parallel.hpp"
 #include "core/particle_store.hpp"
-#include "damage/local_damping.hpp"
+#include "core/local_damping.hpp"
 
 namespace rupture {
 
@@ -35,7 +35,7 @@ template <class Law>
 /// Evaluates every bond, breaks (irreversibly) those whose failure measure reaches their threshold,
 /// and stores the loads of the intact ones. `nodalMinStretch` (per particle, read only by criteria
 /// with a nodal shift) is the smallest bond stretch of each node at the previous evaluation.
-/// With kDamped, each intact bond also carries Silling's local damping (damage/local_damping.hpp).
+/// With kDamped, each intact bond also carries Silling's local damping (core/local_damping.hpp).
 /// Returns the number of bonds that broke in this call.
 /// With kPlanar (2D systems whose motion stays in the x-y plane, BondedSystem::planarMotion), the
 /// law's planarResponse is used: z, n0_z and the in-plane quaternion parts are not read, and only

@@ -16,7 +16,7 @@ struct BondStore {
   std::vector<double> n0x, n0y, n0z;   ///< reference direction i -> j
   std::vector<double> intact;          ///< 1 intact, 0 broken (a factor, so the kernel has no branch)
 
-  // Set once from the material (dem/bond_model.cpp) and the microstructure; carried by remap.
+  // Set once from the material (samples/material_assignment.cpp) and the microstructure; carried by remap.
   std::vector<double> stiffness;       ///< normal stiffness of laws with a per-bond k (N/m); 0 otherwise
   std::vector<double> threshold;       ///< failure threshold, in the criterion's unit (+inf: unbreakable)
   std::vector<double> strength;        ///< factor on the threshold (1; +inf: never breaks), e.g. regions
@@ -34,7 +34,7 @@ struct BondStore {
   // Particle -> bond incidence (CSR), built once after the bonds: entries are 2·b + end (0: i, 1: j).
   std::vector<std::int32_t> incidenceStart, incidence;
 
-  /// A pair whose bond a pre-crack removed (dem/notches.hpp), with the bond's rest length: contact
+  /// A pair whose bond a pre-crack removed (samples/notches.hpp), with the bond's rest length: contact
   /// touches it at min(R_i + R_j, L0), as a broken bond, so pairs packed overlapping across a notch
   /// are not pushed apart at the first step. Carried by remap.
   struct CutPair {

@@ -41,7 +41,7 @@ struct ParticleStore {
   std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
 
   /// Renumbers the particles: new particle k is old particle order[k] (a permutation of 0..size-1).
-  /// Only while a sample is built (dem/spatial_order.hpp). Returns old index -> new index.
+  /// Only while a sample is built (samples/spatial_order.hpp). Returns old index -> new index.
   std::vector<std::int32_t> permute(const std::vector<std::size_t>& order);
 
   /// Sets mass and inertia from a material density (kg/m³) and each particle's volume

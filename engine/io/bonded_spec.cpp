@@ -10,14 +10,14 @@
 #include "core/format_number.hpp"
 #include "io/run_estimate.hpp"
 #include "lattice/lattice_geometry.hpp"
-#include "lattice/spring_mapping.hpp"
+#include "bonded/materials/registry.hpp"
 
 namespace rupture::io {
 
 namespace {
 // Guard against specs that would build an absurd number of elements (and exhaust memory).
 constexpr double kMaxElements = 5e6;
-// Pores are placed one by one (random sequential addition, engine/dem/sample_builder.cpp): bound
+// Pores are placed one by one (random sequential addition, engine/samples/sample_builder.cpp): bound
 // their number so placement and carving stay seconds, and the porosity below the jamming limit of
 // random sequential addition (0.547 for equal disks, 0.382 for equal spheres) with a margin for
 // the finite box, where pore centres stay one radius away from the walls.
@@ -62,21 +62,17 @@ constexpr double kBytesPerElement2D = 1.0e3, kBytesPerElement3D = 1.5e3;
 // 1,151 MB, i.e. 187 B per added bond; rounded up.
 constexpr double kBytesPerPmbBond = 190;
 
-/// Bonds per site of a PMB lattice, an upper bound: half the sites whose cell can overlap the
-/// horizon ball (centres within δ + half a cell diagonal, δ = m l), ignoring the sample's faces.
-/// On the sample above: 121 and 679 per site against 84 and 451 measured (the faces lose bonds).
-double pmbBondsPerSite(const SampleSpec& s, const MaterialSpec& m) {
-  if (m.model != "pmb") return 0;
-  const LatticeKind kind = latticeKind(s.lattice);
-  const double site = kind == LatticeKind::Random ? 1.0 : siteMeasure(kind);
-  const double reach = m.pmb.horizonFactor + 0.5 * std::sqrt(static_cast<double>(s.dimension));
-  return 0.5 * ballVolume(s.dimension, reach) / site;
+/// Bonds per site beyond the nearest neighbours (PMB horizons), as the material style counts them.
+/// PMB's upper bound on the sample above: 121 and 679 per site against 84 and 451 measured (the
+/// faces lose bonds).
+LongRangeBonds longRangeBonds(const SampleSpec& s, const MaterialSpec& m) {
+  return materialStyle(m.model).longRangeBonds(s, m);
 }
 }  // namespace
 
 double estimatedMemoryBytes(const SampleSpec& s, const MaterialSpec& m) {
   const double perElement = s.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D;
-  return kRunBaseBytes + estimatedElements(s) * (perElement + pmbBondsPerSite(s, m) * kBytesPerPmbBond);
+  return kRunBaseBytes + estimatedElements(s) * (perElement + longRangeBonds(s, m).perSite * kBytesPerPmbBond);
 }
 
 RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& material) {
@@ -84,9 +80,9 @@ RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& mate
                 sample.lattice == "random" ? "sample.element_radius" : "sample.spacing", ""};
   std::ostringstream basis;
   basis << formatNumber(kRunBaseBytes / 1048576.0) << " MiB and " << (sample.dimension == 2 ? kBytesPerElement2D : kBytesPerElement3D) << " B per element";
-  if (const double bonds = pmbBondsPerSite(sample, material); bonds > 0)
-    basis << " and " << kBytesPerPmbBond << " B per bond, " << std::lround(bonds)
-          << " bonds per site at horizon_factor " << material.pmb.horizonFactor;
+  if (const LongRangeBonds bonds = longRangeBonds(sample, material); bonds.perSite > 0)
+    basis << " and " << kBytesPerPmbBond << " B per bond, " << std::lround(bonds.perSite) << " bonds per site "
+          << bonds.basis;
   e.basis = basis.str();
   return e;
 }
@@ -242,58 +238,6 @@ void requireLattice(const SpecReader& material, LatticeKind lattice, const std::
                   "\"" + model + "\" on " + names + " (this sample is \"" + toString(lattice) + "\")");
 }
 
-LatticeSpringSpec parseLatticeSprings(const SpecReader& block, LatticeKind lattice, bool born) {
-  LatticeSpringSpec m;
-  m.youngModulus = block.number("young_modulus", Range::positive(), "Pa");
-  const PoissonRange range = poissonRange(lattice, born);
-  std::ostringstream allowed;
-  if (range.fixed) {
-    allowed << "exactly " << range.max << " (Hookean springs on the " << toString(lattice)
-            << " lattice fix ν; use \"born\" for another value)";
-    m.poissonRatio = block.number("poisson_ratio", Range{-1e308, 1e308}, "1", range.max);
-    if (std::fabs(m.poissonRatio - range.max) > 1e-3) block.fail("poisson_ratio", allowed.str());
-  } else {
-    allowed << "(" << range.min << ", " << range.max << "] (Born springs on the " << toString(lattice)
-            << " lattice; k_s >= 0)";
-    m.poissonRatio = block.number("poisson_ratio", Range{-1e308, 1e308}, "1");
-    if (!(m.poissonRatio > range.min && m.poissonRatio <= range.max)) block.fail("poisson_ratio", allowed.str());
-  }
-  m.criterion = block.choice("criterion", {"critical_stretch", "critical_energy", "stress", "griffith"},
-                             "critical_stretch");
-  const std::string key = m.criterion == "critical_stretch" ? "critical_stretch"
-                          : m.criterion == "critical_energy" ? "critical_energy"
-                          : m.criterion == "stress"          ? "failure_stress"
-                                                             : "fracture_energy";
-  const std::string unit = m.criterion == "critical_stretch" ? "1"
-                           : m.criterion == "critical_energy" ? "J"
-                           : m.criterion == "stress"          ? "Pa"
-                                                              : "J/m^2";
-  // Absent: unbreakable springs (elastic runs).
-  m.criticalValue = block.number(key, Range::positive(), unit, std::numeric_limits<double>::infinity());
-  block.finish();
-  return m;
-}
-
-PmbSpec parsePmb(const SpecReader& block) {
-  PmbSpec m;
-  m.youngModulus = block.number("young_modulus", Range::positive(), "Pa");
-  m.horizonFactor = block.number("horizon_factor", Range::closed(1.0, 6.0), "1", m.horizonFactor);
-  m.criterion = block.choice("criterion", {"critical_stretch", "critical_energy"}, "critical_stretch");
-  const bool hasStretch = block.has("critical_stretch"), hasEnergy = block.has("fracture_energy");
-  if (hasStretch && hasEnergy)
-    block.fail("fracture_energy", "absent when critical_stretch is given (give one of the two)");
-  if (hasStretch) m.criticalStretch = block.number("critical_stretch", Range::positive(), "1");
-  if (hasEnergy) m.fractureEnergy = block.number("fracture_energy", Range::positive(), "J/m^2");
-  if (m.criterion == "critical_energy" && hasStretch)
-    block.fail("critical_stretch", "absent with criterion \"critical_energy\" (give fracture_energy, J/m^2)");
-  m.compressionFactor = block.number("compression_factor", Range::closed(0.0, 10.0), "1", 0.0);
-  if (m.compressionFactor > 0 && m.criterion != "critical_stretch")
-    block.fail("compression_factor", "0 unless criterion is \"critical_stretch\"");
-  m.partialVolume = block.choice("partial_volume", {"exact", "linear"}, "exact");
-  block.finish();
-  return m;
-}
-
 Box parseBox(const SpecReader& box, int dimension) {
   const std::size_t d = static_cast<std::size_t>(dimension);
   Box b;
@@ -314,45 +258,13 @@ MaterialSpec parseMaterial(const SpecReader& root) {
   MaterialSpec m;
   const SpecReader material = root.object("material");
   const LatticeKind lattice = rawLattice(root);
-  m.model = material.choice("model", {"beam", "hookean", "born", "pmb"});
+  m.model = material.choice("model", materialStyleNames());
   m.density = material.number("density", Range::positive(), "kg/m^3");
-  double contactModulus = 0, contactPoisson = 0.25;
-  if (m.model == "beam") {
-    const SpecReader beam = material.object("beam");
-    m.beam.youngModulus = beam.number("young_modulus", Range::positive(), "Pa");
-    m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
-    m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
-    m.beam.failureStress = beam.number("failure_stress", Range::positive(), "Pa");
-    m.beam.bendingFromRelativeRotation =
-        beam.choice("bending_stress", {"end_moment", "relative_rotation"}, "end_moment") == "relative_rotation";
-    beam.finish();
-    contactModulus = beamContactModulus(m.beam);
-    contactPoisson = m.beam.poissonRatio;
-    m.contactModulusFromBeams = m.contactPoissonFromBeams = true;
-    // Beam stiffness comes from one set of beam parameters, not from a per-bond constant.
-    const auto& raw = root.node();
-    if (raw.contains("sample") && raw["sample"].is_object() && raw["sample"].contains("inclusions") &&
-        raw["sample"]["inclusions"].is_object() && raw["sample"]["inclusions"].contains("stiffness_factor") &&
-        raw["sample"]["inclusions"]["stiffness_factor"] != 1)
-      throw SpecError("sample.inclusions.stiffness_factor", describeValue(raw["sample"]["inclusions"]["stiffness_factor"]),
-                      "1 with material.model \"beam\" (beams take one set of parameters; use hookean, born or pmb "
-                      "for stiffer or softer inclusions)");
-  } else if (m.model == "hookean" || m.model == "born") {
-    requireLattice(material, lattice,
-                   {LatticeKind::Triangular, LatticeKind::Square, LatticeKind::SimpleCubic, LatticeKind::Fcc}, m.model);
-    m.springs = parseLatticeSprings(material.object(m.model), lattice, m.model == "born");
-    contactModulus = m.springs.youngModulus;
-    contactPoisson = std::clamp(m.springs.poissonRatio, -0.99, 0.5);
-  } else {
-    requireLattice(material, lattice, {LatticeKind::Square, LatticeKind::SimpleCubic}, m.model);
-    m.pmb = parsePmb(material.object("pmb"));
-    if (m.pmb.criterion == "critical_energy" && std::isnan(m.pmb.fractureEnergy))
-      material.object("pmb").fail("fracture_energy", "a positive number (J/m^2), required by criterion \"critical_energy\"");
-    contactModulus = m.pmb.youngModulus;
-    contactPoisson = rawDimension(root) == 3 ? 0.25 : 1.0 / 3.0;
-  }
-  m.contact.youngModulus = contactModulus;
-  m.contact.poissonRatio = contactPoisson;
+  const MaterialStyle& style = materialStyle(m.model);
+  if (const std::vector<LatticeKind> allowed = style.lattices(); !allowed.empty())
+    requireLattice(material, lattice, allowed, m.model);
+  style.parse(material, MaterialContext{lattice, rawDimension(root), root.node()}, m);
+  const double contactModulus = m.contact.youngModulus;
   m.localDamping = material.number("local_damping", Range::closed(0.0, 10.0), "1", 0.0);
   m.dampingWaveSpeed = std::sqrt(contactModulus / m.density);  // the model's E (beams: E_μ r², as contact)
   if (auto contact = material.optionalObject("contact")) {
@@ -366,8 +278,7 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     contact->finish();
   }
   if (auto interblock = material.optionalObject("interblock")) {
-    const std::string criterion = m.model == "pmb" ? m.pmb.criterion : m.model == "beam" ? "rankine" : m.springs.criterion;
-    if (criterion != "critical_stretch")
+    if (style.criterion(m) != "critical_stretch")
       material.fail("interblock", "absent unless the criterion is \"critical_stretch\" (interblock values are critical stretches)");
     for (const auto& [key, value] : interblock->node().items()) {
       const auto sep = key.find('_');
@@ -441,32 +352,7 @@ nlohmann::json toJson(const SampleSpec& s) {
 
 nlohmann::json toJson(const MaterialSpec& m) {
   nlohmann::json j = {{"model", m.model}, {"density", m.density}};
-  if (m.model == "beam") {
-    j["beam"] = {{"young_modulus", m.beam.youngModulus},
-                 {"poisson_ratio", m.beam.poissonRatio},
-                 {"radius_ratio", m.beam.radiusRatio},
-                 {"failure_stress", m.beam.failureStress},
-                 {"bending_stress", m.beam.bendingFromRelativeRotation ? "relative_rotation" : "end_moment"}};
-  } else if (m.model == "hookean" || m.model == "born") {
-    const LatticeSpringSpec& sp = m.springs;
-    nlohmann::json b = {{"young_modulus", sp.youngModulus}, {"poisson_ratio", sp.poissonRatio}, {"criterion", sp.criterion}};
-    const std::string key = sp.criterion == "critical_stretch" ? "critical_stretch"
-                            : sp.criterion == "critical_energy" ? "critical_energy"
-                            : sp.criterion == "stress"          ? "failure_stress"
-                                                                : "fracture_energy";
-    if (std::isfinite(sp.criticalValue)) b[key] = sp.criticalValue;
-    j[m.model] = b;
-  } else {
-    const PmbSpec& p = m.pmb;
-    nlohmann::json b = {{"young_modulus", p.youngModulus},
-                        {"horizon_factor", p.horizonFactor},
-                        {"criterion", p.criterion},
-                        {"compression_factor", p.compressionFactor},
-                        {"partial_volume", p.partialVolume}};
-    if (!std::isnan(p.criticalStretch)) b["critical_stretch"] = p.criticalStretch;
-    if (!std::isnan(p.fractureEnergy)) b["fracture_energy"] = p.fractureEnergy;
-    j["pmb"] = b;
-  }
+  j[m.model] = materialStyle(m.model).toJson(m);
   j["contact"] = {{"enabled", m.contact.enabled},
                   {"young_modulus", m.contact.youngModulus},
                   {"poisson_ratio", m.contact.poissonRatio},

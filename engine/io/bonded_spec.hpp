@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/sample_spec.hpp"
+#include "bonded/sample_spec.hpp"
 #include "io/spec_reader.hpp"
 #include "rupture/run.hpp"
 

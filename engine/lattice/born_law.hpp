@@ -4,7 +4,7 @@
 //
 // Rotational invariance (the reference's caveat): d_s is measured against the nodes' own rotations,
 // not against the fixed reference direction. Each node carries an orientation q; the bending
-// rotation φ_k takes the chord n onto the end tangent a_k = R(q_k) n0 (as for beams, dem/beam_bond.hpp),
+// rotation φ_k takes the chord n onto the end tangent a_k = R(q_k) n0 (as for beams, core/corotation.hpp),
 // and the shear displacement is d_s = (L0/2)(φ_i + φ_j) × n. A rigid rotation moves chord and
 // tangents together (d_s = 0); under a homogeneous strain the node rotations stay zero on the
 // centro-symmetric lattices (the torques cancel), so d_s is the classical perpendicular relative
@@ -15,7 +15,7 @@
 #include <cmath>
 
 #include "core/bond_law.hpp"
-#include "dem/beam_bond.hpp"
+#include "core/corotation.hpp"
 
 namespace rupture {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Bond-based peridynamics, prototype microelastic brittle model (Silling & Askari 2005; LAMMPS
 // peri/pmb; physics-reference §3). Each pair of sites closer than the horizon δ is a central
-// spring (lattice/central_spring_law.hpp) of stiffness k_b = c β V_i V_j / |ξ|, so that
+// spring (core/central_spring_law.hpp) of stiffness k_b = c β V_i V_j / |ξ|, so that
 //   F_j = −c s β V_i V_j n,   U_b = ½ c s² |ξ| β V_i V_j,   s = (|y| − |ξ|)/|ξ|
 // which is the PD pairwise force density f = c s integrated over the two volumes, and Σ U_b the PD
 // strain energy ∫ ½ ∫ ½ c s² |ξ| dV' dV. Micromodulus (energy equivalence under isotropic expansion):
@@ -18,7 +18,7 @@
 // physics-reference §3.4), compared with U_b / (β V_i V_j).
 #include "core/bond_store.hpp"
 #include "core/particle_store.hpp"
-#include "dem/sample_spec.hpp"
+#include "peridynamics/pmb_spec.hpp"
 
 namespace rupture {
 

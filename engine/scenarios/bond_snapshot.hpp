@@ -3,7 +3,7 @@
 // bonds as line cells): the pairs once under /sample, their state in every snapshot.
 #include <string>
 
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 #include "io/hdf5_file.hpp"
 
 namespace rupture {

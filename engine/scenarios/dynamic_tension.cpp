@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/dynamic_tension_spec.hpp"
@@ -49,7 +49,7 @@ PreliminaryPlan planPreliminary(const DynamicTensionSpec& spec, const BondedSyst
   p.timeStep = timeStep;
   p.maxStrain = spec.run.maxStrain;
   p.maxSteps = spec.run.maxSteps;
-  plan.key = {{"format", 2},  // 2: the field of a sample in spatial order (dem/spatial_order.hpp)
+  plan.key = {{"format", 2},  // 2: the field of a sample in spatial order (samples/spatial_order.hpp)
               {"engine", RUPTURE_VERSION},
               {"dimension", spec.sample.dimension},
               {"sample", io::toJson(spec.sample)},

@@ -8,8 +8,9 @@
 #include <sstream>
 #include <system_error>
 
-#include "dem/bond_model.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/material_assignment.hpp"
+#include "samples/sample_builder.hpp"
+#include "bonded/materials/registry.hpp"
 #include "io/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
@@ -43,9 +44,10 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
   s.material = io::parseMaterial(root);
   if (const auto target = root.optionalObject("target")) {
     // The fit varies the beams; lattice springs and PMB are mapped from E and ν directly.
-    if (s.material.model != "beam")
-      throw SpecError("target", "(present)", "absent unless material.model is \"beam\" (the " + s.material.model +
-                                                  " model takes its E and nu in material." + s.material.model + ")");
+    if (!materialStyle(s.material.model).calibratable())
+      throw SpecError("target", "(present)",
+                      "absent unless material.model is " + quotedStyleNames(&MaterialStyle::calibratable) + " (the " +
+                          s.material.model + " model takes its E and nu in material." + s.material.model + ")");
     const bool young = target->has("young_modulus"), poisson = target->has("poisson_ratio");
     if (young != poisson)
       throw SpecError(young ? "target.poisson_ratio" : "target.young_modulus", "(absent)",
@@ -110,6 +112,8 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   options.cancel = &control.cancel;
   options.progress = [&control](double f) { reportProgress(control, kBuildShare + (1.0 - kBuildShare) * f); };
 
+  // Calibratable styles (beams) measure E and ν on the way to their strength.
+  const bool calibratable = materialStyle(spec.material.model).calibratable();
   bool measured = false, fitted = false;
   ElasticProperties result;
   BeamFit fit;
@@ -130,7 +134,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
       measured = fitted;
       result = fit.achieved;
       if (fitted) assignBeams(system, spec.material, fit.beam);  // the strength below is that of the fitted beams
-    } else if (spec.material.model == "beam") {
+    } else if (calibratable) {
       measured = true;  // the strength test below measures E and ν on its way
     } else {
       logStage(control, "quasi-static tension test at strain " + formatNumber(options.strain));
@@ -142,7 +146,7 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
   bool strengthMeasured = false;
   StrengthResult strength;
   StrengthFit strengthFit;
-  if (!cancelled() && spec.material.model == "beam") {
+  if (!cancelled() && calibratable) {
     StrengthOptions strengthOptions;
     strengthOptions.elastic = options;
     if (spec.targetStrength) {

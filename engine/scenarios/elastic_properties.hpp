@@ -1,11 +1,11 @@
 #pragma once
-// Scenario "elastic-properties": the beam calibration of dem/calibration.hpp as a registered
+// Scenario "elastic-properties": the beam calibration of calibration/calibration.hpp as a registered
 // scenario, so that `rupture run` and rupture-server can measure (or fit) the macroscopic Young's
 // modulus and Poisson ratio of a bonded sample, e.g. over a porosity sweep.
 //
 // One run: build the sample → either one quasi-static tension test (measureElasticProperties) or,
 // with a "target", the beam fit (fitBeamParameters: up to kMaxFitEvaluations tension tests) → for
-// beams, the quasi-static strength test (dem/strength_test.hpp: tensile strength and crack-onset
+// beams, the quasi-static strength test (calibration/strength_test.hpp: tensile strength and crack-onset
 // strain), or with target.tensile_strength the fit of the failure stress (fitFailureStress) → one
 // HDF5 file: root attributes scenario, rupture_version, completed; /spec (json, input); /snapshots
 // (empty: no particle field is written, but `rupture run` writes an XDMF sidecar over it);
@@ -18,9 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/calibration.hpp"
-#include "dem/strength_test.hpp"
-#include "dem/sample_spec.hpp"
+#include "calibration/calibration.hpp"
+#include "calibration/strength_test.hpp"
+#include "bonded/sample_spec.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/scenario.hpp"
 

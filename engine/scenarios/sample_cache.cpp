@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::int64_t kFormatVersion = 2;  // 2: elements in spatial order (dem/spatial_order.hpp)
+constexpr std::int64_t kFormatVersion = 2;  // 2: elements in spatial order (samples/spatial_order.hpp)
 
 nlohmann::json cacheKey(const SampleSpec& sample) {
   return {{"format", kFormatVersion},

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "core/cancellation.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture {
 

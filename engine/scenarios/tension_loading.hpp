@@ -23,9 +23,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "dem/bonded_system.hpp"
-#include "dem/sample_builder.hpp"
-#include "dem/sample_spec.hpp"
+#include "bonded/bonded_system.hpp"
+#include "samples/sample_builder.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -22,8 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/bonded_system.hpp"
-#include "dem/sample_builder.hpp"
+#include "bonded/bonded_system.hpp"
+#include "samples/sample_builder.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/tension_loading.hpp"

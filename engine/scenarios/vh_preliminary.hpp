@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/tension_loading.hpp"
 

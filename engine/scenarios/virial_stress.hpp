@@ -12,7 +12,7 @@
 // kinetic term are left out (brittle, bonded solid).
 #include <vector>
 
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 namespace rupture {
 

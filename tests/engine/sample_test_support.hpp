@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture::testing {
 

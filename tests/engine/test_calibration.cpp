@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "dem/calibration.hpp"
+#include "calibration/calibration.hpp"
 
 using namespace rupture;
 

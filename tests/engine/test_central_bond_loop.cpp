@@ -12,7 +12,7 @@
 #include <string>
 
 #include "core/parallel.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/dynamic_tension_spec.hpp"
 #include "scenarios/tension_loading.hpp"

@@ -9,7 +9,7 @@
 #include <omp.h>
 
 #include "core/parallel.hpp"
-#include "dem/calibration.hpp"
+#include "calibration/calibration.hpp"
 
 using namespace rupture;
 

@@ -12,8 +12,8 @@
 
 #include "support/test_support.hpp"
 #include "../cli/cli_runner.hpp"
-#include "dem/calibration.hpp"
-#include "dem/sample_builder.hpp"
+#include "calibration/calibration.hpp"
+#include "samples/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "dem/bonded_system.hpp"
-#include "dem/sample_builder.hpp"
+#include "bonded/bonded_system.hpp"
+#include "samples/sample_builder.hpp"
 #include "scenarios/bond_network.hpp"
 
 namespace rupture {

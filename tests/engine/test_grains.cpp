@@ -1,4 +1,4 @@
-// Voronoi grains (dem/grains.hpp): every element is in the grain of its nearest seed point, bonds
+// Voronoi grains (samples/grains.hpp): every element is in the grain of its nearest seed point, bonds
 // across grain boundaries carry the boundary factor, and weak boundaries make the fracture
 // intergranular.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <set>
 
-#include "dem/grains.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/grains.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture {
 namespace {

@@ -158,7 +158,7 @@ TEST_P(ImpactEveryModel, ATractionGivesThePlateItsImpulse) {
   const bool random = GetParam() == "beam";
   const double thickness = random ? 1.25e-4 : 2.5e-4;  // R_DE, or the default: the spacing
   // Element density: ρ on lattices; on a dense random packing, ρ × box volume / Σ V (the dense
-  // sample has the bulk density, dem/sample_builder.hpp).
+  // sample has the bulk density, samples/sample_builder.hpp).
   double totalVolume = 0;
   for (double v : volume) totalVolume += v;
   const double density = 2440 * (random ? 0.02 * 0.01 * thickness / totalVolume : 1.0);

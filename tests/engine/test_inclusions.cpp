@@ -1,13 +1,13 @@
-// Second-phase inclusions (dem/inclusions.hpp): placement at the asked volume fraction without
+// Second-phase inclusions (samples/inclusions.hpp): placement at the asked volume fraction without
 // overlap, the per-bond and per-element properties they set, and an effective modulus inside the
 // Voigt and Reuss bounds of the two phases.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "dem/calibration.hpp"
-#include "dem/inclusions.hpp"
-#include "dem/sample_builder.hpp"
+#include "calibration/calibration.hpp"
+#include "samples/inclusions.hpp"
+#include "samples/sample_builder.hpp"
 
 namespace rupture {
 namespace {

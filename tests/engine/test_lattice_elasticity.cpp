@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "lattice/spring_mapping.hpp"
 
 namespace rupture {

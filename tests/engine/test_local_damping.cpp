@@ -1,4 +1,4 @@
-// Silling's local damping (damage/local_damping.hpp, seed 003): a damped bond decays at the rate of
+// Silling's local damping (core/local_damping.hpp, seed 003): a damped bond decays at the rate of
 // its dashpot, undamaged material is not damped, the damage index the damping reads is the one of
 // the bond network, and it takes the energy out of the ringing left by a crack.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/bonded_system.hpp"
-#include "dem/sample_builder.hpp"
+#include "bonded/bonded_system.hpp"
+#include "samples/sample_builder.hpp"
 #include "scenarios/bond_network.hpp"
 
 namespace rupture {

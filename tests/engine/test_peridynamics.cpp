@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "peridynamics/pmb.hpp"
 
 namespace rupture {

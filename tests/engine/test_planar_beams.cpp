@@ -8,7 +8,7 @@
 #include <random>
 
 #include "dem/beam_bond.hpp"
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 using namespace rupture;
 

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "dem/beam_forces.hpp"
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 using namespace rupture;
 

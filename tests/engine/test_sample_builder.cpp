@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "sample_test_support.hpp"
 
 using namespace rupture;

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "scenarios/sample_cache.hpp"
 #include "support/test_support.hpp"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <thread>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "sample_test_support.hpp"
 #include "support/test_support.hpp"

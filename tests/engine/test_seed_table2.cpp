@@ -1,7 +1,7 @@
 // Seed 000 (Longchamp et al., CSMA 2024), Table 2 from Table 1 and Table 3 (issue 13): the seed's
 // porous sample on the close-packed (triangular) arrangement its element count implies, with
 // Table 3's beams and S = L × R_DE (eq. 4), measured by the quasi-static strength test
-// (dem/strength_test.hpp). docs/dynamic-tension.md, "Reproducing the seed's Table 2": over five
+// (calibration/strength_test.hpp). docs/dynamic-tension.md, "Reproducing the seed's Table 2": over five
 // sample seeds the mean ν and σ_R / E and the median crack-onset strain are within 10 % of the
 // seed's; E and σ_R are within 10 % of twice the seed's (the documented residual: the seed's
 // stresses correspond to a 2D thickness of 2 R_DE). The onset is a median because one weak site
@@ -13,8 +13,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "dem/sample_builder.hpp"
-#include "dem/strength_test.hpp"
+#include "samples/sample_builder.hpp"
+#include "calibration/strength_test.hpp"
 
 namespace rupture {
 namespace {

@@ -1,4 +1,4 @@
-// Spatial numbering of packed samples (dem/spatial_order.hpp): the renumbered sample is the same
+// Spatial numbering of packed samples (samples/spatial_order.hpp): the renumbered sample is the same
 // sample (every bond still describes its two ends in their rest state, in the sense i -> j), the
 // bonds are in (i, j) order as the incidence lists assume, and neighbours in space got neighbouring
 // indices (the point of it). Over several sample seeds, 2D and 3D, as packRandomSample makes them.
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "sample_test_support.hpp"
 
 using namespace rupture;

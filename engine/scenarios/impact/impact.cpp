@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 #include "io/bonded_spec.hpp"
 #include "io/interleave.hpp"
 #include "scenarios/impact/impact_results.hpp"

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/sample_spec.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

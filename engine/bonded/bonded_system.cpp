@@ -1,4 +1,4 @@
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 #include <omp.h>
 

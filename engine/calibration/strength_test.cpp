@@ -1,4 +1,4 @@
-#include "dem/strength_test.hpp"
+#include "calibration/strength_test.hpp"
 
 #include <algorithm>
 #include <cmath>

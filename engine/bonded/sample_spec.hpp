@@ -1,6 +1,6 @@
 #pragma once
 // The sample and material part shared by every bonded scenario (plain data; parsed and validated
-// in io/bonded_spec.cpp, built in dem/sample_builder.cpp). SI units.
+// in io/bonded_spec.cpp, built in samples/sample_builder.cpp). SI units.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -10,6 +10,8 @@
 
 #include "dem/beam_bond.hpp"
 #include "dem/hertz_contact.hpp"
+#include "lattice/spring_spec.hpp"
+#include "peridynamics/pmb_spec.hpp"
 
 namespace rupture {
 
@@ -34,14 +36,14 @@ struct BlockRegion {
   Box box;
 };
 
-/// Voronoi grains (dem/grains.hpp): `count` grains (0: none); bonds across grain boundaries have
+/// Voronoi grains (samples/grains.hpp): `count` grains (0: none); bonds across grain boundaries have
 /// their failure threshold multiplied by `boundaryFactor`.
 struct GrainSpec {
   int count = 0;
   double boundaryFactor = 1.0;
 };
 
-/// Second-phase inclusions (dem/inclusions.hpp): their volume fraction of the box (0: none), radii,
+/// Second-phase inclusions (samples/inclusions.hpp): their volume fraction of the box (0: none), radii,
 /// and the factors on the matrix's properties.
 struct InclusionSpec {
   double volumeFraction = 0;                 ///< (1)
@@ -70,27 +72,8 @@ struct SampleSpec {
   double bondGap = 0.1;                  ///< pairs closer than (R_i + R_j)(1 + gap/2) are bonded (1)
 };
 
-/// Hookean or Born lattice springs (material.hookean / material.born).
-struct LatticeSpringSpec {
-  double youngModulus = 0;                                        ///< target E (Pa)
-  double poissonRatio = std::numeric_limits<double>::quiet_NaN(); ///< target ν (1); Hookean: the lattice's
-  std::string criterion = "critical_stretch";  ///< critical_stretch | critical_energy | stress | griffith
-  double criticalValue = std::numeric_limits<double>::infinity();  ///< s0 (1), w_c (J), σ_c (Pa) or G_c (J/m²)
-};
-
-/// Bond-based prototype microelastic brittle peridynamics (material.pmb).
-struct PmbSpec {
-  double youngModulus = 0;      ///< E (Pa); ν is 1/4 (3D) or 1/3 (2D plane stress)
-  double horizonFactor = 3.015; ///< δ / spacing (1)
-  double criticalStretch = std::numeric_limits<double>::quiet_NaN();  ///< s0 (1), or NaN
-  double fractureEnergy = std::numeric_limits<double>::quiet_NaN();   ///< G0 (J/m²), or NaN
-  std::string criterion = "critical_stretch";  ///< critical_stretch | critical_energy
-  double compressionFactor = 0;  ///< α of s0 = s00 − α s_min (1), as LAMMPS peri/pmb
-  std::string partialVolume = "exact";  ///< "exact" cell–ball overlap, or "linear" (LAMMPS's ramp)
-};
-
 struct MaterialSpec {
-  std::string model = "beam";  ///< "beam" | "hookean" | "born" | "pmb"
+  std::string model = "beam";  ///< a registered material style (bonded/materials/registry.cpp)
   double density = 0;          ///< bulk density of the dense material (kg/m³)
   BeamParameters beam;
   LatticeSpringSpec springs;   ///< when model is hookean or born

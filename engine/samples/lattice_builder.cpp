@@ -1,4 +1,4 @@
-#include "lattice/lattice_builder.hpp"
+#include "samples/lattice_builder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,27 +7,13 @@
 #include <stdexcept>
 
 #include "core/cell_list.hpp"
-#include "dem/bond_model.hpp"
-#include "dem/notches.hpp"
-#include "dem/pores.hpp"
+#include "bonded/materials/registry.hpp"
+#include "samples/material_assignment.hpp"
+#include "samples/notches.hpp"
+#include "samples/pores.hpp"
 #include "lattice/lattice_geometry.hpp"
-#include "peridynamics/pmb.hpp"
 
 namespace rupture {
-
-namespace {
-
-/// The longest bond the material puts between sites (m).
-double bondReach(const SampleSpec& s, const MaterialSpec& m, LatticeKind kind) {
-  const double l = s.spacing;
-  if (m.model == "pmb") return pmbBondReach(m.pmb, s.dimension, l, m.pmb.horizonFactor * l);
-  if (m.model == "beam") return l * (1.0 + 1e-6);  // touching elements
-  double longest = 0;
-  for (const auto& o : springOffsets(kind)) longest = std::max(longest, std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
-  return longest * l * (1.0 + 1e-6);
-}
-
-}  // namespace
 
 SampleReport buildLatticeSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                                 const Cancellation& cancel) {
@@ -50,7 +36,8 @@ SampleReport buildLatticeSample(const SampleSpec& s, const MaterialSpec& m, Bond
   }
 
   // Bonds: every pair closer than the reach, ordered by the first site (a contiguous bond list).
-  const double reach = bondReach(s, m, kind);
+  const MaterialStyle& style = materialStyle(m.model);
+  const double reach = style.bondReach(s, m);
   CellList cells;
   cells.build(p, reach);
   std::vector<std::int32_t> near;
@@ -65,23 +52,13 @@ SampleReport buildLatticeSample(const SampleSpec& s, const MaterialSpec& m, Bond
     std::sort(near.begin(), near.end());
     for (std::int32_t k : near) system.bonds.add(p, a, static_cast<std::size_t>(k));
   }
-  if (m.model == "pmb") {  // "exact" partial volumes keep a pair only if its cell meets the horizon
-    std::vector<std::uint8_t> keep(system.bonds.size(), 1);
-    const double delta = m.pmb.horizonFactor * l;
-    for (std::size_t b = 0; b < system.bonds.size(); ++b) {
-      const double L0 = system.bonds.restLength[b];
-      if (L0 <= delta - 0.5 * l * std::sqrt(static_cast<double>(s.dimension))) continue;
-      keep[b] = pmbPartialVolume(m.pmb, system.bonds.n0x[b] * L0, system.bonds.n0y[b] * L0, system.bonds.n0z[b] * L0,
-                                 s.dimension, l, delta) > 0;
-    }
-    system.bonds.filter(keep);
-  }
+  style.pruneLatticeBonds(s, m, system.bonds);  // e.g. PMB pairs whose cell misses the horizon
   cutNotches(s.notches, p, system.bonds);
   report.packingFraction = 1.0;
 
   std::mt19937_64 rng(s.seed);
   const double boxVolume = s.size[0] * s.size[1] * (s.dimension == 3 ? s.size[2] : 1.0);
-  if (s.porosity > 0) {  // the random packings' pores (dem/pores.hpp), carved out of the sites
+  if (s.porosity > 0) {  // the random packings' pores (samples/pores.hpp), carved out of the sites
     report.pores = placePores(s, s.porosity * boxVolume, rng, cancel);
     std::vector<std::uint8_t> keep(p.size(), 1);
     report.porosity = carvePores(s, report.pores, p, keep, cancel);

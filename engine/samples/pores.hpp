@@ -13,7 +13,7 @@
 
 #include "core/cancellation.hpp"
 #include "core/particle_store.hpp"
-#include "dem/sample_spec.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -1,4 +1,4 @@
-#include "dem/pores.hpp"
+#include "samples/pores.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // Quasi-static tensile strength of a bonded sample, and the fit of the beams' failure stress σ_f to
 // a target strength (issue 13 item 2; engine/dem/README.md, "strength").
 //
-// The test is displacement-driven uniaxial tension as in dem/calibration.hpp (faces X_min and X_max
+// The test is displacement-driven uniaxial tension as in calibration/calibration.hpp (faces X_min and X_max
 // held in x, free laterally, Cundall-damped relaxation), in two stages:
 //  1. Elastic: relax at the strain ε_e of the elastic measurement with failure off. Before the first
 //     break the response is linear in ε and every beam's σ_eq (eq. 1) is homogeneous of degree one in
@@ -20,9 +20,9 @@
 #include <cstddef>
 #include <functional>
 
-#include "dem/bonded_system.hpp"
-#include "dem/calibration.hpp"
-#include "dem/sample_spec.hpp"
+#include "bonded/bonded_system.hpp"
+#include "calibration/calibration.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
-#include "dem/bonded_system.hpp"
-#include "dem/pores.hpp"
-#include "dem/sample_spec.hpp"
+#include "bonded/bonded_system.hpp"
+#include "samples/pores.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -2,7 +2,7 @@
 // Second-phase inclusions of a bonded sample (seed 001's "second phase"; every bonded model):
 // circular (2D) or spherical (3D) regions with radii uniform in [r_min, r_max], placed at random
 // without overlap until their volume reaches volume_fraction of the box (the pores' random
-// sequential addition, dem/pores.hpp, on a random stream of its own, so inclusions change neither
+// sequential addition, samples/pores.hpp, on a random stream of its own, so inclusions change neither
 // the packing nor the pores). An element whose centre lies in an inclusion belongs to it; its mass
 // is scaled by the density factor. A bond with both ends inside is an inclusion bond (stiffness and
 // strength scaled by their factors); one end inside, an interface bond: its stiffness is the two
@@ -14,8 +14,8 @@
 #include "core/bond_store.hpp"
 #include "core/cancellation.hpp"
 #include "core/particle_store.hpp"
-#include "dem/pores.hpp"
-#include "dem/sample_spec.hpp"
+#include "samples/pores.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -1,4 +1,4 @@
-#include "dem/calibration.hpp"
+#include "calibration/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "dem/sample_builder.hpp"
+#include "samples/sample_builder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include "core/cell_list.hpp"
-#include "dem/bond_model.hpp"
-#include "dem/notches.hpp"
-#include "dem/pores.hpp"
-#include "dem/spatial_order.hpp"
-#include "lattice/lattice_builder.hpp"
+#include "samples/material_assignment.hpp"
+#include "samples/notches.hpp"
+#include "samples/pores.hpp"
+#include "samples/spatial_order.hpp"
+#include "samples/lattice_builder.hpp"
 
 namespace rupture {
 
@@ -108,7 +108,7 @@ void dropUnbondedElements(BondedSystem& system) {
 
 SampleReport buildSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system,
                          const Cancellation& cancel) {
-  if (s.lattice != "random") return buildLatticeSample(s, m, system, cancel);  // lattice/lattice_builder.hpp
+  if (s.lattice != "random") return buildLatticeSample(s, m, system, cancel);  // samples/lattice_builder.hpp
   SampleReport report = packRandomSample(s, m, system, cancel);
   finishRandomSample(s, m, system, report, cancel);
   return report;
@@ -156,7 +156,7 @@ SampleReport packRandomSample(const SampleSpec& s, const MaterialSpec& m, Bonded
   report.elementDensity = m.density * boxVolume / solid;
   p.setMassFromDensity(report.elementDensity, report.thickness);
 
-  // Pores (dem/pores.hpp): placed at random without overlap, then carved out of the elements.
+  // Pores (samples/pores.hpp): placed at random without overlap, then carved out of the elements.
   report.pores = placePores(s, s.porosity * boxVolume, rng, cancel);
   std::vector<std::uint8_t> keep(p.size(), 1);
   report.porosity = carvePores(s, report.pores, p, keep, cancel);
@@ -164,7 +164,7 @@ SampleReport packRandomSample(const SampleSpec& s, const MaterialSpec& m, Bonded
   system.bonds.remap(p.compact(keep));
   dropUnbondedElements(system);
   // Neighbours in space get neighbouring indices: the bond loop and its gather then read memory in
-  // order instead of at random (dem/spatial_order.hpp).
+  // order instead of at random (samples/spatial_order.hpp).
   orderSpatially(system, 8.0 * s.elementRadius);
   return report;
 }
@@ -172,8 +172,8 @@ SampleReport packRandomSample(const SampleSpec& s, const MaterialSpec& m, Bonded
 void finishRandomSample(const SampleSpec& s, const MaterialSpec& m, BondedSystem& system, SampleReport& report,
                         const Cancellation& cancel) {
   ParticleStore& p = system.particles;
-  cutNotches(s.notches, p, system.bonds);  // pre-cracks (dem/notches.hpp)
-  assignMaterial(system, s, m, cancel);    // law, criterion, per-bond constants (dem/bond_model.hpp)
+  cutNotches(s.notches, p, system.bonds);  // pre-cracks (samples/notches.hpp)
+  assignMaterial(system, s, m, cancel);    // law, criterion, per-bond constants (samples/material_assignment.hpp)
   system.beam = m.beam;
   system.contact.setParameters(m.contact);
   cancel.throwIfRequested();

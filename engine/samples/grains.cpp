@@ -1,4 +1,4 @@
-#include "dem/grains.hpp"
+#include "samples/grains.hpp"
 
 #include <algorithm>
 #include <cmath>

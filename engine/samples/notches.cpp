@@ -1,4 +1,4 @@
-#include "dem/notches.hpp"
+#include "samples/notches.hpp"
 
 #include <algorithm>
 #include <cstdint>

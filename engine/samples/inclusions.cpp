@@ -1,4 +1,4 @@
-#include "dem/inclusions.hpp"
+#include "samples/inclusions.hpp"
 
 #include <algorithm>
 #include <cmath>

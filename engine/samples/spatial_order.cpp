@@ -1,4 +1,4 @@
-#include "dem/spatial_order.hpp"
+#include "samples/spatial_order.hpp"
 
 #include <algorithm>
 #include <cmath>

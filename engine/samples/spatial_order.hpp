@@ -5,7 +5,7 @@
 // and its gather at random (measured: 10 % of a 2D dynamic-tension run's CPU). The sample is the
 // same set of elements and bonds; sums over bonds and contacts run in another order, so results
 // agree with a randomly numbered sample to rounding, not bit for bit.
-#include "dem/bonded_system.hpp"
+#include "bonded/bonded_system.hpp"
 
 namespace rupture {
 

@@ -7,7 +7,7 @@
 
 #include "core/bond_store.hpp"
 #include "core/particle_store.hpp"
-#include "dem/sample_spec.hpp"
+#include "bonded/sample_spec.hpp"
 
 namespace rupture {
 

@@ -13,7 +13,7 @@
 #include "core/central_bond_list.hpp"
 #include "core/particle_store.hpp"
 #include "dem/beam_bond.hpp"
-#include "dem/bond_model.hpp"
+#include "bonded/bond_model.hpp"
 #include "dem/hertz_contact.hpp"
 
 namespace rupture {
@@ -37,7 +37,7 @@ public:
   /// Cundall local damping coefficient γ in [0, 1) (0: none). Only for quasi-static runs.
   double localDamping = 0.0;
 
-  /// Silling's local damping of bonds around damage (damage/local_damping.hpp; material.local_damping):
+  /// Silling's local damping of bonds around damage (core/local_damping.hpp; material.local_damping):
   /// coefficient d (1; 0: none) and the bar wave speed v0 = √(E/ρ) it is scaled by (m/s).
   double bondDamping = 0.0;
   double dampingWaveSpeed = 0.0;
