@@ -3,7 +3,7 @@
 //   static constexpr bool kRotational;   // reads the end orientations and produces torques
 //   BondResponse response(const BondGeometry&) const;   // pure, inline, branch-free
 //   BondStiffness stiffness(const BondGeometry&) const; // for the Gershgorin time step
-// plus its parameters, validated once by the model factory (models/bond_model.cpp). The loop over
+// plus its parameters, validated once by the model factory (dem/bond_model.cpp). The loop over
 // bonds, the gather, the failure hand-over to contact, the damage index and the recorder are
 // written once, for every law; a failure criterion (engine/damage/) reads the response.
 namespace rupture {
@@ -33,7 +33,7 @@ struct BondResponse {
   double equivalentStress;     ///< Rankine σ_eq of the beam section (Pa); 0 for laws without a section
 };
 
-/// Stiffness of one bond for the Gershgorin time-step bound (physics-reference §1.8, §2.5).
+/// Stiffness of one bond for the Gershgorin time-step bound (docs/references.md#eq-gershgorin).
 struct BondStiffness {
   double translational;  ///< N/m
   double rotational;     ///< N·m/rad (0 for central laws)

@@ -1,6 +1,6 @@
 #pragma once
-// Central spring (Hookean lattice springs, physics-reference §2.1; also the PMB peridynamic bond,
-// peridynamics/pmb_bonds.hpp): F_j = −k (L − L0) n, U = ½ k (L − L0)², with the per-bond stiffness
+// Central spring (Hookean lattice springs, docs/references.md#eq-lattice; also the PMB peridynamic
+// bond, peridynamics/pmb.hpp): F_j = −k (L − L0) n, U = ½ k (L − L0)², with the per-bond stiffness
 // k set once from the material (lattice/spring_mapping.hpp or the PMB micromodulus).
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// The piston-column scenario (seed 002 §2 and §4): a water column in a rigid tube, closed by a rigid
+// The piston-column scenario (Caleyron et al. 2013 §2 and §4): a water column in a rigid tube, closed by a rigid
 // bottom, hit by a piston. The pressure wave it carries (ρ0 c0 V for a heavy piston, doubled on
 // reflection at a rigid bottom) is what loads the bottom plate. Weakly compressible SPH with
 // Adami dummy-particle walls and piston (engine/sph/README.md); contract and file layout in docs/sph.md.

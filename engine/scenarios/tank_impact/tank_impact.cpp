@@ -1,4 +1,4 @@
-// The tank-impact scenario (seed 002 §2, issue 11): the piston-column set-up with its rigid bottom
+// The tank-impact scenario (Caleyron et al. 2013 §2, issue 11): the piston-column set-up with its rigid bottom
 // replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
 // fluid–shell contact of engine/fsi (pinball or master–slave). The carriage and piston are one
 // free rigid body of mass M hitting the column at V; the water goes through the hole or the
