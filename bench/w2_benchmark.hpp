@@ -1,6 +1,6 @@
 #pragma once
 // Benchmark W2: PMB peridynamic block hit by a rigid sphere (see bench/README.md for the full
-// definition; /work/shared/peers/lammps/w2.in is the same problem as a LAMMPS deck).
+// definition; bench/w2_lammps.in is the same problem as a LAMMPS deck).
 #include <nlohmann/json.hpp>
 
 namespace rupture::bench {

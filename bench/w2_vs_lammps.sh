@@ -2,11 +2,11 @@
 # W2 side by side: Rupture (`rupture bench W2`) and LAMMPS (peri/pmb, Debian's `lammps` package) on
 # the same machine, in the same run, at 1 and 2 threads; prints each figure and the ratio.
 #   bench/w2_vs_lammps.sh [BUILD_DIR] [STEPS]     (defaults: build, 1000)
-# LAMMPS deck: $W2_DECK, default /work/shared/peers/lammps/w2.in (bench/README.md defines W2).
+# LAMMPS deck: bench/w2_lammps.in (bench/README.md defines W2); $W2_DECK names another.
 set -euo pipefail
 build=${1:-build}
 steps=${2:-1000}
-deck=${W2_DECK:-/work/shared/peers/lammps/w2.in}
+deck=${W2_DECK:-"$(dirname "$0")/w2_lammps.in"}
 rupture="$build/engine/rupture"
 command -v lmp >/dev/null || { echo "lmp not found: apt-get install -y lammps" >&2; exit 1; }
 [ -x "$rupture" ] || { echo "$rupture not built: cmake --build $build --target rupture" >&2; exit 1; }

@@ -9,8 +9,8 @@
 
 #include <pthread.h>
 
-#include "config.hpp"
-#include "log.hpp"
+#include "common/config.hpp"
+#include "common/log.hpp"
 #include "server.hpp"
 
 #ifndef RUPTURE_VERSION

@@ -14,10 +14,10 @@
 
 #include <httplib.h>
 
-#include "render_gate.hpp"
-#include "log.hpp"
-#include "scheduler.hpp"
-#include "slurm_executor.hpp"
+#include "views/render_gate.hpp"
+#include "common/log.hpp"
+#include "execution/scheduler.hpp"
+#include "execution/slurm_executor.hpp"
 
 namespace rupture::server {
 namespace {

@@ -9,11 +9,11 @@
 #include <memory>
 #include <thread>
 
-#include "config.hpp"
+#include "common/config.hpp"
 #include "data_dir_lock.hpp"
-#include "http_frontend.hpp"
-#include "refinement.hpp"
-#include "routes.hpp"
+#include "http/http_frontend.hpp"
+#include "studies/refinement.hpp"
+#include "routes/routes.hpp"
 
 namespace rupture::server {
 

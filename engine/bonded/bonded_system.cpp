@@ -322,7 +322,8 @@ double BondedSystem::criticalTimeStep() const {
     return !std::decay_t<decltype(law)>::kRotational;
   });
   // Central forces: the Gershgorin row of the stiffness matrix is 2 Σ k, so ω² <= 2 Σ k / m and
-  // dt_c = 2/ω = √(2m / Σ k) (physics-reference §3.7). The rotational laws keep §1.8's √(m / Σ k).
+  // dt_c = 2/ω = √(2m / Σ k) (Silling & Askari 2005 for PD). The rotational laws keep √(m / Σ k)
+  // (docs/references.md#eq-gershgorin).
   const double factor = central ? 2.0 : 1.0;
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < particles.size(); ++k) {

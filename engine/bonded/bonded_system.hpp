@@ -61,8 +61,8 @@ public:
   void step(double dt);
 
   /// Gershgorin bound of the bonds' critical step: min over particles of
-  /// min(√(m / Σ k_tr), √(I / Σ k_rot)) with each law's k_tr, k_rot (physics-reference §1.8, §2.5);
-  /// central-force laws use the full Gershgorin row, √(2m / Σ k) (the PD bound of §3.7).
+  /// min(√(m / Σ k_tr), √(I / Σ k_rot)) with each law's k_tr, k_rot (docs/references.md#eq-gershgorin);
+  /// central-force laws use the full Gershgorin row, √(2m / Σ k) (the PD bound of Silling & Askari 2005).
   double criticalTimeStep() const;
 
   double kineticEnergy() const;  ///< translational + rotational (J)
@@ -81,7 +81,8 @@ public:
   /// them when they are stale. Read loads through it, not through `bonds` directly.
   const BondStore& bondLoads() const;
 
-  /// Damage index φ of each particle (seed 003, physics-reference §3.6) over its initial bonds,
+  /// Damage index φ of each particle (PeriLab's damage index; docs/references.md#eq-pd) over its
+  /// initial bonds,
   /// weighted by the partners' volumes; kept up to date as bonds break (O(broken bonds) per step).
   const std::vector<double>& damageIndex() const { return m_damage; }
 

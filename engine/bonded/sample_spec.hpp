@@ -80,11 +80,13 @@ struct MaterialSpec {
   PmbSpec pmb;                 ///< when model is pmb
   ContactParameters contact;
   std::vector<Box> noFailureRegions;  ///< bonds with an end inside never break
-  /// Interblock critical stretch (seed 003, PeriLab "Interblock Damage"): the s0 of bonds from
+  /// Interblock critical stretch (PeriLab "Interblock Damage", docs/references.md#perilabdamage):
+  /// the s0 of bonds from
   /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two
   /// orientations' values (the block's own s0 for a missing orientation).
   std::map<int, double> interblock;
-  /// Silling's local damping coefficient d of bonds around damage (seed 003; 0: none) and the bar
+  /// Silling's local damping coefficient d of bonds around damage (Bobaru et al. 2016, eq. 2.34, as
+  /// PeriLab gives it; docs/references.md#eq-pd; 0: none) and the bar
   /// wave speed √(E/ρ) it is scaled by, E being the model's Young's modulus (m/s).
   double localDamping = 0;
   double dampingWaveSpeed = 0;
@@ -95,7 +97,8 @@ struct MaterialSpec {
 };
 
 /// The default contact modulus of beams: about the macroscopic modulus they give (E_M ∝ E_μ r_μ²,
-/// physics-reference §1.6; on our 2D packings E_M ≈ 0.9 E_μ ratio²), not the fictitious E_μ.
+/// André et al. 2012 §4, docs/references.md#eq-calibration; on our 2D packings E_M ≈ 0.9 E_μ
+/// ratio²), not the fictitious E_μ.
 inline double beamContactModulus(const BeamParameters& beam) {
   return beam.youngModulus * beam.radiusRatio * beam.radiusRatio;
 }

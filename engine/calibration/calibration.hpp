@@ -1,5 +1,5 @@
 #pragma once
-// Calibration of the cohesive beams (André et al. 2012, §4; physics-reference §1.6).
+// Calibration of the cohesive beams (André et al. 2012, §4; docs/references.md#eq-calibration).
 //
 // Measurement: a quasi-static uniaxial tension on a built sample. Every element starts on the
 // affine field u = ε (x − x_c) e_x − ν₀ ε (y − y_c) e_y (− ν₀ ε (z − z_c) e_z), the faces X_min and
@@ -60,7 +60,8 @@ struct TensionFaces {
 };
 TensionFaces tensionFaces(const ParticleStore& p);
 
-/// The section S of the seed's eq. 4: L_y × t in 2D (t = spec.thickness, else R_DE), L_y × L_z in 3D (m²).
+/// The section S of Longchamp et al. 2024's eq. 4: L_y × t in 2D (t = spec.thickness, else R_DE),
+/// L_y × L_z in 3D (m²).
 double tensionSection(const SampleSpec& spec);
 
 /// σ̄ = ½ (F_Xmin + F_Xmax) / S from the bond and contact forces on the face elements (Pa).

@@ -225,8 +225,9 @@ int runCommand(const Args& args) {
 
   nlohmann::json spec;
   if (int code = readSpecFile(specPath, spec)) return code;
+  ParsedSpec parsed;  // parsed once: the run reads this value
   try {
-    validateSpec(spec);
+    parsed = parseSpec(spec);
   } catch (const SpecError& e) {
     return reportSpecError(specPath, e);
   }
@@ -271,7 +272,7 @@ int runCommand(const Args& args) {
     InterruptGuard guard(control.cancel);
     std::thread worker([&] {
       try {
-        outcome = runSpec(spec, output, control, static_cast<int>(threads));
+        outcome = runSpec(parsed, output, control, static_cast<int>(threads));
       } catch (...) {
         failure = std::current_exception();
       }

@@ -33,7 +33,7 @@ struct BondResponse {
   double equivalentStress;     ///< Rankine σ_eq of the beam section (Pa); 0 for laws without a section
 };
 
-/// Stiffness of one bond for the Gershgorin time-step bound (physics-reference §1.8, §2.5).
+/// Stiffness of one bond for the Gershgorin time-step bound (docs/references.md#eq-gershgorin).
 struct BondStiffness {
   double translational;  ///< N/m
   double rotational;     ///< N·m/rad (0 for central laws)

@@ -1,8 +1,8 @@
 #pragma once
-// Central spring, the bond of Hookean lattice springs (physics-reference §2.1) and of PMB
-// peridynamics (peridynamics/pmb_law.hpp): F_j = −k (L − L0) n, U = ½ k (L − L0)², with the
-// per-bond stiffness k set once from the material (lattice/spring_mapping.hpp or the PMB
-// micromodulus). In core because two law families share it.
+// Central spring (Hookean lattice springs, docs/references.md#eq-lattice; also the PMB peridynamic
+// bond, peridynamics/pmb_law.hpp): F_j = −k (L − L0) n, U = ½ k (L − L0)², with the per-bond stiffness
+// k set once from the material (lattice/spring_mapping.hpp or the PMB micromodulus). In core because
+// two law families share it.
 #include <cmath>
 
 #include "core/bond_law.hpp"

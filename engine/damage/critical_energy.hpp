@@ -1,6 +1,6 @@
 #pragma once
-// Critical bond energy (Foster, Silling & Chen 2011; seed 003, PeriLab "Critical Energy"): the bond
-// breaks when the elastic energy it stores reaches the critical value (the per-bond threshold, J).
+// Critical bond energy (Foster, Silling & Chen 2011; PeriLab "Critical Energy";
+// docs/references.md#eq-pd): the bond breaks when the elastic energy it stores reaches the critical value (the per-bond threshold, J).
 // Compressed bonds never break (PeriLab's default): their measure is 0.
 #include "core/bond_law.hpp"
 

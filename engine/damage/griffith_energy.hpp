@@ -1,5 +1,6 @@
 #pragma once
-// Griffith energy criterion of the lattice review (seed 001; physics-reference §2.3): the energy of
+// Griffith energy criterion of the lattice review (Yu et al. 2019; docs/references.md#eq-lattice):
+// the energy of
 // the normal spring in tension plus that of the shear spring is compared with the critical bond
 // energy w_c = G_c / n_cut (J), n_cut being the number of bonds a straight crack cuts per unit
 // area (lattice/lattice_geometry.hpp). The normal spring in compression stores no crack-driving

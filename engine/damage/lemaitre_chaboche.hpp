@@ -1,6 +1,6 @@
 #pragma once
 // Lemaitre–Chaboche ductile damage with a delay effect, as used for the AU4G plate of the tank-
-// impact campaign (seed 002, Caleyron et al. 2013, §5.3.1, eqs. (9)–(12)):
+// impact campaign (Caleyron et al. 2013, §5.3.1, eqs. (9)–(12); docs/references.md#eq-lemaitre):
 //
 //   triaxiality function  R_ν(η) = 2/3 (1 + ν) + 3 (1 − 2ν) η²,   η = σ_H / σ_eq
 //   threshold (9)         f_D = R_ν p − ε_p^s <= 0: no damage while R_ν p <= ε_p^s

@@ -1,5 +1,6 @@
 #pragma once
-// Stress threshold for lattice springs (physics-reference §2.3): the bond breaks when its normal
+// Stress threshold for lattice springs (Yu et al. 2019; docs/references.md#eq-lattice): the bond
+// breaks when its normal
 // stress F_n / A_b reaches σ_c, with A_b the area a bond stands for (l·t in 2D, l² in 3D). The
 // loop compares F_n with the per-bond threshold σ_c A_b (N); compression never breaks.
 #include "core/bond_law.hpp"

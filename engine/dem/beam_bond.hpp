@@ -4,7 +4,7 @@
 // radius r_μ = radius_ratio × (R_i + R_j)/2, clamped at both element centres, carrying axial force,
 // shear force, bending moments and torsion. Failure: Rankine equivalent stress (damage/rankine.hpp).
 //
-// Corotational kinematics (physics-reference §1.3–1.4): n = current chord direction i -> j, L its
+// Corotational kinematics (docs/references.md#eq-beam): n = current chord direction i -> j, L its
 // length; a_k = R(q_k) n0 is the beam tangent carried by end k. The bending rotation of end k is the
 // rotation vector taking n onto a_k, φ_k = angle(n, a_k) · unit(n × a_k). The twist ψ is the
 // twist about n of the relative rotation q_j q_i* (swing–twist decomposition).
@@ -114,7 +114,7 @@ struct BeamResponse {
   r.tjy = bjy - twistMoment * ny;
   r.tjz = bjz - twistMoment * nz;
 
-  // Outer-fibre stresses (physics-reference §1.5): largest end bending moment, torsion.
+  // Outer-fibre stresses (Rankine, docs/references.md#eq-rankine): largest end bending moment, torsion.
   const double bix = r.tix - twistMoment * nx, biy = r.tiy - twistMoment * ny,
                biz = r.tiz - twistMoment * nz;
   const double momentI2 = bix * bix + biy * biy + biz * biz;

@@ -50,7 +50,8 @@ struct BeamLaw {
                             g.qjw, g.qjz);
   }
 
-  /// physics-reference §1.8: k_tr = max(E S/L0, 12 E I/L0³), k_rot = max(G J/L0, 4 E I/L0).
+  /// Gershgorin stiffnesses (docs/references.md#eq-gershgorin): k_tr = max(E S/L0, 12 E I/L0³),
+  /// k_rot = max(G J/L0, 4 E I/L0).
   BondStiffness stiffness(const BondGeometry& g) const {
     const BeamSection s = BeamSection::of(params, g.radiusI, g.radiusJ);
     const double E = params.youngModulus, G = params.shearModulus(), L0 = g.restLength;

@@ -1,5 +1,5 @@
 #pragma once
-// How SPH water particles and the nodes of a shell touch (seed 002 §5.2; docs/fsi-contact.md).
+// How SPH water particles and the nodes of a shell touch (Caleyron et al. 2013 §4.3; docs/fsi-contact.md).
 #include <string>
 
 namespace rupture {

@@ -1,5 +1,5 @@
 #pragma once
-// Pinball contact between SPH fluid particles and shell nodes (seed 002 §5.2, eqs. 6–7; Belytschko
+// Pinball contact between SPH fluid particles and shell nodes (Caleyron et al. 2013 §4.3, eqs. 6–7; Belytschko
 // & Neal 1991): every (particle, node) pair whose pinballs interpenetrate (contact_geometry.hpp)
 // receives an impulse along the node's normal n that cancels the normal relative approach speed,
 //   σ (v_f − v_n)·n ≥ 0,  σ = sign((x_f − x_n)·n)

@@ -102,7 +102,7 @@ SampleSpec parseSample(const SpecReader& root) {
   const bool lattice = kind != LatticeKind::Random;
   if (lattice) {
     s.spacing = sample.number("spacing", Range::positive(), "m");
-    s.elementRadius = 0.5 * s.spacing;  // node radius l/2 (contact after breakage, physics-reference §2.4)
+    s.elementRadius = 0.5 * s.spacing;  // node radius l/2 (contact after breakage, docs/references.md#eq-lattice)
     if (s.dimension == 2) s.thickness = sample.number("thickness", Range::positive(), "m", s.spacing);
   } else {
     s.elementRadius = sample.number("element_radius", Range::positive(), "m");

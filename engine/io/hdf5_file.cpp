@@ -481,13 +481,21 @@ std::vector<std::string> Hdf5File::listGroup(const std::string& groupPath) const
   return names;
 }
 
+namespace {
+
+/// An object (group or dataset) of the file, closed when the handle goes.
+Handle openObject(hid_t file, const std::string& filePath, const std::string& objPath) {
+  return Handle(checkId(H5Oopen(file, objPath.c_str(), H5P_DEFAULT), filePath, objPath, "cannot open object"),
+                H5Oclose);
+}
+
+}  // namespace
+
 // ---- attributes ---------------------------------------------------------------------------------
 
 void Hdf5File::setAttribute(const std::string& objPath, const std::string& name, double value) {
   requireOpen();
-  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
-                     "cannot open object"),
-             H5Oclose);
+  const Handle obj = openObject(m_id, m_path, objPath);
   writeScalarAttribute(obj.get(), m_path, attrLabel(objPath, name), name, H5T_IEEE_F64LE,
                        H5T_NATIVE_DOUBLE, &value);
 }
@@ -495,9 +503,7 @@ void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
 void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
                             std::int64_t value) {
   requireOpen();
-  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
-                     "cannot open object"),
-             H5Oclose);
+  const Handle obj = openObject(m_id, m_path, objPath);
   writeScalarAttribute(obj.get(), m_path, attrLabel(objPath, name), name, H5T_STD_I64LE,
                        H5T_NATIVE_INT64, &value);
 }
@@ -505,9 +511,7 @@ void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
 void Hdf5File::setAttribute(const std::string& objPath, const std::string& name,
                             const std::string& value) {
   requireOpen();
-  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
-                     "cannot open object"),
-             H5Oclose);
+  const Handle obj = openObject(m_id, m_path, objPath);
   writeStringAttribute(obj.get(), m_path, attrLabel(objPath, name), name, value);
 }
 
@@ -579,9 +583,7 @@ bool Hdf5File::hasAttribute(const std::string& objPath, const std::string& name)
 
 std::vector<std::string> Hdf5File::listAttributes(const std::string& objPath) const {
   requireOpen();
-  Handle obj(checkId(H5Oopen(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath,
-                     "cannot open object"),
-             H5Oclose);
+  const Handle obj = openObject(m_id, m_path, objPath);
   std::vector<std::string> names;
   // A C callback must not let an exception escape: report it as an iteration failure instead.
   auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {

@@ -1,5 +1,5 @@
 #pragma once
-// Born lattice model (physics-reference §2.2; seed 001): a normal spring k_n and a shear spring
+// Born lattice model (Yu et al. 2019; docs/references.md#eq-lattice): a normal spring k_n and a shear spring
 // k_s = shearRatio · k_n per bond, U = ½ k_n d_n² + ½ k_s |d_s|².
 //
 // Rotational invariance (the reference's caveat): d_s is measured against the nodes' own rotations,

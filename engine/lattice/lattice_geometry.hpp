@@ -1,5 +1,5 @@
 #pragma once
-// Regular lattices of the lattice-model review (seed 001, section on lattice types): triangular and
+// Regular lattices of the lattice-model review (Yu et al. 2019, section on lattice types): triangular and
 // square (2D), simple-cubic and face-centred cubic (3D). `spacing` l is the nearest-neighbour
 // distance. Each lattice names its spring families: the bonds a lattice model puts between sites.
 //   triangular    6 neighbours at l                      node area √3/2 l²

@@ -1,7 +1,7 @@
 #pragma once
 // Spring stiffnesses of the Hookean (central) and Born (normal + shear) lattice models from the target
 // Young's modulus E and Poisson ratio ν, by energy equivalence under a homogeneous strain
-// (physics-reference §2.1–2.2; derivations in docs/lattice-models.md). 2D lattices are in plane
+// (docs/references.md#eq-lattice; derivations in docs/lattice-models.md). 2D lattices are in plane
 // stress with thickness t. With r = k_s/k_n the same on every family (the square lattice's diagonal
 // springs are half as stiff, which makes it isotropic):
 //   triangular     ν = (1 − r)/(3 + r)   E t = 2√3 k_n (1 + r)/(3 + r)

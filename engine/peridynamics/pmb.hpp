@@ -1,6 +1,6 @@
 #pragma once
 // Bond-based peridynamics, prototype microelastic brittle model (Silling & Askari 2005; LAMMPS
-// peri/pmb; physics-reference §3). Each pair of sites closer than the horizon δ is a central
+// peri/pmb; docs/references.md#eq-pd). Each pair of sites closer than the horizon δ is a central
 // spring (core/central_spring_law.hpp) of stiffness k_b = c β V_i V_j / |ξ|, so that
 //   F_j = −c s β V_i V_j n,   U_b = ½ c s² |ξ| β V_i V_j,   s = (|y| − |ξ|)/|ξ|
 // which is the PD pairwise force density f = c s integrated over the two volumes, and Σ U_b the PD
@@ -14,8 +14,8 @@
 // LAMMPS (documented in docs/peridynamics.md).
 // Failure: critical stretch s0 (given, or from G0: 3D s0 = √(5 G0 / (9 K δ)), 2D √(4π G0 / (9 E δ))),
 // optionally with LAMMPS's compression term α; or critical bond energy w_c (Foster et al. 2011:
-// 3D w_c = 4 G0 / (π δ⁴); 2D w_c = 3 G0 / (2 t δ³), the crossing-bond integral of
-// physics-reference §3.4), compared with U_b / (β V_i V_j).
+// 3D w_c = 4 G0 / (π δ⁴); 2D w_c = 3 G0 / (2 t δ³), the crossing-bond integral derived in
+// docs/references.md#eq-pd), compared with U_b / (β V_i V_j).
 #include "core/bond_store.hpp"
 #include "core/particle_store.hpp"
 #include "peridynamics/pmb_spec.hpp"
@@ -42,7 +42,8 @@ double pmbBondReach(const PmbSpec& spec, int dimension, double cell, double hori
 void assignPmbBonds(const PmbSpec& spec, int dimension, double spacing, double thickness,
                     const ParticleStore& particles, BondStore& bonds);
 
-/// The stable time step of PD (physics-reference §3.7) equals the central-spring Gershgorin bound
+/// The stable time step of PD (Silling & Askari 2005; docs/references.md#eq-pd) equals the
+/// central-spring Gershgorin bound
 /// BondedSystem::criticalTimeStep gives: √(2 m_i / Σ_j k_b) = √(2 ρ / Σ_j c β V_j / |ξ|).
 
 }  // namespace rupture

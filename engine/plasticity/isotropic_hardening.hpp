@@ -4,7 +4,7 @@
 //   linear:        σ_y(p) = σ_y0 + H p
 //   johnson_cook:  σ_y(p) = A + B p^n   (Johnson & Cook 1983 without the rate and temperature
 //                  factors; also called Ludwik's law). AU4G 2024-T351 is rate-insensitive in the
-//                  seed's tests (seed 002, §4.1), and the published 2024-T351 fits are of this form.
+//                  tests of Caleyron et al. 2013 (§4.1), and the published 2024-T351 fits are of this form.
 // Units: stresses in Pa, p dimensionless.
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Named material presets of the tank-impact campaign (seed 002): the AU4G (2024-T351) bottom plate
+// Named material presets of the tank-impact campaign (Caleyron et al. 2013): the AU4G (2024-T351) bottom plate
 // and the steel of the cylinder. Every value and its source: docs/shell-and-damage.md, "Materials".
 #include <string>
 
@@ -27,7 +27,7 @@ inline MaterialPreset au4g2024T351() {
   return p;
 }
 
-/// AU4G 2024-T351 with the values seed 002 gives itself: density, E, ν of its Table 1 (ρ = 2780
+/// AU4G 2024-T351 with the values Caleyron et al. 2013 give: density, E, ν of its Table 1 (ρ = 2780
 /// kg/m³, σ_y = 325 MPa, which the Johnson & Cook fit above meets at 0.2 % plastic strain: 317
 /// MPa) and the delayed-damage parameters of its Table 6 (Suffis 2004): ε_p^s = 0.03,
 /// ε_p^c = 0.25, D_c = 0.23, τ_c = 0.1 µs, a = 2. The tank-impact scenario's default plate.

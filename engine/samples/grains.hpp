@@ -1,5 +1,6 @@
 #pragma once
-// Voronoi grains of a bonded sample (seed 001: polycrystalline microstructure; every bonded model):
+// Voronoi grains of a bonded sample (polycrystalline microstructure as in Yu et al. 2019,
+// docs/references.md#yu2019; every bonded model):
 // `count` seed points uniform in the sample box, drawn from their own random stream of sample.seed
 // (so adding grains does not change the packing or the pores), and each particle belongs to the grain
 // of its nearest seed point. Bonds whose ends lie in different grains are grain-boundary bonds: their

@@ -1,5 +1,6 @@
 #pragma once
-// Second-phase inclusions of a bonded sample (seed 001's "second phase"; every bonded model):
+// Second-phase inclusions of a bonded sample (the "second phase" of Yu et al. 2019,
+// docs/references.md#yu2019; every bonded model):
 // circular (2D) or spherical (3D) regions with radii uniform in [r_min, r_max], placed at random
 // without overlap until their volume reaches volume_fraction of the box (the pores' random
 // sequential addition, samples/pores.hpp, on a random stream of its own, so inclusions change neither

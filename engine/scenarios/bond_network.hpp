@@ -12,7 +12,7 @@
 
 namespace rupture {
 
-/// Damage index of each element (seed 003; LAMMPS damage/atom; physics-reference §3.6):
+/// Damage index of each element (PeriLab; LAMMPS damage/atom; docs/references.md#eq-pd):
 ///   φ_i = Σ_j (1 − χ_ij) V_j / Σ_j V_j
 /// over its initial bonds (every bond of the store, intact or not), χ = 1 intact, 0 broken, V_j the
 /// partner's volume (all equal when `volume` is null: the fraction of broken bonds); 0 for an

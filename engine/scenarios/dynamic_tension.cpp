@@ -193,9 +193,9 @@ const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
   return units;
 }
 
-RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                             RunControl& control) {
   const auto wallStart = Clock::now();
-  const DynamicTensionSpec spec = parseDynamicTensionSpec(json);
   control.progress.store(0.0);
 
   // Sample, loaded faces, time step.
@@ -383,10 +383,10 @@ RunOutcome runDynamicTension(const nlohmann::json& json, const std::string& resu
 }
 
 Scenario dynamicTensionScenario() {
-  Scenario s;
-  s.info.name = "dynamic-tension";
-  s.info.title = "Uniaxial dynamic tension of a porous brittle bonded sample (Longchamp et al. 2024)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = "dynamic-tension";
+  info.title = "Uniaxial dynamic tension of a porous brittle bonded sample (Longchamp et al. 2024)";
+  info.description =
       "A bonded discrete-element sample is pulled along x: zero x-velocity on the X_min face, an imposed "
       "x-velocity V(t) on the X_max face (sinusoidal rise to V_max = strain_rate x L0 over a ramp time), lateral "
       "faces free. Initial velocity field at rest (V0), linear (VL) or heterogeneous (VH, from a cached "
@@ -394,15 +394,12 @@ Scenario dynamicTensionScenario() {
       "stopped (or a strain limit). Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
       "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, macroscopic fragments, debris, cracks "
       "crossing the section and the equilibrium ratio of the loading branch.";
-  s.info.summary = dynamicTensionSummaryFields();
-  s.info.series = dynamicTensionSeriesFields();
-  s.validate = [](const nlohmann::json& spec) { parseDynamicTensionSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) {
-    const auto parsed = parseDynamicTensionSpec(spec);
-    return io::estimateBondedRun(parsed.sample, parsed.material);
-  };
-  s.run = runDynamicTension;
-  return s;
+  info.summary = dynamicTensionSummaryFields();
+  info.series = dynamicTensionSeriesFields();
+  return scenarioOf<DynamicTensionSpec>(
+      std::move(info), parseDynamicTensionSpec,
+      [](const DynamicTensionSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
+      runDynamicTension);
 }
 
 }  // namespace rupture

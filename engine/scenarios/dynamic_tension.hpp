@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rupture/run.hpp"
+#include "scenarios/dynamic_tension_spec.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace rupture {
@@ -25,8 +26,9 @@ namespace rupture {
 /// The registry entry (declared in scenarios/registry.cpp).
 Scenario dynamicTensionScenario();
 
-/// Runs a spec already validated by parseDynamicTensionSpec (it is parsed again here).
-RunOutcome runDynamicTension(const nlohmann::json& spec, const std::string& resultPath, RunControl& control);
+/// Runs a parsed spec; `json` is the spec as given, recorded in the file.
+RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                             RunControl& control);
 
 /// Units of the summary scalars (the "<name>_unit" attributes of /summary).
 const std::map<std::string, std::string>& dynamicTensionSummaryUnits();

@@ -92,9 +92,9 @@ const std::map<std::string, std::string>& elasticPropertiesSummaryUnits() {
   return units;
 }
 
-RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                                RunControl& control) {
   const auto wallStart = Clock::now();
-  const ElasticPropertiesSpec spec = parseElasticPropertiesSpec(json);
   control.progress.store(0.0);
 
   logStage(control, "building the sample");
@@ -204,10 +204,10 @@ RunOutcome runElasticProperties(const nlohmann::json& json, const std::string& r
 }
 
 Scenario elasticPropertiesScenario() {
-  Scenario s;
-  s.info.name = kScenarioName;
-  s.info.title = "Macroscopic Young's modulus and Poisson ratio of a bonded sample (beam calibration)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = kScenarioName;
+  info.title = "Macroscopic Young's modulus and Poisson ratio of a bonded sample (beam calibration)";
+  info.description =
       "A bonded discrete-element sample is stretched quasi-statically along x: every element starts on an affine "
       "field at a small strain, the X_min and X_max faces are held in x (free laterally), and damped dynamics "
       "relaxes the interior to equilibrium without failure or contact. Outputs the macroscopic Young's modulus "
@@ -216,14 +216,11 @@ Scenario elasticPropertiesScenario() {
       "With a target E and nu, the beams' Young's modulus and radius ratio are fitted to reach them (André et al. "
       "2012), up to about 20 tension tests; with a target tensile strength, the beams' failure stress is fitted; "
       "the fitted beams are reported with the values they achieve.";
-  s.info.summary = elasticPropertiesSummaryFields();
-  s.validate = [](const nlohmann::json& spec) { parseElasticPropertiesSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) {
-    const auto parsed = parseElasticPropertiesSpec(spec);
-    return io::estimateBondedRun(parsed.sample, parsed.material);
-  };
-  s.run = runElasticProperties;
-  return s;
+  info.summary = elasticPropertiesSummaryFields();
+  return scenarioOf<ElasticPropertiesSpec>(
+      std::move(info), parseElasticPropertiesSpec,
+      [](const ElasticPropertiesSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
+      runElasticProperties);
 }
 
 }  // namespace rupture

@@ -46,8 +46,9 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json);
 /// The resolved spec (defaults filled in), as written to /spec "json"; parses back to the same struct.
 nlohmann::json toJson(const ElasticPropertiesSpec& spec);
 
-/// Runs a spec already validated by parseElasticPropertiesSpec (it is parsed again here).
-RunOutcome runElasticProperties(const nlohmann::json& spec, const std::string& resultPath, RunControl& control);
+/// Runs a parsed spec; `json` is the spec as given, recorded in the file.
+RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                                RunControl& control);
 
 /// Units of the summary scalars (the "<name>_unit" attributes of /summary).
 const std::map<std::string, std::string>& elasticPropertiesSummaryUnits();

@@ -34,17 +34,6 @@ void split(const std::vector<double>& in, std::vector<double>& a, std::vector<do
 
 }  // namespace
 
-std::string fnv1aHex(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
-  return buffer;
-}
-
 std::string preliminaryCacheDirectory(const std::string& configured, const std::string& resultPath) {
   if (!configured.empty()) return configured;
   if (const char* dir = std::getenv("RUPTURE_CACHE_DIR"); dir && *dir) return dir;
@@ -61,12 +50,7 @@ std::string preliminaryCacheFile(const std::string& directory, const nlohmann::j
 
 std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const nlohmann::json& key,
                                                  std::size_t elements) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) return std::nullopt;
-  try {
-    io::Hdf5File f = io::Hdf5File::openReadOnly(file);
-    if (f.readAttributeInt("/", "format_version") != kFormatVersion) return std::nullopt;
-    if (f.readAttributeString("/", "key") != key.dump()) return std::nullopt;
+  return readCacheEntry(file, key, kFormatVersion, [&](io::Hdf5File& f) -> std::optional<PreliminaryResult> {
     if (f.readAttributeInt("/", "elements") != static_cast<std::int64_t>(elements)) return std::nullopt;
     PreliminaryResult r;
     auto d = [&](const char* name) { return f.readAttributeDouble("/", name); };
@@ -90,30 +74,7 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
     split(v, r.field.vx, r.field.vy, r.field.vz);
     split(w, r.field.wx, r.field.wy, r.field.wz);
     return r;
-  } catch (const std::exception&) {
-    return std::nullopt;  // unreadable or older layout: recompute
-  }
-}
-
-bool writeCacheEntry(const std::string& file, const std::function<void(io::Hdf5File&)>& fill) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path target(file);
-  const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp." + std::to_string(::getpid()) +
-                                               "." + std::to_string(counter++));
-  std::error_code ec;
-  fs::create_directories(target.parent_path(), ec);
-  try {
-    {
-      io::Hdf5File f = io::Hdf5File::create(tmp.string());
-      fill(f);
-      f.close();
-    }
-    fs::rename(tmp, target);
-    return true;
-  } catch (const std::exception&) {
-    fs::remove(tmp, ec);
-    return false;
-  }
+  });
 }
 
 bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& r) {

@@ -20,13 +20,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/fnv1a.hpp"
 #include "io/hdf5_file.hpp"
+#include "scenarios/cache_entry.hpp"
 #include "scenarios/vh_preliminary.hpp"
 
 namespace rupture {
 
-/// 64-bit FNV-1a of the text, as 16 lower-case hex digits.
-std::string fnv1aHex(const std::string& text);
 
 /// `configured` if not empty, else $RUPTURE_CACHE_DIR, $XDG_CACHE_HOME/rupture, ~/.cache/rupture,
 /// or .rupture-cache beside the result file.
@@ -42,10 +42,6 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
 /// Stores atomically; returns false (and leaves nothing behind) if the directory is not writable.
 bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& result);
 
-/// Writes a cache entry atomically: `fill` writes a new HDF5 file under a temporary name beside
-/// `file`, which is renamed to `file` once closed, so a reader never sees a partial entry. Returns
-/// false (and leaves no file) when it cannot be written, e.g. in a read-only cache directory.
-bool writeCacheEntry(const std::string& file, const std::function<void(io::Hdf5File&)>& fill);
 
 /// An exclusive lock on one cache entry (flock on FILE.lock), so that runs starting together on the
 /// same sample (a sweep's workers, or several processes) compute its preliminary run once: the

@@ -80,21 +80,32 @@ const Scenario& scenarioWithKnownKeys(const nlohmann::json& spec) {
 
 }  // namespace
 
-void validateSpec(const nlohmann::json& spec) { scenarioWithKnownKeys(spec).validate(spec); }
+ParsedSpec parseSpec(const nlohmann::json& spec) {
+  ParsedSpec parsed;
+  parsed.m_scenario = &scenarioWithKnownKeys(spec);
+  parsed.m_value = parsed.m_scenario->parse(spec);
+  parsed.m_json = std::make_shared<const nlohmann::json>(spec);
+  return parsed;
+}
 
-RunEstimate estimateRun(const nlohmann::json& spec) {
-  const Scenario& scenario = scenarioWithKnownKeys(spec);
-  if (scenario.estimate) return scenario.estimate(spec);  // parses, so it validates too
-  scenario.validate(spec);
-  return {};
+const std::string& ParsedSpec::scenarioName() const { return m_scenario->info.name; }
+
+RunEstimate ParsedSpec::estimate() const {
+  return m_scenario->estimate ? m_scenario->estimate(m_value.get()) : RunEstimate{};
+}
+
+void validateSpec(const nlohmann::json& spec) { parseSpec(spec); }
+
+RunEstimate estimateRun(const nlohmann::json& spec) { return parseSpec(spec).estimate(); }
+
+RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunControl& control, int threads) {
+  // OpenMP's thread count is per calling thread: each server worker sets its own.
+  omp_set_num_threads(std::max(1, threads));
+  return spec.m_scenario->run(spec.m_value.get(), spec.json(), resultPath, control);
 }
 
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control, int threads) {
-  const Scenario& scenario = scenarioWithKnownKeys(spec);
-  scenario.validate(spec);
-  // OpenMP's thread count is per calling thread: each server worker sets its own.
-  omp_set_num_threads(std::max(1, threads));
-  return scenario.run(spec, resultPath, control);
+  return runSpec(parseSpec(spec), resultPath, control, threads);
 }
 
 }  // namespace rupture

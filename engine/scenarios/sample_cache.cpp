@@ -59,12 +59,7 @@ PackedSample capture(const BondedSystem& system, const SampleReport& report) {
 }
 
 std::optional<PackedSample> load(const std::string& file, const nlohmann::json& key) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) return std::nullopt;
-  try {
-    io::Hdf5File f = io::Hdf5File::openReadOnly(file);
-    if (f.readAttributeInt("/", "format_version") != kFormatVersion) return std::nullopt;
-    if (f.readAttributeString("/", "key") != key.dump()) return std::nullopt;
+  return readCacheEntry(file, key, kFormatVersion, [&](io::Hdf5File& f) -> std::optional<PackedSample> {
     PackedSample s;
     s.position = f.readDatasetDouble("/position");
     s.radius = f.readDatasetDouble("/radius");
@@ -88,9 +83,7 @@ std::optional<PackedSample> load(const std::string& file, const nlohmann::json& 
     for (std::size_t k = 0; k < s.pore.size(); k += 4)
       r.pores.push_back({{s.pore[k], s.pore[k + 1], s.pore[k + 2]}, s.pore[k + 3]});
     return s;
-  } catch (const std::exception&) {
-    return std::nullopt;  // unreadable, truncated or older layout: rebuild
-  }
+  });
 }
 
 void store(const std::string& file, const nlohmann::json& key, const PackedSample& s) {

@@ -1,7 +1,9 @@
 #pragma once
-// A scenario = a registered name, its description, a validator and a run function. The registry
+// A scenario = a registered name, its description, a parser, an estimate and a run function. The registry
 // (scenarios/registry.cpp) lists them explicitly: adding a scenario is one file plus one line there.
 #include <functional>
+#include <memory>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -11,16 +13,41 @@
 
 namespace rupture {
 
+/// A registered scenario. Its spec is parsed once into the scenario's typed value (held behind
+/// `const void*`, typed again by scenarioOf), which the estimate and the run read.
 struct Scenario {
   ScenarioInfo info;
-  /// Throws SpecError for the first invalid field (the "scenario" key is already checked).
-  std::function<void(const nlohmann::json& spec)> validate;
-  /// Size of a spec's run; validates like `validate` (optional: scenarios without one report
-  /// particles = 0).
-  std::function<RunEstimate(const nlohmann::json& spec)> estimate;
-  /// Runs a valid spec; see rupture::runSpec for the file contract.
-  std::function<RunOutcome(const nlohmann::json& spec, const std::string& resultPath, RunControl& control)> run;
+  /// Parses and validates a spec (the "scenario" key and unknown keys already checked); throws
+  /// SpecError for the first invalid field.
+  std::function<std::shared_ptr<const void>(const nlohmann::json& spec)> parse;
+  /// Size of a parsed spec's run (optional: scenarios without one report particles = 0).
+  std::function<RunEstimate(const void* parsed)> estimate;
+  /// Runs a parsed spec (`spec` is the JSON it came from, recorded in the file); see
+  /// rupture::runSpec for the file contract.
+  std::function<RunOutcome(const void* parsed, const nlohmann::json& spec, const std::string& resultPath,
+                           RunControl& control)>
+      run;
 };
+
+/// The one way a scenario file builds its Scenario: its parse, estimate and run functions over its
+/// own spec type.
+template <class Spec>
+Scenario scenarioOf(ScenarioInfo info, Spec (*parse)(const nlohmann::json&),
+                    std::type_identity_t<RunEstimate (*)(const Spec&)> estimate,
+                    std::type_identity_t<RunOutcome (*)(const Spec&, const nlohmann::json&, const std::string&,
+                                                        RunControl&)>
+                        run) {
+  Scenario s;
+  s.info = std::move(info);
+  s.parse = [parse](const nlohmann::json& spec) -> std::shared_ptr<const void> {
+    return std::make_shared<const Spec>(parse(spec));
+  };
+  if (estimate) s.estimate = [estimate](const void* parsed) { return estimate(*static_cast<const Spec*>(parsed)); };
+  s.run = [run](const void* parsed, const nlohmann::json& spec, const std::string& resultPath, RunControl& control) {
+    return run(*static_cast<const Spec*>(parsed), spec, resultPath, control);
+  };
+  return s;
+}
 
 /// All registered scenarios, in a fixed order.
 const std::vector<Scenario>& scenarioRegistry();

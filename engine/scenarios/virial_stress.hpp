@@ -1,6 +1,6 @@
 #pragma once
-// Per-element virial stress of a bonded sample (André et al., CMAME 265, 2013; physics-reference
-// §1.7), from the bond loads of the last step:
+// Per-element virial stress of a bonded sample (André et al., CMAME 265, 2013;
+// docs/references.md#eq-virial), from the bond loads of the last step:
 //
 //   σ_i = 1/(2 Ω_i) Σ_b ½ (r_ij ⊗ f_ij + f_ij ⊗ r_ij)
 //

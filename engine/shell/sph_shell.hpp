@@ -1,6 +1,6 @@
 #pragma once
 // Meshless (SPH) Mindlin–Reissner shell after Maurel & Combescure (2008) and Caleyron et al. (2011,
-// 2013 = seed 002, §5.4.1): one layer of nodes in the mid-surface, each with a position x and a
+// 2013 §5.4.1; docs/references.md): one layer of nodes in the mid-surface, each with a position x and a
 // pseudo-normal (director) n (5 degrees of freedom: no drilling rotation), a total-Lagrangian
 // corrected kernel, plane-stress plasticity and damage integrated through the thickness.
 //

@@ -1,7 +1,8 @@
 #pragma once
 // Gauss–Legendre points through the shell thickness, ξ in [−t/2, t/2]. Two or more points
-// integrate the elastic resultants N = ∫σ dξ and M = ∫σ ξ dξ exactly; five is the seed's choice for
-// its Q4GS finite elements (seed 002, §5.4.2), and the default here.
+// integrate the elastic resultants N = ∫σ dξ and M = ∫σ ξ dξ exactly; five is Caleyron et al.'s
+// choice for their Q4GS finite elements (Caleyron et al. 2013, §4.1; docs/references.md), and the
+// default here.
 #include <array>
 #include <stdexcept>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // Cubic B-spline smoothing kernel (Monaghan & Lattanzio 1985), support 2h, normalised per
-// dimension: physics-reference.md §4.1. W(r) = a_D w(q), q = r/h,
+// dimension (docs/references.md#eq-sph). W(r) = a_D w(q), q = r/h,
 //   w = 1 − 1.5 q² + 0.75 q³ (0 ≤ q < 1),  0.25 (2 − q)³ (1 ≤ q < 2),  0 (q ≥ 2)
 //   a_D = 2/(3h) (1D), 10/(7π h²) (2D), 1/(π h³) (3D).
 // The pair loops need only gradientFactor: ∇_a W_ab = gradientFactor(r) · (x_a − x_b).

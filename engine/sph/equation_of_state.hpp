@@ -1,6 +1,6 @@
 #pragma once
-// Equations of state of a weakly compressible liquid (physics-reference.md §4.3):
-//   acoustic (the seed's eq. 3, 002 §4.2):  p = c0² (ρ − ρ0)
+// Equations of state of a weakly compressible liquid (docs/references.md#eq-sph):
+//   acoustic (Caleyron et al. 2013 eq. 3):  p = c0² (ρ − ρ0)
 //   Tait (Monaghan 1994; Batchelor):         p = B [(ρ/ρ0)^γ − 1],  B = ρ0 c0²/γ,  γ = 7
 // Both have sound speed c0 at ρ0. Pressures in Pa, densities in kg/m³, speeds in m/s.
 #include <cmath>

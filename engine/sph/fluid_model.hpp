@@ -1,5 +1,5 @@
 #pragma once
-// The parameters of the weakly compressible SPH fluid (seed 002 §4.2; physics-reference.md §4):
+// The parameters of the weakly compressible SPH fluid (Caleyron et al. 2013 §4.2; docs/references.md#eq-sph):
 // kernel, equation of state, Monaghan artificial viscosity, δ-SPH density diffusion, gravity.
 // One validated value type: the spec parsers fill it, the pair loop reads it.
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
-// The SPH pair loop: for every particle a, from its neighbour list (seed 002 eqs. 4–5;
-// physics-reference.md §4.2 and §4.4),
+// The SPH pair loop: for every particle a, from its neighbour list (Caleyron et al. 2013 eqs. 4–5;
+// Monaghan 1992; docs/references.md#eq-sph),
 //   dρ_a/dt = Σ_b m_b v_ab·∇_a W_ab  [+ δ-SPH diffusion, fluid–fluid pairs, see fluid_model.hpp]
 //   dv_a/dt = −Σ_b m_b (p_a/ρ_a² + p_b/ρ_b² + Π_ab) ∇_a W_ab          (gravity added by the integrator)
 //   Π_ab = (−α c0 μ_ab + β μ_ab²)/ρ̄_ab if v_ab·x_ab < 0, else 0;  μ_ab = h v_ab·x_ab/(r² + 0.01 h²)

@@ -40,7 +40,7 @@ public:
   /// Advances by dt (s).
   void step(double dt);
 
-  /// Monaghan & Kos (1999) time step from the last rates (physics-reference.md §4.5):
+  /// Monaghan & Kos (1999) time step from the last rates (docs/references.md#eq-sph):
   /// dt = C min(min_a √(h/|f_a|), h/(c_max + max_ab |μ_ab|)).
   double stableTimeStep(double courant) const;
   const RateExtremes& extremes() const { return m_extremes; }

@@ -1,8 +1,10 @@
 #pragma once
-// The single entry every door uses: the CLI (`rupture run`) and the job server call runSpec with
-// a validated spec, a result path, and a RunControl through which they watch and cancel.
+// The single entry every door uses: the CLI (`rupture run`) and the job server parse a spec once
+// (parseSpec) and call runSpec with it, a result path, and a RunControl through which they watch
+// and cancel.
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,18 +61,43 @@ struct RunEstimate {
   std::string basis;       ///< what the memory estimate counts, for the error that quotes it
 };
 
-/// The estimate for a valid spec; throws SpecError like validateSpec for an invalid one.
+struct Scenario;
+
+/// A spec parsed and validated once: its scenario, unknown keys rejected, every value checked and
+/// held as the scenario's typed value, which the estimate and the run then read. Cheap to copy.
+class ParsedSpec {
+public:
+  const nlohmann::json& json() const { return *m_json; }
+  const std::string& scenarioName() const;
+  /// What the run will need; 0 particles for a scenario that gives no estimate.
+  RunEstimate estimate() const;
+
+private:
+  friend ParsedSpec parseSpec(const nlohmann::json& spec);
+  friend RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunControl& control, int threads);
+  const Scenario* m_scenario = nullptr;
+  std::shared_ptr<const nlohmann::json> m_json;
+  std::shared_ptr<const void> m_value;  ///< the scenario's typed spec (DynamicTensionSpec, ...)
+};
+
+/// Parses a whole spec (with its "scenario" key). Throws SpecError naming the first offending
+/// field; unknown fields are reported first, with the nearest allowed key.
+ParsedSpec parseSpec(const nlohmann::json& spec);
+
+/// Runs the parsed spec and writes one HDF5 file at resultPath (written as resultPath + ".part"
+/// and renamed when closed, so a reader never sees a half-written file). A cancelled run
+/// (RunControl::cancel) returns completed = false with its file marked incomplete; a run cancelled
+/// while its sample was being built holds only /spec and /summary. Throws std::runtime_error for a
+/// failure during the run. `threads` = OpenMP threads for this run (>= 1).
+RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunControl& control, int threads = 1);
+
+/// parseSpec(spec).estimate(): throws SpecError for an invalid spec.
 RunEstimate estimateRun(const nlohmann::json& spec);
 
-/// Checks a whole spec (with its "scenario" key) without running it. Throws SpecError naming the
-/// first offending field; unknown fields are errors too.
+/// parseSpec without keeping the result: throws SpecError naming the first offending field.
 void validateSpec(const nlohmann::json& spec);
 
-/// Runs the spec and writes one HDF5 file at resultPath (written as resultPath + ".part" and renamed
-/// when closed, so a reader never sees a half-written file). A cancelled run (RunControl::cancel)
-/// returns completed = false with its file marked incomplete; a run cancelled while its sample was
-/// being built holds only /spec and /summary. Throws SpecError for an invalid spec,
-/// std::runtime_error for a failure during the run. `threads` = OpenMP threads for this run (>= 1).
+/// runSpec(parseSpec(spec), ...): throws SpecError for an invalid spec.
 RunOutcome runSpec(const nlohmann::json& spec, const std::string& resultPath, RunControl& control,
                    int threads = 1);
 

@@ -5,7 +5,7 @@
 // at least 2.5 spacings inside every face, ε_xx and ε_yy (ε_zz) from the least-squares slopes of
 // their displacements. (The face forces over the box section would mix in the free surfaces, whose
 // sites miss half their diagonal springs: a 1/N effect, −5 % at 12 sites across.) The forward and
-// inverse maps agree with physics-reference §2.1–2.2.
+// inverse maps agree with docs/references.md#eq-lattice.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -158,7 +158,7 @@ INSTANTIATE_TEST_SUITE_P(
     caseName);
 
 TEST(SpringMapping, MatchesTheReferenceClosedFormsAndInvertsTheForwardMap) {
-  // physics-reference §2.1: triangular Hookean plane stress k_n = √3 E t / 2, ν = 1/3.
+  // docs/references.md#eq-lattice: triangular Hookean plane stress k_n = √3 E t / 2, ν = 1/3.
   const double t = 2e-3;
   const SpringConstants hookean = springConstants(LatticeKind::Triangular, false, kE, 1.0 / 3.0, kSpacing, t);
   EXPECT_NEAR(hookean.normalStiffness, std::sqrt(3.0) * kE * t / 2, 1e-9 * kE * t);

@@ -1,6 +1,7 @@
-// Silling's local damping (core/local_damping.hpp, seed 003): a damped bond decays at the rate of
-// its dashpot, undamaged material is not damped, the damage index the damping reads is the one of
-// the bond network, and it takes the energy out of the ringing left by a crack.
+// Silling's local damping (core/local_damping.hpp; Bobaru et al. 2016 as PeriLab gives it): a
+// damped bond decays at the rate of its dashpot, undamaged material is not damped, the damage index
+// the damping reads is the one of the bond network, and it takes the energy out of the ringing left
+// by a crack.
 #include <gtest/gtest.h>
 
 #include <cmath>

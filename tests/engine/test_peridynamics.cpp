@@ -163,7 +163,7 @@ TEST(Pmb, CriticalStretchFromG0CostsG0PerUnitAreaIn2DAnd3D) {
 
 TEST(Pmb, MicromodulusAndCriticalValuesMatchTheReferenceFormulas) {
   const double delta = 1.5e-3, K = 14.9e9, E = 1.5 * K;
-  // LAMMPS's examples/peri value: c = 1.6863e22 for K = 14.9 GPa, δ = 1.5 mm (physics-reference §3.2).
+  // LAMMPS's examples/peri value: c = 1.6863e22 for K = 14.9 GPa, δ = 1.5 mm (docs/references.md#eq-pd).
   EXPECT_NEAR(pmbMicromodulus(3, E, delta, 0.0), 1.6863e22, 1e-4 * 1.6863e22);
   const double t = 2e-3;
   EXPECT_NEAR(pmbMicromodulus(2, E, delta, t), 9 * E / (std::numbers::pi * t * std::pow(delta, 3)), 1);

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "config.hpp"
+#include "common/config.hpp"
 
 namespace rupture::server {
 namespace {

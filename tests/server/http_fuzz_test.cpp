@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
-#include "utf8.hpp"
+#include "common/utf8.hpp"
 
 namespace rupture::server {
 namespace {

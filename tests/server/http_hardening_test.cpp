@@ -10,12 +10,15 @@
 #include <map>
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include "core/fnv1a.hpp"
 
 #include "io/spec_reader.hpp"
-#include "public_message.hpp"
+#include "common/public_message.hpp"
 #include "server_test_support.hpp"
-#include "summary.hpp"
-#include "utf8.hpp"
+#include "studies/summary.hpp"
+#include "common/utf8.hpp"
 
 namespace rupture::server {
 namespace {
@@ -546,6 +549,27 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
   EXPECT_EQ(retry->status, 201);
   EXPECT_EQ(Json::parse(retry->body)["jobID"], std::to_string(id));
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 1);
+
+  // Servers before 2026-11-27 stored fingerprints hashed from a mistyped offset basis: a retry of
+  // such a key with its own request still replays, one with another request is still refused.
+  const std::string text = std::string(test::kScenario) + "\n" + body.dump(-1, ' ', false, Json::error_handler_t::replace);
+  EXPECT_NE(fnv1aHex(text), fnv1aHex(text, 1469598103934665603ull));
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((data.path() / "rupture.sqlite").c_str(), &db), SQLITE_OK);
+    const std::string sql = "UPDATE idempotency_keys SET request_hash = '" + fnv1aHex(text, 1469598103934665603ull) +
+                            "' WHERE key = 'retry-7f3a'";
+    EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    EXPECT_EQ(sqlite3_changes(db), 1);
+    sqlite3_close(db);
+  }
+  auto legacy = test::postJson(*client, kExecute, body, key);
+  ASSERT_TRUE(legacy);
+  EXPECT_EQ(legacy->status, 201);
+  EXPECT_EQ(Json::parse(legacy->body)["jobID"], std::to_string(id));
+  Json other = body;
+  other["name"] = "another";
+  expectProblem(test::postJson(*client, kExecute, other, key), 422, "Idempotency-Key");
 }
 
 }  // namespace

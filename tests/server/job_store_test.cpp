@@ -1,7 +1,7 @@
 // The SQLite job store: job and run lifecycle, status roll-up, dismissal, crash re-queue, reopen.
 #include <gtest/gtest.h>
 
-#include "job_store.hpp"
+#include "jobs/job_store.hpp"
 #include "server_test_support.hpp"
 
 namespace rupture::server {

@@ -2,7 +2,7 @@
 // `updated` that moves while the progress rises; a dismissed job keeps the progress of what ran.
 #include <gtest/gtest.h>
 
-#include "progress_info.hpp"
+#include "jobs/progress_info.hpp"
 #include "rupture/progress.hpp"
 #include "server_test_support.hpp"
 

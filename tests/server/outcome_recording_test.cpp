@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "files.hpp"
-#include "scheduler.hpp"
+#include "common/files.hpp"
+#include "execution/scheduler.hpp"
 #include "server_test_support.hpp"
 #include "support/small_filesystem.hpp"
 

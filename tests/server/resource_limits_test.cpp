@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "config.hpp"
+#include "common/config.hpp"
 #include "rupture/run.hpp"
 #include "server_test_support.hpp"
 #include "support/small_filesystem.hpp"

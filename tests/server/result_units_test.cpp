@@ -9,10 +9,10 @@
 #include <optional>
 
 #include "io/hdf5_file.hpp"
-#include "results.hpp"
+#include "views/results.hpp"
 #include "rupture/run.hpp"
 #include "server_test_support.hpp"
-#include "summary.hpp"
+#include "studies/summary.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;

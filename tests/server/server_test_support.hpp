@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
-#include "problem.hpp"
+#include "common/problem.hpp"
 #include "rupture/run.hpp"
 #include "server.hpp"
 

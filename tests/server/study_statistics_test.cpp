@@ -5,14 +5,14 @@
 
 #include <gtest/gtest.h>
 
-#include "job_store.hpp"
-#include "rate_dependence.hpp"
-#include "refinement.hpp"
-#include "replicate_statistics.hpp"
-#include "replicates.hpp"
+#include "jobs/job_store.hpp"
+#include "studies/rate_dependence.hpp"
+#include "studies/refinement.hpp"
+#include "studies/replicate_statistics.hpp"
+#include "jobs/replicates.hpp"
 #include "server_test_support.hpp"
-#include "student_t.hpp"
-#include "svg_plot.hpp"
+#include "studies/student_t.hpp"
+#include "views/svg_plot.hpp"
 
 namespace rupture::server {
 namespace {

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
-#include "summary.hpp"
-#include "plot_png.hpp"
-#include "svg_plot.hpp"
+#include "studies/summary.hpp"
+#include "views/plot_png.hpp"
+#include "views/svg_plot.hpp"
 
 namespace rupture::server {
 namespace {

@@ -1,7 +1,7 @@
 // Sweep expansion without the engine: grid and zip counts and order, paths, limits.
 #include <gtest/gtest.h>
 
-#include "sweep.hpp"
+#include "jobs/sweep.hpp"
 
 namespace rupture::server {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "command.hpp"
-#include "files.hpp"
+#include "execution/command.hpp"
+#include "common/files.hpp"
 #include "server_test_support.hpp"
 
 namespace rupture::server {

@@ -1,4 +1,5 @@
-// Lemaitre–Chaboche damage with delay (seed 002, eqs. 9–12): one material point under imposed paths.
+// Lemaitre–Chaboche damage with delay (Caleyron et al. 2013, eqs. 9–12; docs/references.md): one
+// material point under imposed paths.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The cubic spline kernel (physics-reference.md §4.1) and the equations of state (§4.3).
+// The cubic spline kernel and the equations of state (docs/references.md#eq-sph).
 #include <gtest/gtest.h>
 
 #include <cmath>

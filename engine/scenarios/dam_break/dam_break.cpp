@@ -27,9 +27,9 @@ std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
 }
 
 
-RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                       RunControl& control) {
   const auto wallStart = Clock::now();
-  const DamBreakSpec spec = parseDamBreakSpec(json);
   control.progress.store(0.0);
   const int dim = spec.dimension;
   sph::SphSystem s;
@@ -107,21 +107,21 @@ RunOutcome runDamBreak(const nlohmann::json& json, const std::string& resultPath
 }  // namespace
 
 Scenario damBreakScenario() {
-  Scenario s;
-  s.info.name = "dam-break";
-  s.info.title = "Collapse of a water column in a tank (weakly compressible SPH)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = "dam-break";
+  info.title = "Collapse of a water column in a tank (weakly compressible SPH)";
+  info.description =
       "A water column of width a and height H at the back of a tank is released under gravity and surges along the "
       "floor (Martin & Moyce 1952). Weakly compressible SPH: cubic spline kernel, Tait or acoustic equation of state, "
       "Monaghan artificial viscosity, delta-SPH density diffusion, walls of dummy particles with pressure extrapolated from the fluid (Adami 2012), 2D or 3D. "
       "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
       "and snapshots of position, velocity, density and pressure.";
-  s.info.summary = damBreakSummaryFields();
-  s.info.series = damBreakSeriesFields();
-  s.validate = [](const nlohmann::json& spec) { parseDamBreakSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parseDamBreakSpec(spec).estimatedParticles); };
-  s.run = runDamBreak;
-  return s;
+  info.summary = damBreakSummaryFields();
+  info.series = damBreakSeriesFields();
+  return scenarioOf<DamBreakSpec>(
+      std::move(info), parseDamBreakSpec,
+      [](const DamBreakSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
+      runDamBreak);
 }
 
 }  // namespace rupture

@@ -85,9 +85,9 @@ const std::map<std::string, std::string>& summaryUnits() {
 
 }  // namespace
 
-RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                     RunControl& control) {
   const auto wallStart = Clock::now();
-  const ImpactSpec spec = parseImpactSpec(json);
   control.progress.store(0.0);
   logStage(control, "building the sample");
   BondedSystem system;
@@ -291,23 +291,20 @@ RunOutcome runImpact(const nlohmann::json& json, const std::string& resultPath, 
 }
 
 Scenario impactScenario() {
-  Scenario s;
-  s.info.name = "impact";
-  s.info.title = "Dynamic fracture of a notched bonded plate under impact (beams, lattice springs or peridynamics)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = "impact";
+  info.title = "Dynamic fracture of a notched bonded plate under impact (beams, lattice springs or peridynamics)";
+  info.description =
       "A 2D or 3D bonded plate (random packing or regular lattice, any bonded material model, optional notches) is "
       "hit by a rigid projectile (penalty contact), driven by imposed velocities on boxes of particles, or loaded by "
       "tractions on boxes at an edge; free elsewhere. Outputs the crack tip (farthest cracked particle from the "
       "notch), its smoothed speed, branching, fragments, energies and damage-field snapshots.";
-  s.info.summary = impactSummaryFields();
-  s.info.series = impactSeriesFields();
-  s.validate = [](const nlohmann::json& spec) { parseImpactSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) {
-    const auto parsed = parseImpactSpec(spec);
-    return io::estimateBondedRun(parsed.sample, parsed.material);
-  };
-  s.run = runImpact;
-  return s;
+  info.summary = impactSummaryFields();
+  info.series = impactSeriesFields();
+  return scenarioOf<ImpactSpec>(
+      std::move(info), parseImpactSpec,
+      [](const ImpactSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
+      runImpact);
 }
 
 }  // namespace rupture

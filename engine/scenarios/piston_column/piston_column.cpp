@@ -1,4 +1,4 @@
-// The piston-column scenario (seed 002 §2 and §4): a water column in a rigid tube, closed by a rigid
+// The piston-column scenario (Caleyron et al. 2013 §2 and §4): a water column in a rigid tube, closed by a rigid
 // bottom, hit by a piston. The pressure wave it carries (ρ0 c0 V for a heavy piston, doubled on
 // reflection at a rigid bottom) is what loads the bottom plate. Weakly compressible SPH with
 // Adami dummy-particle walls and piston (engine/sph/README.md); contract and file layout in docs/sph.md.
@@ -29,9 +29,9 @@ std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
 }
 
 
-RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                           RunControl& control) {
   const auto wallStart = Clock::now();
-  const PistonColumnSpec spec = parsePistonColumnSpec(json);
   control.progress.store(0.0);
   const int dim = spec.dimension;
 
@@ -133,21 +133,21 @@ RunOutcome runPistonColumn(const nlohmann::json& json, const std::string& result
 }  // namespace
 
 Scenario pistonColumnScenario() {
-  Scenario s;
-  s.info.name = "piston-column";
-  s.info.title = "Pressure wave in a water column hit by a piston (weakly compressible SPH)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = "piston-column";
+  info.title = "Pressure wave in a water column hit by a piston (weakly compressible SPH)";
+  info.description =
       "A water column in a rigid tube of diameter D and height H, closed by a rigid bottom, is hit by a piston: a "
       "free rigid body of mass M and initial speed V decelerated by the fluid (the drop test of seed 002), or a "
       "prescribed speed history. Weakly compressible SPH with dummy-particle walls (Adami 2012), 2D slice or 3D. Outputs "
       "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
       "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
-  s.info.summary = pistonColumnSummaryFields();
-  s.info.series = pistonColumnSeriesFields();
-  s.validate = [](const nlohmann::json& spec) { parsePistonColumnSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parsePistonColumnSpec(spec).estimatedParticles); };
-  s.run = runPistonColumn;
-  return s;
+  info.summary = pistonColumnSummaryFields();
+  info.series = pistonColumnSeriesFields();
+  return scenarioOf<PistonColumnSpec>(
+      std::move(info), parsePistonColumnSpec,
+      [](const PistonColumnSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
+      runPistonColumn);
 }
 
 }  // namespace rupture

@@ -1,7 +1,7 @@
 #pragma once
 // The piston-column scenario's spec: a water column in a rigid tube of diameter D and height H,
 // closed by a rigid bottom and hit by a piston (prescribed speed, or a free body of mass M and
-// initial speed V, as in seed 002 §2). Contract: api/schemas/piston-column.schema.json, docs/sph.md.
+// initial speed V, as in Caleyron et al. 2013 §2). Contract: api/schemas/piston-column.schema.json, docs/sph.md.
 #include <array>
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-// The tank-impact scenario (seed 002 §2, issue 11): the piston-column set-up with its rigid bottom
+// The tank-impact scenario (Caleyron et al. 2013 §2, issue 11): the piston-column set-up with its rigid bottom
 // replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
 // fluid–shell contact of engine/fsi (pinball or master–slave). The carriage and piston are one
 // free rigid body of mass M hitting the column at V; the water goes through the hole or the
@@ -84,9 +84,9 @@ io::StructurePoints plateSnapshot(const SphShell& shell, double density) {
   return out;
 }
 
-RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPath, RunControl& control) {
+RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
+                         RunControl& control) {
   const auto wallStart = Clock::now();
-  const TankImpactSpec spec = parseTankImpactSpec(json);
   control.progress.store(0.0);
   const double t = spec.plate.shell.thickness, dx = spec.resolution.spacing;
 
@@ -255,21 +255,21 @@ RunOutcome runTankImpact(const nlohmann::json& json, const std::string& resultPa
 }  // namespace
 
 Scenario tankImpactScenario() {
-  Scenario s;
-  s.info.name = "tank-impact";
-  s.info.title = "Water-filled tank closed by a plate, hit through a piston (SPH water, SPH shell, contact)";
-  s.info.description =
+  ScenarioInfo info;
+  info.name = "tank-impact";
+  info.title = "Water-filled tank closed by a plate, hit through a piston (SPH water, SPH shell, contact)";
+  info.description =
       "Seed 002's drop test: a water column in a rigid cylinder of diameter D, closed at the bottom by an aluminium "
       "plate (SPH Mindlin-Reissner shell, plasticity and Lemaitre-Chaboche damage, clamped at its rim; optional hole "
       "and pre-cracks), hit through a piston by a carriage of mass M at speed V. Water and plate interact by pinball "
       "or master-slave contact; the water leaves through the hole and opened cracks. Outputs the gauge pressure, "
       "carriage motion, jet speed, plate deflection, tongue angle, cracked length and crack paths, with snapshots.";
-  s.info.summary = tankImpactSummaryFields();
-  s.info.series = tankImpactSeriesFields();
-  s.validate = [](const nlohmann::json& spec) { parseTankImpactSpec(spec); };
-  s.estimate = [](const nlohmann::json& spec) { return io::estimateFluidRun(parseTankImpactSpec(spec).estimatedParticles); };
-  s.run = runTankImpact;
-  return s;
+  info.summary = tankImpactSummaryFields();
+  info.series = tankImpactSeriesFields();
+  return scenarioOf<TankImpactSpec>(
+      std::move(info), parseTankImpactSpec,
+      [](const TankImpactSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
+      runTankImpact);
 }
 
 }  // namespace rupture

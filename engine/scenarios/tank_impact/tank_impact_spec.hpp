@@ -1,5 +1,5 @@
 #pragma once
-// The tank-impact scenario's spec (seed 002 §2): a water column in the steel cylinder (inner
+// The tank-impact scenario's spec (Caleyron et al. 2013 §2): a water column in the steel cylinder (inner
 // diameter D, rigid wall), closed at the bottom by the AU4G plate clamped on the rim of its Ø D spot
 // face (SPH shell), hit through the piston by the carriage (one rigid body of mass M, initial speed
 // V). The plate has a thickness, and optionally a central hole and pre-cracks (U, X, I, radial).

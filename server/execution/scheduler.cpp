@@ -1,0 +1,363 @@
+#include "execution/scheduler.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <system_error>
+
+#include "common/files.hpp"
+#include "common/log.hpp"
+
+namespace rupture::server {
+namespace fs = std::filesystem;
+namespace {
+
+std::string describe(RunKey key) {
+  return "job " + std::to_string(key.job) + " run " + std::to_string(key.index);
+}
+
+fs::path partialFile(const fs::path& runFile) {
+  fs::path p = runFile;
+  return p.replace_extension(".partial.h5");
+}
+
+fs::path summaryFile(const fs::path& runFile) {
+  fs::path p = runFile;
+  return p.replace_extension(".summary.json");
+}
+
+void removeQuietly(const fs::path& p) {
+  std::error_code ec;
+  fs::remove(p, ec);
+}
+
+// A run that failed because the disk filled up goes back to the queue (where it waits for the
+// floor) at most this many times in all before it is recorded failed.
+constexpr int kDiskFullAttempts = 3;
+
+}  // namespace
+
+Scheduler::Scheduler(JobStore& store, fs::path dataDir, int workers, int threadsPerRun, RunExecutor executor)
+    : m_store(store), m_dataDir(std::move(dataDir)), m_workerCount(std::max(1, workers)),
+      m_threadsPerRun(std::max(1, threadsPerRun)), m_executor(std::move(executor)) {
+  if (!m_executor) {
+    m_executor = [](const nlohmann::json& spec, const std::string& path, rupture::RunControl& control,
+                    int threads) { return rupture::runSpec(spec, path, control, threads); };
+  }
+}
+
+Scheduler::~Scheduler() { shutdown(); }
+
+fs::path Scheduler::jobDir(std::int64_t jobId) const { return m_dataDir / "jobs" / std::to_string(jobId); }
+
+fs::path Scheduler::runFile(RunKey key) const {
+  return jobDir(key.job) / ("run-" + std::to_string(key.index) + ".h5");
+}
+
+int Scheduler::running() const {
+  std::lock_guard lock(m_mutex);
+  return static_cast<int>(m_active.size());
+}
+
+void Scheduler::recoverFinishedFiles() {
+  // A run whose result and summary files are complete finished, whatever the store says: it may
+  // have stopped before the store took the outcome, or the store may have taken a wrong one (a
+  // full disk once made the success unrecordable and the failure recordable).
+  std::vector<RunKey> candidates = m_store.unfinishedRuns();
+  const std::vector<RunKey> failed = m_store.failedRuns();
+  candidates.insert(candidates.end(), failed.begin(), failed.end());
+  for (RunKey key : candidates) {
+    const bool wasFailed = std::find(failed.begin(), failed.end(), key) != failed.end();
+    const fs::path file = runFile(key);
+    if (!regularFileSize(file)) continue;
+    auto text = readFile(summaryFile(file));
+    Json summary;
+    try {
+      if (text) summary = Json::parse(*text);
+    } catch (const std::exception&) {
+      summary = Json();
+    }
+    if (!summary.is_object()) {
+      if (!wasFailed) removeQuietly(file);  // not recorded as complete: it runs again
+      continue;
+    }
+    m_store.finishSuccessful(key, summary, fs::relative(file, m_dataDir).string());
+    logLine(describe(key) + (wasFailed ? " was recorded failed but its files are complete; recorded successful"
+                                       : " had finished before the last stop; recorded from its files"));
+  }
+}
+
+void Scheduler::start() {
+  std::lock_guard startLock(m_mutex);
+  if (m_started) return;
+  m_started = true;
+  recoverFinishedFiles();
+  if (int n = m_store.requeueInterrupted(); n > 0) {
+    logLine("re-queued " + std::to_string(n) + " run(s) interrupted by the last stop");
+  }
+  for (RunKey key : m_store.queuedRuns()) m_queue.push_back(key);
+  for (int i = 0; i < m_workerCount; ++i) m_threads.emplace_back([this] { workerLoop(); });
+  m_monitor = std::thread([this] { monitorLoop(); });
+}
+
+void Scheduler::enqueue(std::int64_t jobId, int runs) {
+  {
+    std::lock_guard lock(m_mutex);
+    for (int k = 0; k < runs; ++k) m_queue.push_back({jobId, k});
+  }
+  m_wake.notify_all();
+}
+
+void Scheduler::resubmit(std::int64_t jobId, const std::vector<int>& indices) {
+  {
+    std::lock_guard lock(m_mutex);
+    for (int k : indices) m_queue.push_back({jobId, k});
+  }
+  m_wake.notify_all();
+}
+
+std::optional<JobRecord> Scheduler::dismiss(std::int64_t jobId) {
+  // Under m_mutex, so that a worker between "registered" and "started in the store" sees either the
+  // store's dismissal (startRun fails) or the cancel flag.
+  std::lock_guard lock(m_mutex);
+  auto job = m_store.dismissJob(jobId);
+  if (job && job->status == Status::Dismissed) {
+    for (auto& [key, control] : m_active) {
+      if (key.job == jobId) control->cancel = true;
+    }
+  }
+  return job;
+}
+
+void Scheduler::requestStop() {
+  {
+    std::lock_guard lock(m_mutex);
+    m_stopping = true;
+    for (auto& [key, control] : m_active) control->cancel = true;
+  }
+  m_wake.notify_all();
+  m_monitorWake.notify_all();
+}
+
+void Scheduler::shutdown() {
+  requestStop();
+  for (std::thread& t : m_threads) {
+    if (t.joinable()) t.join();
+  }
+  if (m_monitor.joinable()) m_monitor.join();
+  retryUnrecorded();  // what still fails is repaired from the files on the next start
+}
+
+bool Scheduler::diskHasRoom() const {
+  if (m_minFreeBytes == 0) return true;
+  const std::optional<std::uintmax_t> available = availableBytes(m_dataDir);
+  return !available || *available >= m_minFreeBytes;  // an unknown free space does not stop the queue
+}
+
+int Scheduler::unrecordedOutcomes() const {
+  std::lock_guard lock(m_mutex);
+  return static_cast<int>(m_unrecorded.size());
+}
+
+bool Scheduler::tryRecord(const Outcome& o) {
+  try {
+    switch (o.kind) {
+      case Outcome::Kind::Successful:
+        m_store.finishSuccessful(o.key, o.summary, fs::relative(runFile(o.key), m_dataDir).string());
+        break;
+      case Outcome::Kind::Failed: m_store.finishFailed(o.key, o.message); break;
+      case Outcome::Kind::Dismissed: m_store.finishDismissed(o.key); break;
+      case Outcome::Kind::Requeued: m_store.requeueRun(o.key); break;
+    }
+    return true;
+  } catch (const std::exception& e) {
+    logLine(describe(o.key) + ": cannot record the outcome yet (" + e.what() + "); retrying every second");
+    return false;
+  }
+}
+
+void Scheduler::record(const Outcome& outcome) {
+  if (tryRecord(outcome)) return;
+  std::lock_guard lock(m_mutex);
+  m_unrecorded.push_back(outcome);
+}
+
+void Scheduler::retryUnrecorded() {
+  std::vector<Outcome> pending;
+  {
+    std::lock_guard lock(m_mutex);
+    pending.swap(m_unrecorded);
+  }
+  std::vector<Outcome> still;
+  for (const Outcome& o : pending) {
+    if (tryRecord(o)) logLine(describe(o.key) + ": outcome recorded");
+    else still.push_back(o);
+  }
+  if (still.empty()) return;
+  std::lock_guard lock(m_mutex);
+  m_unrecorded.insert(m_unrecorded.begin(), still.begin(), still.end());
+}
+
+void Scheduler::workerLoop() {
+  while (true) {
+    RunKey key;
+    auto control = std::make_shared<rupture::RunControl>();
+    // The VH preliminary-run cache lives with the data unless the operator chose a place: a sweep
+    // over one sample then runs its preliminary run once, and the cache leaves with the data dir.
+    if (const char* env = std::getenv("RUPTURE_CACHE_DIR"); env == nullptr || *env == '\0')
+      control->cacheDirectory = (m_dataDir / "cache").string();
+    {
+      std::unique_lock lock(m_mutex);
+      m_wake.wait(lock, [this] { return m_stopping || !m_queue.empty(); });
+      if (m_stopping) return;
+      if (!diskHasRoom()) {  // leave the run queued; look again in a second
+        if (!m_waitingForDisk.exchange(true))
+          logLine("less than " + std::to_string(m_minFreeBytes) + " bytes free in " + m_dataDir.string() +
+                  ": queued runs wait for disk space");
+        m_wake.wait_for(lock, std::chrono::seconds(1), [this] { return m_stopping; });
+        continue;
+      }
+      if (m_waitingForDisk.exchange(false)) logLine("disk space is back: runs start again");
+      key = m_queue.front();
+      m_queue.pop_front();
+      m_active.emplace(key, control);
+    }
+    bool started = false;
+    try {
+      started = m_store.startRun(key);
+    } catch (const std::exception& e) {
+      logLine(describe(key) + ": cannot start: " + e.what());
+    }
+    if (started) execute(key, control);
+    {
+      std::lock_guard lock(m_mutex);
+      m_active.erase(key);
+      m_stages.erase(key);
+    }
+  }
+}
+
+void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& control) {
+  const fs::path file = runFile(key);
+  const fs::path partial = partialFile(file);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  };
+  auto stopping = [this] {
+    std::lock_guard lock(m_mutex);
+    return m_stopping;
+  };
+  auto removeLeftovers = [&] {
+    for (const fs::path& stale : {file, partial, fs::path(partial.string() + ".part"), summaryFile(file)})
+      removeQuietly(stale);
+  };
+  Outcome outcome{Outcome::Kind::Failed, key, Json(), std::string()};
+  int attempts = 0;
+  try {
+    auto run = m_store.run(key);
+    if (!run) throw std::runtime_error("run vanished from the store");
+    attempts = run->attempts;
+    fs::create_directories(file.parent_path());
+    removeLeftovers();  // anything here is left over from an interrupted attempt
+    logLine(describe(key) + " started");
+    control->log = [this, key](const std::string& msg) {
+      logLine(describe(key) + ": " + msg);
+      std::lock_guard lock(m_mutex);
+      m_stages[key] = msg;
+    };
+    rupture::RunOutcome result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
+    if (result.completed) {
+      Json summary = result.summary.is_object() ? Json(result.summary) : Json::object();
+      writeFileAtomic(summaryFile(file), summary.dump(2) + "\n");
+      renameDurable(partial, file);
+      // From here the files say the run succeeded, whatever happens to the store.
+      outcome = {Outcome::Kind::Successful, key, summary, {}};
+      logLine(describe(key) + " successful after " + elapsed() + " s");
+    } else {
+      removeQuietly(partial);
+      if (stopping()) {
+        outcome.kind = Outcome::Kind::Requeued;
+        logLine(describe(key) + " interrupted by shutdown; re-queued");
+      } else if (control->cancel) {
+        outcome.kind = Outcome::Kind::Dismissed;
+        logLine(describe(key) + " cancelled after " + elapsed() + " s");
+      } else {
+        outcome.message = "the run ended without completing (nobody cancelled it)";
+        logLine(describe(key) + " ended incomplete after " + elapsed() + " s");
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    // Say where and how much, not a bare "std::bad_alloc": the estimate the admission check used.
+    removeLeftovers();
+    std::string stage;
+    {
+      std::lock_guard lock(m_mutex);
+      if (auto it = m_stages.find(key); it != m_stages.end()) stage = it->second;
+    }
+    std::string estimate;
+    try {
+      if (auto run = m_store.run(key)) {
+        const rupture::RunEstimate e = rupture::estimateRun(nlohmann::json(run->spec));
+        if (e.memoryBytes > 0) estimate = "; the spec's estimate was " + formatBytes(e.memoryBytes) + " (set by " + e.field + ")";
+      }
+    } catch (const std::exception&) {
+    }
+    if (control->cancel) {
+      outcome.kind = stopping() ? Outcome::Kind::Requeued : Outcome::Kind::Dismissed;
+    } else {
+      outcome.message = "out of memory" + (stage.empty() ? std::string(" while setting up the run") : " after the stage '" + stage + "'") +
+                        estimate + "; the machine could not give the run the memory it asked for (other runs share it): "
+                        "retry when fewer runs are running, or make the run smaller";
+      logLine(describe(key) + " failed: " + outcome.message);
+    }
+  } catch (const std::exception& e) {
+    const bool diskFull = isDiskFull(e.what()) || !diskHasRoom();
+    removeLeftovers();
+    if (control->cancel && stopping()) {
+      outcome.kind = Outcome::Kind::Requeued;
+    } else if (control->cancel) {
+      outcome.kind = Outcome::Kind::Dismissed;
+    } else if (diskFull && attempts < kDiskFullAttempts) {
+      outcome.kind = Outcome::Kind::Requeued;
+      logLine(describe(key) + ": the disk is full (" + e.what() + "); re-queued to wait for space");
+    } else {
+      outcome.message = e.what();
+      logLine(describe(key) + " failed: " + e.what());
+    }
+  } catch (...) {
+    removeLeftovers();
+    outcome.message = "unknown error (non-standard exception)";
+  }
+  record(outcome);
+  // Re-queued for the disk, not for a shutdown: back in this server's queue, behind the floor.
+  if (outcome.kind == Outcome::Kind::Requeued && !stopping()) {
+    std::lock_guard lock(m_mutex);
+    m_queue.push_back(key);
+  }
+}
+
+void Scheduler::monitorLoop() {
+  std::unique_lock lock(m_mutex);
+  while (!m_stopping) {
+    m_monitorWake.wait_for(lock, std::chrono::seconds(1), [this] { return m_stopping; });
+    if (m_stopping) break;
+    std::vector<RunProgress> progress;
+    for (const auto& [key, control] : m_active) {
+      auto stage = m_stages.find(key);
+      progress.push_back({key, control->progress.load(), stage == m_stages.end() ? std::string() : stage->second});
+    }
+    const bool retry = !m_unrecorded.empty();
+    lock.unlock();
+    try {
+      m_store.setProgress(progress);
+    } catch (const std::exception& e) {
+      logLine(std::string("cannot store progress: ") + e.what());
+    }
+    if (retry) retryUnrecorded();
+    lock.lock();
+  }
+}
+
+}  // namespace rupture::server

@@ -1,0 +1,124 @@
+#pragma once
+// The scheduler: a FIFO of runs (job order, then run index) served by a pool of worker threads.
+// Each run gets its own engine call with its own RunControl (cancel flag + progress); a monitor
+// copies progress into the store at most once a second. A run that throws marks only itself failed.
+//
+// Result files: <data-dir>/jobs/<id>/run-<k>.h5 exists only for a finished, complete run. The engine
+// writes run-<k>.partial.h5 (through its own .part + rename); on success the summary goes to
+// run-<k>.summary.json, then the file is renamed to run-<k>.h5, then the store is updated. A crash
+// between the rename and the store update is repaired on the next start from the summary file, so a
+// finished result is never recomputed.
+//
+// The files are the truth about a run's outcome, the store a record of it: an outcome the store
+// cannot take (disk full, database locked) is kept in memory and retried every second, and the
+// start-up repair records as successful every run, failed or unfinished in the store, whose
+// result and summary files are complete. Below the disk-space floor (setMinFreeBytes) no run
+// starts; a run that fails because the disk filled up is re-queued (three attempts) rather than failed.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "execution/executor.hpp"
+#include "jobs/job_store.hpp"
+#include "rupture/run.hpp"
+
+namespace rupture::server {
+
+/// How a run is executed: rupture::runSpec in production.
+using RunExecutor = std::function<rupture::RunOutcome(const nlohmann::json& spec, const std::string& resultPath,
+                                                      rupture::RunControl& control, int threads)>;
+
+/// The local executor.
+class Scheduler : public Executor {
+public:
+  Scheduler(JobStore& store, std::filesystem::path dataDir, int workers, int threadsPerRun,
+            RunExecutor executor = {});
+  ~Scheduler() override;
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
+
+  /// Repairs and re-queues what a crash left behind, queues every accepted run, starts the threads.
+  void start() override;
+  /// Queues the runs 0..runs-1 of a new job.
+  void enqueue(std::int64_t jobId, int runs) override;
+  /// Queues runs put back to accepted by a retry.
+  void resubmit(std::int64_t jobId, const std::vector<int>& indices) override;
+  /// Cancels a job: queued runs never start, running ones are told to stop (within a second).
+  /// Returns the job after the change, or nullopt when there is no such job.
+  std::optional<JobRecord> dismiss(std::int64_t jobId) override;
+  /// Stops the workers: running runs are cancelled and re-queued for the next start. Idempotent.
+  void shutdown() override;
+  /// Free bytes the data directory must keep for a run to start (0: no floor). Call before start().
+  void setMinFreeBytes(std::uintmax_t bytes) { m_minFreeBytes = bytes; }
+  /// True while queued runs wait for disk space.
+  bool waitingForDisk() const override { return m_waitingForDisk.load(); }
+  /// Outcomes finished on disk that the store has not taken yet (retried every second).
+  int unrecordedOutcomes() const override;
+  /// The first half of shutdown(), without waiting: no run starts from now on and running runs are
+  /// told to stop (they are re-queued as they end). shutdown() then waits for them.
+  void requestStop() override;
+
+  const char* name() const override { return "local"; }
+  int workers() const override { return m_workerCount; }
+  int threadsPerRun() const override { return m_threadsPerRun; }
+  int running() const;
+
+  /// <data-dir>/jobs/<id>/run-<k>.h5
+  std::filesystem::path runFile(RunKey key) const;
+  std::filesystem::path jobDir(std::int64_t jobId) const override;
+
+private:
+  /// How a run ended, to be written to the store.
+  struct Outcome {
+    enum class Kind { Successful, Failed, Dismissed, Requeued } kind;
+    RunKey key;
+    Json summary;         ///< Successful
+    std::string message;  ///< Failed
+  };
+  void workerLoop();
+  bool diskHasRoom() const;
+  /// Writes an outcome to the store; if the store fails, keeps it for the monitor to retry.
+  void record(const Outcome& outcome);
+  bool tryRecord(const Outcome& outcome);
+  void retryUnrecorded();
+  void monitorLoop();
+  void execute(RunKey key, const std::shared_ptr<rupture::RunControl>& control);
+  void recoverFinishedFiles();
+
+  JobStore& m_store;
+  std::filesystem::path m_dataDir;
+  int m_workerCount;
+  int m_threadsPerRun;
+  RunExecutor m_executor;
+
+  mutable std::mutex m_mutex;
+  std::condition_variable m_wake;         // workers: queue or stop
+  std::condition_variable m_monitorWake;  // monitor: stop
+  std::deque<RunKey> m_queue;
+  struct RunKeyLess {
+    bool operator()(const RunKey& a, const RunKey& b) const {
+      return a.job != b.job ? a.job < b.job : a.index < b.index;
+    }
+  };
+  std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
+  std::map<RunKey, std::string, RunKeyLess> m_stages;  ///< last stage message of each active run
+  bool m_stopping = false;
+  bool m_started = false;
+  std::vector<Outcome> m_unrecorded;  // guarded by m_mutex
+  std::uintmax_t m_minFreeBytes = 0;
+  std::atomic<bool> m_waitingForDisk{false};
+  std::vector<std::thread> m_threads;
+  std::thread m_monitor;
+};
+
+}  // namespace rupture::server

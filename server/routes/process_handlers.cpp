@@ -1,0 +1,309 @@
+// GET /processes, /processes/{id} and POST /processes/{id}/execution: the scenarios and submitting
+// a job (validation, queue bounds, idempotent retries).
+#include <algorithm>
+#include <cstdio>
+
+#include <httplib.h>
+
+#include "common/log.hpp"
+#include "core/fnv1a.hpp"
+#include "http/json_body.hpp"
+#include "http/request_guard.hpp"
+#include "jobs/replicates.hpp"
+#include "jobs/sweep.hpp"
+#include "routes/answers.hpp"
+#include "routes/documents.hpp"
+#include "routes/handlers.hpp"
+#include "routes/request_params.hpp"
+#include "rupture/run.hpp"
+#include "studies/refinement.hpp"
+#include "views/html_views.hpp"
+
+namespace rupture::server {
+namespace fs = std::filesystem;
+using httplib::Request;
+using httplib::Response;
+
+namespace {
+
+/// Queued work is bounded for the whole server, in runs (--max-queued-runs) and in stored bytes
+/// of inputs (--max-queued-bytes): a job that can never fit is the client's mistake (400); one
+/// that fits once the queue drains is told to come back (503).
+void requireQueueRoom(ServerContext& ctx, std::size_t runs, std::size_t inputBytes) {
+  struct Bound {
+    std::size_t amount, queued, limit;
+    const char *what, *flag, *key, *field, *title;
+  };
+  const Bound bounds[] = {
+      {inputBytes, static_cast<std::size_t>(std::max(0LL, ctx.store->queuedInputBytes())),
+       static_cast<std::size_t>(ctx.config.maxQueuedBytes), "bytes of inputs", "--max-queued-bytes", "bytes", "inputs",
+       "Inputs too large"},
+      {runs, static_cast<std::size_t>(std::max(0, ctx.store->queueDepth())),
+       static_cast<std::size_t>(ctx.config.maxQueuedRuns), "runs", "--max-queued-runs", "runs", "sweep", "Too many runs"}};
+  for (const Bound& b : bounds) {
+    const std::string key = b.key, flag = b.flag;
+    if (b.amount > b.limit) {
+      throw ApiError(400, b.key == std::string("runs") ? problem::kTooManyRuns : problem::kPayloadTooLarge, b.title,
+                     "the job has " + std::to_string(b.amount) + " " + b.what + "; unfinished jobs may hold at most " +
+                         std::to_string(b.limit) + " in this server (" + flag + ")",
+                     b.field, Json{{"in", "body"}, {"job_" + key, b.amount}, {"max_queued_" + key, b.limit}});
+    }
+    if (b.queued + b.amount > b.limit) {
+      throw ApiError(503, problem::kQueueFull, "Queue full",
+                     "unfinished jobs hold " + std::to_string(b.queued) + " " + b.what + " and this server allows " +
+                         std::to_string(b.limit) + " (" + flag + "); this job's " + std::to_string(b.amount) +
+                         " fit once some have finished: retry later",
+                     "", Json{{"queued_" + key, b.queued}, {"max_queued_" + key, b.limit}, {"retry_after_s", 60}});
+    }
+  }
+}
+
+/// The Idempotency-Key header: 1 to 200 visible ASCII characters, or "" when absent.
+std::string idempotencyKeyOf(const Request& req) {
+  if (!req.has_header("Idempotency-Key")) return "";
+  const std::string key = req.get_header_value("Idempotency-Key");
+  const bool visible = std::all_of(key.begin(), key.end(), [](char c) { return c > 0x20 && c < 0x7F; });
+  if (key.empty() || key.size() > 200 || !visible) {
+    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                   "Idempotency-Key must be 1 to 200 visible ASCII characters (a UUID is a good choice)",
+                   "Idempotency-Key", Json{{"in", "header"}});
+  }
+  return key;
+}
+
+/// The text a submission is identified by: the scenario and the body with keys sorted.
+std::string requestText(const std::string& scenario, const Json& body) {
+  return scenario + "\n" + nlohmann::json(body).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+/// Servers before 2026-11-27 hashed with a mistyped offset basis (a digit short of FNV's); the
+/// keys they stored are still honoured, so a retry across an upgrade still replays.
+bool sameRequest(const std::string& storedHash, const std::string& requestHash, const std::string& scenario,
+                 const Json& body) {
+  constexpr std::uint64_t kEarlierServersBasis = 1469598103934665603ull;
+  return storedHash == requestHash || storedHash == fnv1aHex(requestText(scenario, body), kEarlierServersBasis);
+}
+
+/// Identifies a submission: the scenario and the body with keys sorted (FNV-1a, 64 bits, hex).
+std::string requestFingerprint(const std::string& scenario, const Json& body) {
+  return fnv1aHex(requestText(scenario, body));
+}
+
+/// Answers a repeated Idempotency-Key: the earlier job (201, as the first answer was), or 422
+/// when the key came with a different request.
+void replayJob(ServerContext& ctx, const Request& req, Response& res, const IdempotentJob& earlier,
+               const std::string& requestHash, const std::string& scenario, const Json& body) {
+  if (!sameRequest(earlier.requestHash, requestHash, scenario, body)) {
+    throw ApiError(422, problem::kIdempotencyKeyReused, "Idempotency key reused",
+                   "this Idempotency-Key was first used for a different request (job " +
+                       std::to_string(earlier.id) + "); use a new key for a new submission",
+                   "Idempotency-Key", Json{{"in", "header"}, {"jobID", std::to_string(earlier.id)}});
+  }
+  auto record = ctx.store->job(earlier.id);
+  if (!record) throw noSuchJob(std::to_string(earlier.id));
+  auto runs = ctx.store->runs(earlier.id);
+  res.set_header("Location", "/jobs/" + std::to_string(earlier.id));
+  res.set_header("Idempotent-Replayed", "true");
+  if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
+    res.set_header("Preference-Applied", "respond-async");
+  }
+  sendJson(res, statusInfo(*record, &runs), 201);
+}
+
+}  // namespace
+
+namespace handlers {
+
+void getProcesses(ServerContext&, const Request& req, Response& res) {
+  Json list = Json::array();
+  for (const auto& s : rupture::listScenarios()) list.push_back(processSummary(s));
+  const Json doc{{"processes", list}, {"links", Json::array({link("/processes", "self")})}};
+  if (wantsHtml(req)) {
+    Json schemas = Json::object();
+    for (const auto& s : rupture::listScenarios()) schemas[s.name] = Json(rupture::scenarioSchema(s.name));
+    return sendHtml(res, processesHtml(doc, schemas));
+  }
+  sendJson(res, doc);
+}
+
+void getProcess(ServerContext& ctx, const Request& req, Response& res) {
+  const std::string name = req.matches[1];
+  const rupture::ScenarioInfo* info = nullptr;
+  auto all = rupture::listScenarios();
+  for (const auto& s : all) {
+    if (s.name == name) info = &s;
+  }
+  if (!info) throw noSuchProcess(name);
+  Json doc = processSummary(*info);
+  Json schema = Json(rupture::scenarioSchema(name));
+  Json inputs = Json::object();
+  if (schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (key == "scenario") continue;
+      Json input = Json::object();
+      input["title"] = sub.value("title", key);
+      if (sub.contains("description")) input["description"] = sub["description"];
+      input["schema"] = sub;
+      inputs[key] = input;
+    }
+  }
+  doc["inputs"] = inputs;
+  doc["outputs"] = {
+      {"results", {{"title", "one HDF5 file per run, and one merged file per job"},
+                   {"schema", {{"type", "string"}, {"contentMediaType", kHdf5Type}}}}},
+      {"summary", {{"title", "summary scalars per run (JSON, CSV, SVG plot)"},
+                   {"schema", {{"type", "object"}}}}},
+  };
+  doc["inputsSchema"] = schema;
+  doc["sweep"] = {
+      {"description",
+       "POST body: {\"inputs\": {...spec without scenario...}, \"sweep\": {\"dotted.path\": [values]}, "
+       "\"sweep_mode\": \"grid\"|\"zip\", \"name\": \"...\", \"replicates\": {\"count\": N, \"vary\": \"sample.seed\"}, "
+       "\"refine\": {\"path\": \"loading.strain_rate\", \"quantity\": \"peak_stress\", \"max_runs\": N, "
+       "\"tolerance\": 0.1}} (docs/server.md, Studies)"},
+      {"modes", Json::array({"grid", "zip"})},
+      {"max_runs", ctx.config.maxRuns},
+      {"max_replicates", kMaxReplicates},
+  };
+  if (wantsHtml(req)) return sendHtml(res, processHtml(doc));
+  sendJson(res, doc);
+}
+
+void postExecution(ServerContext& ctx, const Request& req, Response& res) {
+  requireToken(ctx, req);
+  if (ctx.stopping) {
+    throw ApiError(503, problem::kShuttingDown, "Service Unavailable",
+                   "the server is stopping; submit again once it is back");
+  }
+  const std::string scenario = req.matches[1];
+  if (!knownScenario(scenario)) throw noSuchProcess(scenario);
+
+  const Json body = parseJsonBody(req.body);
+  if (!body.is_object()) {
+    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                   "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
+  }
+  static const std::vector<std::string> allowedKeys = {"inputs",  "sweep",    "sweep_mode", "name",      "replicates",
+                                                       "refine",  "outputs",  "response",   "subscriber"};
+  for (const auto& [key, value] : body.items()) {
+    if (std::find(allowedKeys.begin(), allowedKeys.end(), key) == allowedKeys.end()) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "unknown member '" + key +
+                         "' in the request body; allowed: inputs, sweep, sweep_mode, name, replicates, refine",
+                     key, Json{{"in", "body"}});
+    }
+  }
+  auto inputsIt = body.find("inputs");
+  if (inputsIt == body.end() || !inputsIt->is_object()) {
+    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                   "\"inputs\" is required and must be an object: the spec without \"scenario\"", "inputs",
+                   Json{{"in", "body"}});
+  }
+  const Json& inputs = *inputsIt;
+  if (const std::string empty = findEmptyKey(inputs, ""); !empty.empty()) {
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                   "inputs has a member whose name is the empty string (at " + empty +
+                       "); every field needs a name",
+                   empty, Json{{"in", "inputs"}});
+  }
+  if (auto sc = inputs.find("scenario"); sc != inputs.end() && *sc != scenario) {
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                   "inputs.scenario is " + sc->dump() + " but the URL names '" + scenario +
+                       "'; leave it out, the URL decides",
+                   "scenario", Json{{"in", "inputs"}, {"value", *sc}, {"allowed", Json::array({scenario})}});
+  }
+  std::string name;
+  if (auto n = body.find("name"); n != body.end() && !n->is_null()) {
+    if (!n->is_string() || n->get<std::string>().size() > 200) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "name must be a string of at most 200 characters", "name", Json{{"in", "body"}});
+    }
+    name = n->get<std::string>();
+  }
+  auto member = [&](const char* key) -> const Json* {
+    auto it = body.find(key);
+    return it == body.end() ? nullptr : &*it;
+  };
+  // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.
+  const std::string idempotencyKey = idempotencyKeyOf(req);
+  const std::string requestHash = idempotencyKey.empty() ? std::string() : requestFingerprint(scenario, body);
+  if (!idempotencyKey.empty()) {
+    if (auto earlier = ctx.store->jobForIdempotencyKey(idempotencyKey)) {
+      replayJob(ctx, req, res, *earlier, requestHash, scenario, body);
+      return;
+    }
+  }
+  const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
+  const ReplicatePlan replicates = parseReplicatePlan(member("replicates"), scenario, plan);
+  const std::size_t maxRuns = static_cast<std::size_t>(ctx.config.maxRuns);
+  std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
+  if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
+    const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
+    throw ApiError(400, problem::kTooManyRuns, "Too many runs",
+                   "the sweep's " + std::to_string(sweepPoints.size()) + " points x " +
+                       std::to_string(replicates.count) + " replicates make " + std::to_string(total) +
+                       " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
+                   "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
+  }
+  // Every spec holds the whole inputs (a large description, many probes): moved, never copied.
+  std::vector<ReplicatedPoint> replicated = expandReplicates(std::move(sweepPoints), replicates, scenario);
+  std::vector<SweepPoint> points;
+  std::vector<int> replicateIndex;
+  points.reserve(replicated.size());
+  for (ReplicatedPoint& rp : replicated) {
+    points.push_back(std::move(rp.point));
+    replicateIndex.push_back(rp.replicate);
+  }
+  replicated.clear();
+  const std::size_t runCount = points.size();
+  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+  requireQueueRoom(ctx, runCount, inputs.dump().size());
+  const std::optional<RefinePlan> refine =
+      parseRefinePlan(member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
+
+  NewJob job;
+  job.processId = scenario;
+  job.name = name;
+  job.sweepMode = toString(plan.mode);
+  job.sweptPaths = Json::array();
+  for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
+  job.inputs = inputs;
+  job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
+  job.runs.reserve(runCount);
+  for (std::size_t k = 0; k < runCount; ++k) {
+    job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));
+    job.replicates.push_back(replicateIndex[k]);
+  }
+  points.clear();
+  if (replicates.requested() || refine) {
+    job.study = Json::object();
+    if (replicates.requested()) job.study["replicates"] = replicates.toJson();
+    if (refine) {
+      job.study["refine"] = refine->toJson();
+      job.study["refinement"] = {{"state", "pending"}, {"rounds", 0}, {"runs_added", 0}, {"points", Json::array()}};
+    }
+  }
+  job.idempotencyKey = idempotencyKey;
+  job.requestHash = requestHash;
+  const CreatedJob created = ctx.store->createJobOnce(job);
+  if (!created.created) {  // a concurrent request with the same key won the race
+    replayJob(ctx, req, res, IdempotentJob{created.id, created.requestHash}, requestHash, scenario, body);
+    return;
+  }
+  const std::int64_t id = created.id;
+  ctx.scheduler->enqueue(id, static_cast<int>(runCount));
+  logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(runCount) +
+          " run(s)" + (name.empty() ? "" : ", \"" + name + "\""));
+
+  auto record = ctx.store->job(id);
+  auto runs = ctx.store->runs(id);
+  res.set_header("Location", "/jobs/" + std::to_string(id));
+  if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
+    res.set_header("Preference-Applied", "respond-async");
+  }
+  sendJson(res, statusInfo(*record, &runs), 201);
+}
+
+}  // namespace handlers
+
+}  // namespace rupture::server

@@ -1,0 +1,128 @@
+#include "studies/job_comparison.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "studies/replicate_statistics.hpp"
+
+namespace rupture::server {
+namespace {
+
+/// The job's rows as JSON objects (summary rows, or aggregated points).
+Json rowsOf(const ComparedJob& j, bool aggregate, Json& columns) {
+  const Json doc = aggregate ? aggregateJson(j.table, aggregateReplicates(j.table)) : summaryJson(j.table);
+  columns = doc["columns"];
+  return doc["rows"];
+}
+
+void addColumn(Json& columns, const Json& column) {
+  for (const auto& c : columns) {
+    if (c["name"] == column["name"]) return;
+  }
+  columns.push_back(column);
+}
+
+/// {"a": {"mean": 1}} -> {"a.mean": 1}; arrays (run lists) are left out of CSV cells.
+void flattenCells(const Json& value, const std::string& prefix, Json& out) {
+  if (value.is_object()) {
+    for (const auto& [k, v] : value.items()) flattenCells(v, prefix.empty() ? k : prefix + "." + k, out);
+  } else if (!value.is_array()) {
+    out[prefix] = value;
+  }
+}
+
+}  // namespace
+
+std::string jobLabel(const JobRecord& job) {
+  return job.name.empty() ? "job " + std::to_string(job.id) : std::to_string(job.id) + ": " + job.name;
+}
+
+Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
+  Json doc = Json::object();
+  Json list = Json::array();
+  Json columns = Json::array({Json{{"name", "job"}, {"kind", "job"}, {"unit", ""}, {"label", "Job"}, {"description", "The job id"}}});
+  Json rows = Json::array();
+  for (const ComparedJob& j : jobs) {
+    list.push_back({{"jobID", std::to_string(j.job.id)},
+                    {"name", j.job.name},
+                    {"label", jobLabel(j.job)},
+                    {"processID", j.job.processId},
+                    {"status", toString(j.job.status)},
+                    {"runs_total", j.job.runsTotal},
+                    {"runs_successful", j.job.runsSuccessful}});
+    Json jobColumns;
+    const Json jobRows = rowsOf(j, aggregate, jobColumns);
+    for (const auto& c : jobColumns) addColumn(columns, c);
+    for (const auto& r : jobRows) {
+      Json row = Json::object();
+      row["job"] = std::to_string(j.job.id);
+      for (const auto& [k, v] : r.items()) row[k] = v;
+      rows.push_back(std::move(row));
+    }
+  }
+  doc["jobs"] = list;
+  doc["aggregate"] = aggregate ? "replicates" : "none";
+  if (aggregate) doc["confidence_level"] = kConfidenceLevel;
+  doc["columns"] = columns;
+  doc["rows"] = rows;
+  return doc;
+}
+
+std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) {
+  std::vector<std::string> header = {"job", "job_name"};
+  std::vector<Json> flat;
+  for (const ComparedJob& j : jobs) {
+    Json columns;
+    for (const auto& r : rowsOf(j, aggregate, columns)) {
+      Json row = Json::object();
+      row["job"] = std::to_string(j.job.id);
+      row["job_name"] = j.job.name;
+      flattenCells(r, "", row);
+      for (const auto& [k, v] : row.items()) {
+        if (std::find(header.begin(), header.end(), k) == header.end()) header.push_back(k);
+      }
+      flat.push_back(std::move(row));
+    }
+  }
+  std::ostringstream out;
+  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << csvTextCell(header[i]);
+  out << "\r\n";
+  for (const Json& row : flat) {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      auto it = row.find(header[i]);
+      out << (i ? "," : "") << (it == row.end() ? std::string() : csvCell(*it));
+    }
+    out << "\r\n";
+  }
+  return out.str();
+}
+
+SummaryTable comparisonPlotTable(const std::vector<ComparedJob>& jobs) {
+  SummaryTable out;
+  out.sweptPaths.push_back("job");
+  out.info["job"] = {"", "Job", "The job (id: name)"};
+  std::vector<SummaryTable> means;
+  for (const ComparedJob& j : jobs) means.push_back(meansTable(j.table, aggregateReplicates(j.table)));
+  auto addColumns = [](const std::vector<std::string>& from, std::vector<std::string>& to) {
+    for (const auto& c : from) {
+      if (std::find(to.begin(), to.end(), c) == to.end()) to.push_back(c);
+    }
+  };
+  for (const SummaryTable& m : means) {
+    addColumns(m.sweptPaths, out.sweptPaths);
+    addColumns(m.scalarNames, out.scalarNames);
+    addColumns(m.declaredScalars, out.declaredScalars);
+    out.info.insert(m.info.begin(), m.info.end());  // the first job that names a column gives its unit
+  }
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    for (SummaryRow row : means[k].rows) {
+      Json swept = Json::array({jobLabel(jobs[k].job)});
+      for (std::size_t a = 1; a < out.sweptPaths.size(); ++a) swept.push_back(means[k].value(row, out.sweptPaths[a]));
+      row.swept = swept;
+      out.rows.push_back(std::move(row));
+    }
+  }
+  return out;
+}
+
+}  // namespace rupture::server

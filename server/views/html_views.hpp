@@ -1,0 +1,28 @@
+#pragma once
+// HTML views of the API's own JSON documents (OGC API style: `Accept: text/html` or `?f=html`),
+// rendered on the server: no build step, no external assets, every value escaped, and a strict
+// Content-Security-Policy whose nonce admits only the page's own inline style and script.
+#include <string>
+
+#include "common/problem.hpp"
+
+namespace rupture::server {
+
+/// A page and the nonce its CSP header must carry.
+struct HtmlPage {
+  std::string body;
+  std::string nonce;
+  std::string csp() const;
+};
+
+HtmlPage landingHtml(const Json& landing);
+/// The scenarios, each with its inputs (name, unit from "x-unit" when the schema has it, description).
+HtmlPage processesHtml(const Json& processes, const Json& schemasByProcess);
+HtmlPage processHtml(const Json& process);
+/// The job list with its filter form (name, status, scenario); `query` are the current values.
+HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios);
+/// A job: status with live progress (a few lines of inline script poll the JSON), its runs, the
+/// summary table with units (null until every run has ended), the plot and the download links.
+HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plotPath);
+
+}  // namespace rupture::server

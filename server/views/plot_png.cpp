@@ -1,0 +1,49 @@
+#include "views/plot_png.hpp"
+
+#include <cairo.h>
+#include <librsvg/rsvg.h>
+
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+namespace rupture::server {
+namespace {
+
+cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+std::string takeMessage(GError* error) {
+  std::string message = error && error->message ? error->message : "unknown librsvg error";
+  if (error) g_error_free(error);
+  return message;
+}
+
+}  // namespace
+
+std::string renderPng(const std::string& svg, int widthPx, int heightPx) {
+  // Font lookup (fontconfig through pango) is shared process state: one rendering at a time.
+  static std::mutex mutex;
+  std::lock_guard lock(mutex);
+  GError* error = nullptr;
+  std::unique_ptr<RsvgHandle, decltype(&g_object_unref)> handle(
+      rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg.data()), svg.size(), &error), &g_object_unref);
+  if (!handle) throw std::runtime_error("cannot read the plot's SVG: " + takeMessage(error));
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, widthPx, heightPx), &cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), &cairo_destroy);
+  const RsvgRectangle viewport{0, 0, static_cast<double>(widthPx), static_cast<double>(heightPx)};
+  if (!rsvg_handle_render_document(handle.get(), cr.get(), &viewport, &error)) {
+    throw std::runtime_error("cannot render the plot: " + takeMessage(error));
+  }
+  cairo_surface_flush(surface.get());
+  std::string png;
+  if (cairo_surface_write_to_png_stream(surface.get(), &appendToString, &png) != CAIRO_STATUS_SUCCESS) {
+    throw std::runtime_error("cannot encode the plot as PNG");
+  }
+  return png;
+}
+
+}  // namespace rupture::server
