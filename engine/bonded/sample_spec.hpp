@@ -1,6 +1,6 @@
 #pragma once
 // The sample and material part shared by every bonded scenario (plain data; parsed and validated
-// in io/bonded_spec.cpp, built in samples/sample_builder.cpp). SI units.
+// in bonded/bonded_spec.cpp, built in samples/sample_builder.cpp). SI units.
 #include <array>
 #include <cstdint>
 #include <limits>

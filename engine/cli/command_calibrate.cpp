@@ -12,7 +12,7 @@
 #include "samples/material_assignment.hpp"
 #include "calibration/calibration.hpp"
 #include "calibration/strength_test.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 
 namespace rupture::cli {
 

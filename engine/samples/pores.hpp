@@ -2,7 +2,7 @@
 // Pores of a bonded sample, for random packings and lattices alike: radii uniform in
 // [r_min, r_max], placed at random inside the box without overlap until their volume reaches the
 // target (random sequential addition; the spec validation bounds their number and the porosity,
-// io/bonded_spec.cpp), then carved: for each element, the smallest common scale of the pore radii
+// bonded/bonded_spec.cpp), then carved: for each element, the smallest common scale of the pore radii
 // that would swallow its centre; removing the elements in that order, up to the scale that keeps
 // the pores apart and inside the box (at most 1.5), gives the removed volume closest to the
 // porosity. Both stages look at the cancel flag between units of work well under 0.2 s.

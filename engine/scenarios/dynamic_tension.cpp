@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "samples/sample_builder.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "scenarios/bond_network.hpp"
 #include "scenarios/dynamic_tension_spec.hpp"
 #include "scenarios/preliminary_cache.hpp"

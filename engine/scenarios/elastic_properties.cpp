@@ -11,7 +11,7 @@
 #include "samples/material_assignment.hpp"
 #include "samples/sample_builder.hpp"
 #include "bonded/materials/registry.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
 #include "io/result_file.hpp"

@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "io/fluid_recorder.hpp"
-#include "io/fluid_spec.hpp"
+#include "sph/fluid_recorder.hpp"
+#include "sph/fluid_spec.hpp"
 #include "io/result_file.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/run_support.hpp"

@@ -8,7 +8,7 @@
 #include <optional>
 #include <system_error>
 
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/interleave.hpp"
 #include "scenarios/preliminary_cache.hpp"

@@ -13,7 +13,7 @@
 
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/registry.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "support/test_support.hpp"
 
 namespace rupture {

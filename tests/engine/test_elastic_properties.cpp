@@ -14,7 +14,7 @@
 #include "../cli/cli_runner.hpp"
 #include "calibration/calibration.hpp"
 #include "samples/sample_builder.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
 #include "rupture/run.hpp"

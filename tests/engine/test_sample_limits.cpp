@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "samples/sample_builder.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "sample_test_support.hpp"
 #include "support/test_support.hpp"
 

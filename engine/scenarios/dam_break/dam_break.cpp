@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "io/fluid_recorder.hpp"
+#include "sph/fluid_recorder.hpp"
 #include "scenarios/dam_break/dam_break_lattice.hpp"
 #include "scenarios/fluid_results.hpp"
 #include "scenarios/fluid_run_loop.hpp"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "samples/sample_builder.hpp"
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "io/interleave.hpp"
 #include "scenarios/impact/impact_results.hpp"
 #include "io/result_file.hpp"

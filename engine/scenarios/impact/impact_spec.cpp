@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 #include "io/spec_reader.hpp"
 
 namespace rupture {

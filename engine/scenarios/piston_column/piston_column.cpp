@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/fluid_recorder.hpp"
+#include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid_results.hpp"
 #include "scenarios/fluid_run_loop.hpp"
 #include "scenarios/piston_column/piston_column_lattice.hpp"

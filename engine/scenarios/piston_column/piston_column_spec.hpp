@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/fluid_spec.hpp"
+#include "sph/fluid_spec.hpp"
 #include "sph/rigid_body.hpp"
 
 namespace rupture {

@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "fsi/fluid_shell_coupling.hpp"
-#include "io/fluid_recorder.hpp"
+#include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid_run_loop.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"

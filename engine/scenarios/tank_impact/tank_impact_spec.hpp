@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fsi/contact_method.hpp"  // ContactMethod (engine/fsi owns it: the contact code selects on it)
-#include "io/fluid_spec.hpp"
+#include "sph/fluid_spec.hpp"
 #include "shell/shell_parameters.hpp"
 
 namespace rupture {

@@ -1,4 +1,4 @@
-#include "io/bonded_spec.hpp"
+#include "bonded/bonded_spec.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/fluid_recorder.hpp"
+#include "sph/fluid_recorder.hpp"
 
 #include <cstdio>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "io/fluid_spec.hpp"
+#include "sph/fluid_spec.hpp"
 
 #include <algorithm>
 #include <cmath>
