@@ -32,6 +32,13 @@ const ResultField kProbePressure = {"probe_pressure_*", "Pa", "Probe pressure",
 
 }  // namespace
 
+std::vector<std::pair<std::string, std::string>> seriesColumns(const ResultFields& series, int dimension) {
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const ResultField& f : series)
+    if (f.name.back() != '*') columns.emplace_back(f.name, f.unitFor(dimension));
+  return columns;
+}
+
 ResultFields withFluidCommonSummary(ResultFields own) {
   for (ResultField& f : commonSummary()) own.push_back(std::move(f));
   return own;

@@ -7,9 +7,6 @@
 #include "jobs/progress_info.hpp"
 #include "routes/answers.hpp"
 
-#ifndef RUPTURE_VERSION
-#define RUPTURE_VERSION "0.0.0"
-#endif
 
 namespace rupture::server {
 namespace fs = std::filesystem;

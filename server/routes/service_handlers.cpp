@@ -9,9 +9,6 @@
 #include "rupture/run.hpp"
 #include "views/html_views.hpp"
 
-#ifndef RUPTURE_VERSION
-#define RUPTURE_VERSION "0.0.0"
-#endif
 
 namespace rupture::server {
 namespace fs = std::filesystem;

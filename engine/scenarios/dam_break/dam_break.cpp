@@ -18,15 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The /series columns in the row order of the recorder (probe datasets are added by the recorder).
-std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
-  std::vector<std::pair<std::string, std::string>> columns;
-  for (const ResultField& f : damBreakSeriesFields())
-    if (f.name.back() != '*') columns.emplace_back(f.name, f.unitFor(dimension));
-  return columns;
-}
-
-
 RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                        RunControl& control) {
   const auto wallStart = Clock::now();
@@ -46,7 +37,7 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
 
   std::vector<std::string> probePositions;
   for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(dim), probePositions);
+  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(damBreakSeriesFields(), dim), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},

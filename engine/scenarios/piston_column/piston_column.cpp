@@ -20,15 +20,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The /series columns in the row order of the recorder (probe datasets are added by the recorder).
-std::vector<std::pair<std::string, std::string>> seriesColumns(int dimension) {
-  std::vector<std::pair<std::string, std::string>> columns;
-  for (const ResultField& f : pistonColumnSeriesFields())
-    if (f.name.back() != '*') columns.emplace_back(f.name, f.unitFor(dimension));
-  return columns;
-}
-
-
 RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                            RunControl& control) {
   const auto wallStart = Clock::now();
@@ -51,7 +42,7 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
 
   std::vector<std::string> probePositions;
   for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(dim), probePositions);
+  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(pistonColumnSeriesFields(), dim), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},

@@ -17,6 +17,7 @@
 #include "scenarios/scenario.hpp"
 #include "scenarios/tank_impact/plate_geometry.hpp"
 #include "scenarios/tank_impact/plate_observables.hpp"
+#include "scenarios/fluid_results.hpp"
 #include "scenarios/tank_impact/tank_impact_results.hpp"
 #include "scenarios/tank_impact/tank_impact_spec.hpp"
 #include "scenarios/tank_impact/tank_lattice.hpp"
@@ -29,13 +30,6 @@ using Clock = std::chrono::steady_clock;
 
 /// Body index the plate nodes carry in snapshots (after the cylinder and the piston).
 constexpr std::int32_t kPlateBody = 2;
-
-std::vector<std::pair<std::string, std::string>> seriesColumns() {
-  std::vector<std::pair<std::string, std::string>> columns;
-  for (const ResultField& f : tankImpactSeriesFields())
-    if (f.name.back() != '*') columns.emplace_back(f.name, f.unit);
-  return columns;
-}
 
 /// Which fluid particles are below the plate: under the lowest intact node of their radial band
 /// by more than t/2 + r_f (a band without nodes, the hole, takes its nearest outer band's level).
@@ -136,7 +130,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
 
   std::vector<std::string> probePositions;
   for (const auto& point : io::probesJson(spec.probes, 3)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "tank-impact", seriesColumns(), probePositions);
+  io::FluidRecorder recorder(resultPath, "tank-impact", seriesColumns(tankImpactSeriesFields(), 3), probePositions);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"inner_diameter", 2 * g.R()}, {"water_height", g.H()}, {"section_area", g.area},
