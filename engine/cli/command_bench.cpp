@@ -2,10 +2,10 @@
 
 #include "cli/cli.hpp"
 #include "host_processor.hpp"
-#include "w1_benchmark.hpp"
-#include "w2_benchmark.hpp"
+#include "bonded_bar_benchmark.hpp"
+#include "pmb_impact_benchmark.hpp"
 #include "tank_impact_benchmark.hpp"
-#include "w3_benchmark.hpp"
+#include "dam_break_benchmark.hpp"
 
 namespace rupture::cli {
 

@@ -45,7 +45,7 @@ SampleReport buildSample(const SampleSpec& sample, const MaterialSpec& material,
                          const Cancellation& cancel = {});
 
 /// The two halves of buildSample for a random packing (sample.lattice == "random"), so that the
-/// packed geometry can be cached (scenarios/sample_cache.hpp): packRandomSample packs, bonds, sets
+/// packed geometry can be cached (scenarios/bonded/sample_cache.hpp): packRandomSample packs, bonds, sets
 /// the masses and carves the pores (everything but elements, bonds and coordination in the report);
 /// finishRandomSample cuts the notches, assigns the material, initialises and completes the report.
 SampleReport packRandomSample(const SampleSpec& sample, const MaterialSpec& material, BondedSystem& system,

@@ -4,10 +4,10 @@
 #include <vector>
 
 #include "samples/sample_builder.hpp"
-#include "scenarios/bond_network.hpp"
-#include "scenarios/dynamic_tension_spec.hpp"
-#include "scenarios/tension_loading.hpp"
-#include "scenarios/tension_observables.hpp"
+#include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
+#include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "test_dynamic_tension_support.hpp"
 
 namespace rupture::test {

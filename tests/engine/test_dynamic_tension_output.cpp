@@ -285,7 +285,7 @@ TEST(DynamicTensionOutput, PreliminaryRunIsCached) {
   EXPECT_TRUE(fs::exists(dir / "cache" / cacheName));
   EXPECT_EQ(first.summary["peak_stress"], second.summary["peak_stress"]);  // bit-identical field
   EXPECT_EQ(first.summary["steps"], second.summary["steps"]);
-  // The packed sample is cached too (scenarios/sample_cache.hpp), and gives the same run.
+  // The packed sample is cached too (scenarios/bonded/sample_cache.hpp), and gives the same run.
   EXPECT_EQ(first.summary["sample_from_cache"], 0);
   EXPECT_EQ(second.summary["sample_from_cache"], 1);
   EXPECT_EQ(first.summary["bonds"], second.summary["bonds"]);

@@ -4,10 +4,10 @@
 #include <numbers>
 
 #include "dem/beam_forces.hpp"
-#include "scenarios/bond_network.hpp"
-#include "scenarios/preliminary_cache.hpp"
-#include "scenarios/tension_loading.hpp"
-#include "scenarios/virial_stress.hpp"
+#include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/dynamic_tension/preliminary_field_cache.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
+#include "scenarios/dynamic_tension/virial_stress.hpp"
 #include "test_dynamic_tension_support.hpp"
 
 namespace rupture::test {

@@ -2,7 +2,7 @@
 // resolved-spec round trip, and agreement between the parser and the embedded JSON Schema.
 #include <functional>
 
-#include "scenarios/dynamic_tension_spec.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
 #include "test_dynamic_tension_support.hpp"
 
 namespace rupture::test {

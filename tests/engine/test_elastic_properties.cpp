@@ -18,7 +18,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
 #include "rupture/run.hpp"
-#include "scenarios/elastic_properties.hpp"
+#include "scenarios/elastic_properties/elastic_properties.hpp"
 
 namespace rupture {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "bonded/bonded_system.hpp"
 #include "samples/sample_builder.hpp"
-#include "scenarios/bond_network.hpp"
+#include "scenarios/bonded/intact_network.hpp"
 
 namespace rupture {
 namespace {

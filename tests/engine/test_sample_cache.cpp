@@ -1,4 +1,4 @@
-// The packed-sample cache (scenarios/sample_cache.hpp): a second build of the same sample block
+// The packed-sample cache (scenarios/bonded/sample_cache.hpp): a second build of the same sample block
 // reads the entry and gives the same system as a fresh build; an entry that was damaged (truncated,
 // or bytes changed) is rebuilt and replaced, never used; another sample or another density gets
 // the right system.
@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "samples/sample_builder.hpp"
-#include "scenarios/sample_cache.hpp"
+#include "scenarios/bonded/sample_cache.hpp"
 #include "support/test_support.hpp"
 
 namespace rupture {

@@ -7,8 +7,8 @@
 
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/dam_break/dam_break_lattice.hpp"
-#include "scenarios/fluid_results.hpp"
-#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/fluid/fluid_results.hpp"
+#include "scenarios/fluid/fluid_run_loop.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
 

@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "sph/fluid_recorder.hpp"
-#include "scenarios/fluid_results.hpp"
-#include "scenarios/fluid_run_loop.hpp"
+#include "scenarios/fluid/fluid_results.hpp"
+#include "scenarios/fluid/fluid_run_loop.hpp"
 #include "scenarios/piston_column/piston_column_lattice.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"

@@ -1,7 +1,7 @@
 // tank-impact results with SI units, labels and descriptions (see rupture/result_fields.hpp).
 #include "scenarios/tank_impact/tank_impact_results.hpp"
 
-#include "scenarios/fluid_results.hpp"
+#include "scenarios/fluid/fluid_results.hpp"
 
 namespace rupture {
 

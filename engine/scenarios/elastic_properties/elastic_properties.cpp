@@ -1,4 +1,4 @@
-#include "scenarios/elastic_properties.hpp"
+#include "scenarios/elastic_properties/elastic_properties.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,7 +16,7 @@
 #include "io/spec_reader.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/run_support.hpp"
-#include "scenarios/elastic_properties_results.hpp"
+#include "scenarios/elastic_properties/elastic_properties_results.hpp"
 
 namespace rupture {
 

@@ -1,4 +1,4 @@
-#include "w3_benchmark.hpp"
+#include "dam_break_benchmark.hpp"
 
 #include <omp.h>
 

@@ -1,4 +1,4 @@
-#include "scenarios/preliminary_cache.hpp"
+#include "scenarios/dynamic_tension/preliminary_field_cache.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -99,24 +99,6 @@ bool storePreliminary(const std::string& file, const nlohmann::json& key, const 
     f.writeDataset("/velocity", io::interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
     f.writeDataset("/angular_velocity", io::interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");
   });
-}
-
-CacheEntryLock::CacheEntryLock(const std::string& file, const std::atomic<bool>& cancel) {
-  std::error_code ec;
-  fs::create_directories(fs::path(file).parent_path(), ec);
-  m_fd = ::open((file + ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (m_fd < 0) {
-    m_held = true;  // nothing to lock with: behave as the only run
-    return;
-  }
-  while (!(m_held = ::flock(m_fd, LOCK_EX | LOCK_NB) == 0)) {
-    if (cancel.load(std::memory_order_relaxed)) return;
-    ::usleep(50000);
-  }
-}
-
-CacheEntryLock::~CacheEntryLock() {
-  if (m_fd >= 0) ::close(m_fd);  // closing the descriptor releases the lock
 }
 
 }  // namespace rupture

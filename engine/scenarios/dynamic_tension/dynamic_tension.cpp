@@ -1,5 +1,5 @@
-#include "scenarios/dynamic_tension.hpp"
-#include "scenarios/dynamic_tension_results.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,14 +12,14 @@
 
 #include "samples/sample_builder.hpp"
 #include "bonded/bonded_spec.hpp"
-#include "scenarios/bond_network.hpp"
-#include "scenarios/dynamic_tension_spec.hpp"
-#include "scenarios/preliminary_cache.hpp"
-#include "scenarios/sample_cache.hpp"
-#include "scenarios/tension_loading.hpp"
-#include "scenarios/tension_observables.hpp"
-#include "scenarios/tension_recorder.hpp"
-#include "scenarios/vh_preliminary.hpp"
+#include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
+#include "scenarios/dynamic_tension/preliminary_field_cache.hpp"
+#include "scenarios/bonded/sample_cache.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
+#include "scenarios/dynamic_tension/tension_observables.hpp"
+#include "scenarios/dynamic_tension/tension_recorder.hpp"
+#include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 #include "scenarios/run_support.hpp"
 
 namespace rupture {

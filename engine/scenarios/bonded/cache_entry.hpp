@@ -2,6 +2,7 @@
 // One entry of an on-disk cache (the packed samples, the VH preliminary runs): an HDF5 file whose
 // root attributes "format_version" and "key" (the JSON of everything the entry depends on) are
 // checked on every read, so an entry of another layout or another input is a miss, never used.
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -37,5 +38,23 @@ auto readCacheEntry(const std::string& file, const nlohmann::json& key, std::int
     return std::nullopt;  // unreadable, truncated or older layout: recompute
   }
 }
+
+/// An exclusive lock on one cache entry (flock on FILE.lock), so that runs starting together on the
+/// same sample (a sweep's workers, or several processes) compute its preliminary run once: the
+/// others wait, then read the cache. Waiting polls `cancel` every 50 ms.
+class CacheEntryLock {
+public:
+  /// Blocks until the lock is held or `cancel` is set; held() tells which. If the lock file cannot
+  /// be created (read-only cache), held() is true and nothing is locked: the run goes on uncached.
+  CacheEntryLock(const std::string& file, const std::atomic<bool>& cancel);
+  ~CacheEntryLock();
+  CacheEntryLock(const CacheEntryLock&) = delete;
+  CacheEntryLock& operator=(const CacheEntryLock&) = delete;
+  bool held() const { return m_held; }
+
+private:
+  int m_fd = -1;
+  bool m_held = false;
+};
 
 }  // namespace rupture

@@ -25,7 +25,7 @@
 
 #include "bonded/bonded_system.hpp"
 #include "rupture/run.hpp"
-#include "scenarios/tension_loading.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
 
 namespace rupture {
 

@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rupture/run.hpp"
-#include "scenarios/dynamic_tension_spec.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace rupture {

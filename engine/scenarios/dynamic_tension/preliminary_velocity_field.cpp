@@ -1,4 +1,4 @@
-#include "scenarios/vh_preliminary.hpp"
+#include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "scenarios/bond_network.hpp"
+#include "scenarios/bonded/intact_network.hpp"
 #include "scenarios/run_support.hpp"
 
 namespace rupture {

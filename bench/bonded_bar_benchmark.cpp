@@ -1,4 +1,4 @@
-#include "w1_benchmark.hpp"
+#include "bonded_bar_benchmark.hpp"
 
 #include <omp.h>
 

@@ -1,4 +1,4 @@
-#include "w2_benchmark.hpp"
+#include "pmb_impact_benchmark.hpp"
 
 #include <omp.h>
 

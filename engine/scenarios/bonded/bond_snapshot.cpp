@@ -1,4 +1,4 @@
-#include "scenarios/bond_snapshot.hpp"
+#include "scenarios/bonded/bond_snapshot.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "scenarios/tension_loading.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
 
 #include <algorithm>
 #include <cmath>

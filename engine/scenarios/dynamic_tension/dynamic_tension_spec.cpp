@@ -1,4 +1,4 @@
-#include "scenarios/dynamic_tension_spec.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
 
 #include <algorithm>
 

@@ -22,11 +22,10 @@
 
 #include "core/fnv1a.hpp"
 #include "io/hdf5_file.hpp"
-#include "scenarios/cache_entry.hpp"
-#include "scenarios/vh_preliminary.hpp"
+#include "scenarios/bonded/cache_entry.hpp"
+#include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 
 namespace rupture {
-
 
 /// `configured` if not empty, else $RUPTURE_CACHE_DIR, $XDG_CACHE_HOME/rupture, ~/.cache/rupture,
 /// or .rupture-cache beside the result file.
@@ -41,24 +40,5 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
 
 /// Stores atomically; returns false (and leaves nothing behind) if the directory is not writable.
 bool storePreliminary(const std::string& file, const nlohmann::json& key, const PreliminaryResult& result);
-
-
-/// An exclusive lock on one cache entry (flock on FILE.lock), so that runs starting together on the
-/// same sample (a sweep's workers, or several processes) compute its preliminary run once: the
-/// others wait, then read the cache. Waiting polls `cancel` every 50 ms.
-class CacheEntryLock {
-public:
-  /// Blocks until the lock is held or `cancel` is set; held() tells which. If the lock file cannot
-  /// be created (read-only cache), held() is true and nothing is locked: the run goes on uncached.
-  CacheEntryLock(const std::string& file, const std::atomic<bool>& cancel);
-  ~CacheEntryLock();
-  CacheEntryLock(const CacheEntryLock&) = delete;
-  CacheEntryLock& operator=(const CacheEntryLock&) = delete;
-  bool held() const { return m_held; }
-
-private:
-  int m_fd = -1;
-  bool m_held = false;
-};
 
 }  // namespace rupture

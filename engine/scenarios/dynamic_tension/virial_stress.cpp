@@ -1,4 +1,4 @@
-#include "scenarios/virial_stress.hpp"
+#include "scenarios/dynamic_tension/virial_stress.hpp"
 
 #include <numbers>
 

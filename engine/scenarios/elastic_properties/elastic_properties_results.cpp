@@ -1,6 +1,6 @@
 // What an elastic-properties run reports in /summary, with SI units, labels and descriptions
 // (see rupture/result_fields.hpp). It writes no /series. Adding a scalar: one line here.
-#include "scenarios/elastic_properties_results.hpp"
+#include "scenarios/elastic_properties/elastic_properties_results.hpp"
 
 namespace rupture {
 

@@ -1,4 +1,4 @@
-#include "scenarios/sample_cache.hpp"
+#include "scenarios/bonded/sample_cache.hpp"
 
 #include <unistd.h>
 
@@ -9,9 +9,10 @@
 #include <system_error>
 
 #include "bonded/bonded_spec.hpp"
+#include "core/fnv1a.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/interleave.hpp"
-#include "scenarios/preliminary_cache.hpp"
+#include "scenarios/bonded/cache_entry.hpp"
 
 namespace rupture {
 

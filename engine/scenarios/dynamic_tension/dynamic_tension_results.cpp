@@ -1,7 +1,7 @@
 // What a dynamic-tension run reports: its /summary scalars and /series columns, with SI units,
 // labels and descriptions (the one source every writer and reader uses; see rupture/result_fields.hpp).
 // Adding a scalar: one line here, and the value in the run's summary.
-#include "scenarios/dynamic_tension_results.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
 
 namespace rupture {
 

@@ -1,6 +1,6 @@
 // SPH results with SI units, labels and descriptions (see rupture/result_fields.hpp).
 // Adding a scalar: one line in the scenario's list (or in commonSummary for every fluid run).
-#include "scenarios/fluid_results.hpp"
+#include "scenarios/fluid/fluid_results.hpp"
 
 namespace rupture {
 namespace {

@@ -1,4 +1,4 @@
-#include "scenarios/bond_network.hpp"
+#include "scenarios/bonded/intact_network.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/tension_loading.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
 
 namespace rupture {
 

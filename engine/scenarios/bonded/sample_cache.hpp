@@ -10,7 +10,7 @@
 // packed geometry depends on nothing else (the material is applied after loading: masses from the
 // density, beams, contact). A file whose key, sizes or checksum do not match is rebuilt and
 // replaced, never used. Writes go through a unique temporary file renamed into place, and an entry
-// lock (CacheEntryLock, preliminary_cache.hpp) makes concurrent runs pack a sample once.
+// lock (CacheEntryLock, cache_entry.hpp) makes concurrent runs pack a sample once.
 // Lattice samples are not cached (they build in milliseconds).
 #include <atomic>
 #include <string>

@@ -1,4 +1,4 @@
-#include "scenarios/tension_observables.hpp"
+#include "scenarios/dynamic_tension/tension_observables.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -25,8 +25,8 @@
 #include "bonded/bonded_system.hpp"
 #include "samples/sample_builder.hpp"
 #include "io/result_file.hpp"
-#include "scenarios/bond_network.hpp"
-#include "scenarios/tension_loading.hpp"
+#include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/dynamic_tension/tension_loading.hpp"
 
 namespace rupture {
 

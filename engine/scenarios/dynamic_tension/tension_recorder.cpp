@@ -1,4 +1,4 @@
-#include "scenarios/tension_recorder.hpp"
+#include "scenarios/dynamic_tension/tension_recorder.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,10 +7,10 @@
 #include <system_error>
 
 #include "io/interleave.hpp"
-#include "scenarios/bond_network.hpp"
-#include "scenarios/bond_snapshot.hpp"
-#include "scenarios/dynamic_tension_results.hpp"
-#include "scenarios/virial_stress.hpp"
+#include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/bonded/bond_snapshot.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
+#include "scenarios/dynamic_tension/virial_stress.hpp"
 
 namespace rupture {
 
