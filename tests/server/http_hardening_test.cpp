@@ -552,7 +552,9 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
 
   // Servers before 2026-11-27 stored fingerprints hashed from a mistyped offset basis: a retry of
   // such a key with its own request still replays, one with another request is still refused.
-  const std::string text = std::string(test::kScenario) + "\n" + body.dump(-1, ' ', false, Json::error_handler_t::replace);
+  // The server hashes the body with its keys sorted (nlohmann::json, not the ordered Json).
+  const std::string text = std::string(test::kScenario) + "\n" +
+                           nlohmann::json(body).dump(-1, ' ', false, Json::error_handler_t::replace);
   EXPECT_NE(fnv1aHex(text), fnv1aHex(text, 1469598103934665603ull));
   {
     sqlite3* db = nullptr;
