@@ -128,11 +128,7 @@ void getProcesses(ServerContext&, const Request& req, Response& res) {
 
 void getProcess(ServerContext& ctx, const Request& req, Response& res) {
   const std::string name = req.matches[1];
-  const rupture::ScenarioInfo* info = nullptr;
-  auto all = rupture::listScenarios();
-  for (const auto& s : all) {
-    if (s.name == name) info = &s;
-  }
+  const rupture::ScenarioInfo* info = rupture::findScenario(name);
   if (!info) throw noSuchProcess(name);
   Json doc = processSummary(*info);
   Json schema = Json(rupture::scenarioSchema(name));

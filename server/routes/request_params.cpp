@@ -93,12 +93,7 @@ std::vector<std::string> paramList(const Request& req, const std::string& name) 
   return out;
 }
 
-bool knownScenario(const std::string& name) {
-  for (const auto& s : rupture::listScenarios()) {
-    if (s.name == name) return true;
-  }
-  return false;
-}
+bool knownScenario(const std::string& name) { return rupture::findScenario(name) != nullptr; }
 
 void requireToken(const ServerContext& ctx, const Request& req) {
   const std::string& token = ctx.config.token;
