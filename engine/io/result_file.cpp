@@ -3,12 +3,24 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <string_view>
 #include <system_error>
 
 namespace rupture::io {
 
+namespace {
+
+bool isCallersTemporary(const std::string& path) {
+  constexpr std::string_view kPart = ".part";
+  return path.size() > kPart.size() && path.ends_with(kPart);
+}
+
+}  // namespace
+
 ResultFile::ResultFile(std::string resultPath, const std::string& scenario)
-    : m_resultPath(std::move(resultPath)), m_partPath(m_resultPath + ".part"), m_file(Hdf5File::create(m_partPath)) {
+    : m_resultPath(std::move(resultPath)),
+      m_partPath(isCallersTemporary(m_resultPath) ? m_resultPath : m_resultPath + ".part"),
+      m_file(Hdf5File::create(m_partPath)) {
   m_file.setAttribute("/", "scenario", scenario);
   m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
   m_file.setAttribute("/", "completed", std::int64_t{0});
@@ -41,7 +53,7 @@ void ResultFile::writeAttributes(const std::string& group, const nlohmann::json&
 void ResultFile::finish(bool completed) {
   m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
   m_file.close();
-  std::filesystem::rename(m_partPath, m_resultPath);
+  if (m_partPath != m_resultPath) std::filesystem::rename(m_partPath, m_resultPath);
   m_done = true;
 }
 

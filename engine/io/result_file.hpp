@@ -1,7 +1,9 @@
 #pragma once
 // The life cycle every scenario's result file shares. Everything is written to RESULT.part, which
 // finish() renames onto RESULT, so a reader never sees a half-written file; an unfinished file (an
-// exception during the run) is deleted by the destructor. Common layout:
+// exception during the run) is deleted by the destructor. A RESULT that already ends in ".part" is
+// the caller's own temporary: the file is written there and finish() leaves it for the caller to
+// rename (the job server does, after recording the summary: one rename, not two). Common layout:
 //   /        attributes scenario, rupture_version, completed (int64 1/0)
 //   /spec    attributes json (the resolved spec, defaults filled in) and input (as submitted)
 // Scalar groups (/summary, ...) are written by writeAttributes: booleans as int64 0/1, integers as
@@ -30,7 +32,8 @@ public:
   void writeAttributes(const std::string& group, const nlohmann::json& values,
                        const std::map<std::string, std::string>& units);
 
-  /// Marks "/" completed (1/0), closes, and renames the partial file onto the result.
+  /// Marks "/" completed (1/0), closes, and renames the partial file onto the result (unless the
+  /// result path is itself a ".part" the caller renames).
   void finish(bool completed);
   /// Closes and deletes the partial file.
   void abandon() noexcept;

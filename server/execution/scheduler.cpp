@@ -17,9 +17,16 @@ std::string describe(RunKey key) {
   return "job " + std::to_string(key.job) + " run " + std::to_string(key.index);
 }
 
-fs::path partialFile(const fs::path& runFile) {
+/// The run file while the engine writes it: a ".part" the engine leaves for us to rename once the
+/// summary is recorded (io::ResultFile), the one rename a result goes through.
+fs::path partialFile(const fs::path& runFile) { return runFile.string() + ".part"; }
+
+/// The names older servers wrote a run under (run-k.partial.h5 and its own .part): removed as
+/// leftovers like any other.
+std::vector<fs::path> legacyPartialFiles(const fs::path& runFile) {
   fs::path p = runFile;
-  return p.replace_extension(".partial.h5");
+  const fs::path partial = p.replace_extension(".partial.h5");
+  return {partial, fs::path(partial.string() + ".part")};
 }
 
 fs::path summaryFile(const fs::path& runFile) {
@@ -250,8 +257,8 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     return m_stopping;
   };
   auto removeLeftovers = [&] {
-    for (const fs::path& stale : {file, partial, fs::path(partial.string() + ".part"), summaryFile(file)})
-      removeQuietly(stale);
+    for (const fs::path& stale : {file, partial, summaryFile(file)}) removeQuietly(stale);
+    for (const fs::path& stale : legacyPartialFiles(file)) removeQuietly(stale);
   };
   Outcome outcome{Outcome::Kind::Failed, key, Json(), std::string()};
   int attempts = 0;

@@ -4,8 +4,9 @@
 // copies progress into the store at most once a second. A run that throws marks only itself failed.
 //
 // Result files: <data-dir>/jobs/<id>/run-<k>.h5 exists only for a finished, complete run. The engine
-// writes run-<k>.partial.h5 (through its own .part + rename); on success the summary goes to
-// run-<k>.summary.json, then the file is renamed to run-<k>.h5, then the store is updated. A crash
+// writes run-<k>.h5.part and leaves it there (io::ResultFile: a ".part" result is the caller's to
+// rename); on success the summary goes to run-<k>.summary.json, then the file is renamed to
+// run-<k>.h5 (its one rename), then the store is updated. A crash
 // between the rename and the store update is repaired on the next start from the summary file, so a
 // finished result is never recomputed.
 //

@@ -103,15 +103,16 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "k=\"$SLURM_ARRAY_TASK_ID\"\n"
     << "cd " << shellQuote(dir.string()) << " || exit 1\n"
     << "export RUPTURE_CACHE_DIR=" << shellQuote((m_settings.sharedDir / "cache").string()) << "\n"
-    << "rm -f \"run-$k.h5\" \"run-$k.partial.h5\" \"run-$k.partial.h5.part\" \"run-$k.summary.json\" \"run-$k.status\"\n"
-    << shellQuote(m_settings.cli) << " run \"run-$k.spec.json\" -o \"run-$k.partial.h5\" --threads "
+    << "rm -f \"run-$k.h5\" \"run-$k.h5.part\" \"run-$k.summary.json\" \"run-$k.status\"\n"
+    << "# The engine leaves a result named *.part for its caller to rename: this script, once the summary is kept.\n"
+    << shellQuote(m_settings.cli) << " run \"run-$k.spec.json\" -o \"run-$k.h5.part\" --threads "
     << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" > \"run-$k.summary.tmp\" 2> \"run-$k.log\"\n"
     << "code=$?\n"
-    << "rm -f \"run-$k.partial.xdmf2\"\n"
+    << "rm -f \"run-$k.h5.part.xdmf2\"\n"
     << "if [ \"$code\" -eq 0 ]; then\n"
-    << "  mv -f \"run-$k.summary.tmp\" \"run-$k.summary.json\" && mv -f \"run-$k.partial.h5\" \"run-$k.h5\" || code=74\n"
+    << "  mv -f \"run-$k.summary.tmp\" \"run-$k.summary.json\" && mv -f \"run-$k.h5.part\" \"run-$k.h5\" || code=74\n"
     << "else\n"
-    << "  rm -f \"run-$k.partial.h5\" \"run-$k.summary.tmp\"\n"
+    << "  rm -f \"run-$k.h5.part\" \"run-$k.summary.tmp\"\n"
     << "fi\n"
     << "echo \"$code\" > \"run-$k.status.tmp\" && mv -f \"run-$k.status.tmp\" \"run-$k.status\"\n"
     << "exit \"$code\"\n";
@@ -127,7 +128,7 @@ void SlurmExecutor::submit(std::int64_t jobId, const std::vector<int>& indices) 
     fs::create_directories(dir / "slurm");
     for (int k : indices) {
       const RunKey key{jobId, k};
-      for (const char* stale : {".slurm", ".status", ".h5", ".summary.json", ".partial.h5", ".progress.json", ".log"}) {
+      for (const char* stale : {".slurm", ".status", ".h5", ".h5.part", ".summary.json", ".partial.h5", ".progress.json", ".log"}) {
         std::error_code ec;
         fs::remove(runPath(key, stale), ec);
       }

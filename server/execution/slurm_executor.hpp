@@ -8,7 +8,7 @@
 //   run-k.slurm          the Slurm array job id the run was last submitted in
 //   run-k.progress.json  written by `rupture run --progress-file` about once a second
 //   run-k.log            the run's stderr (its last line is the error of a failed run)
-//   run-k.partial.h5     the run file while it is written; renamed to run-k.h5 only when complete,
+//   run-k.h5.part        the run file while it is written; renamed to run-k.h5 only when complete,
 //   run-k.summary.json   after the summary (the CLI's stdout) is in place
 //   run-k.status         the exit code of `rupture run`, written last
 //   slurm/<n>.sbatch     the batch script of each submission; slurm/%A_%a.out Slurm's own output

@@ -80,7 +80,7 @@ TEST(Scheduler, RunsInOrderAndWritesOneFilePerRun) {
     EXPECT_EQ(run->resultPath, "jobs/" + std::to_string(id) + "/run-" + std::to_string(k) + ".h5");
     EXPECT_EQ(test::readText(dir.path() / run->resultPath), "result of run " + std::to_string(k));
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "jobs" / std::to_string(id) / ("run-" + std::to_string(k) + ".summary.json")));
-    EXPECT_FALSE(std::filesystem::exists(dir.path() / "jobs" / std::to_string(id) / ("run-" + std::to_string(k) + ".partial.h5")));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "jobs" / std::to_string(id) / ("run-" + std::to_string(k) + ".h5.part")));
   }
   EXPECT_EQ(store.run({id, 3})->summary["peak_stress"], 4e6);
 }
