@@ -40,6 +40,16 @@ std::string parseInt(const std::string& text, long long lo, long long hi, long l
   return "";
 }
 
+/// A setter for a text option; with `ifEmpty`, empty text is refused with that error.
+std::function<std::string(ServerConfig&, const std::string&)> textSetter(std::string ServerConfig::*member,
+                                                                        const char* ifEmpty = nullptr) {
+  return [member, ifEmpty](ServerConfig& c, const std::string& v) -> std::string {
+    if (ifEmpty && v.empty()) return ifEmpty;
+    c.*member = v;
+    return "";
+  };
+}
+
 template <class T>
 std::function<std::string(ServerConfig&, const std::string&)> intSetter(T ServerConfig::*member,
                                                                         long long lo, long long hi) {
@@ -86,18 +96,10 @@ const std::vector<Option>& options() {
        intSetter(&ServerConfig::port, 0, 65535)},
       {"bind", "RUPTURE_BIND", "ADDR", "address to listen on (keep 127.0.0.1 unless behind a proxy)",
        "127.0.0.1",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         if (v.empty()) return "an address is required";
-         c.bind = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::bind, "an address is required")},
       {"data-dir", "RUPTURE_DATA_DIR", "DIR",
        "directory for rupture.sqlite and jobs/<id>/run-<k>.h5 (created if missing)", "./data",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         if (v.empty()) return "a directory is required";
-         c.dataDir = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::dataDir, "a directory is required")},
       {"workers", "RUPTURE_WORKERS", "N", "runs executed at the same time; 0 = cores / threads-per-run",
        "0", intSetter(&ServerConfig::workers, 0, 1024)},
       {"threads-per-run", "RUPTURE_THREADS_PER_RUN", "N", "OpenMP threads given to each run", "1",
@@ -134,10 +136,7 @@ const std::vector<Option>& options() {
        "when set, POST and DELETE need 'Authorization: Bearer SECRET' (prefer the variable: "
        "flags show in ps)",
        "(none)",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         c.token = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::token)},
       {"http-threads", "RUPTURE_HTTP_THREADS", "N", "threads answering HTTP requests", "8",
        intSetter(&ServerConfig::httpThreads, 1, 256)},
       {"log-requests", "RUPTURE_LOG_REQUESTS", "", "log one line per HTTP request on stderr", "off",
@@ -152,11 +151,7 @@ const std::vector<Option>& options() {
       {"shared-dir", "RUPTURE_SHARED_DIR", "DIR",
        "slurm: directory visible to the server and the compute nodes; holds jobs/ (run files) and cache/",
        "(required with --executor slurm)",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         if (v.empty()) return "a directory is required";
-         c.sharedDir = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::sharedDir, "a directory is required")},
       {"slurm-partition", "RUPTURE_SLURM_PARTITION", "NAME", "slurm: sbatch --partition", "(cluster default)",
        [](ServerConfig& c, const std::string& v) { c.slurmPartition = v; return std::string(); }},
       {"slurm-account", "RUPTURE_SLURM_ACCOUNT", "NAME", "slurm: sbatch --account", "(none)",
@@ -181,11 +176,7 @@ const std::vector<Option>& options() {
        }},
       {"rupture-cli", "RUPTURE_CLI", "PATH",
        "slurm: the rupture binary the batch script runs on the compute nodes", "(the one beside rupture-server)",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         if (v.empty()) return "a path is required";
-         c.ruptureCli = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::ruptureCli, "a path is required")},
       {"request-timeout", "RUPTURE_REQUEST_TIMEOUT", "SECONDS",
        "deadline for receiving a whole request (line, headers and body), however slowly it trickles; "
        "408 after",
@@ -207,10 +198,7 @@ const std::vector<Option>& options() {
        "when set, every route but /health needs 'Authorization: Bearer SECRET' (or the --token); "
        "set it to the --token value for one token everywhere",
        "(none)",
-       [](ServerConfig& c, const std::string& v) -> std::string {
-         c.readToken = v;
-         return "";
-       }},
+       textSetter(&ServerConfig::readToken)},
   };
   return table;
 }

@@ -21,7 +21,10 @@ using httplib::Response;
 
 namespace handlers {
 
-void getJobs(ServerContext& ctx, const Request& req, Response& res) {
+namespace {
+
+/// GET /jobs' query: ?status= (repeatable, comma lists), ?processID=, ?name=, ?limit=, ?offset=.
+JobFilter jobFilterOf(const Request& req) {
   JobFilter filter;
   for (const std::string& s : paramList(req, "status")) {
     auto status = parseStatus(s);
@@ -40,14 +43,11 @@ void getJobs(ServerContext& ctx, const Request& req, Response& res) {
   if (req.has_param("name")) filter.nameContains = req.get_param_value("name");
   filter.limit = static_cast<int>(intParam(req, "limit", 50, 1, 1000));
   filter.offset = intParam(req, "offset", 0, 0, std::numeric_limits<std::int64_t>::max() / 2);
-  std::int64_t total = 0;
-  auto list = ctx.store->listJobs(filter, total);
-  Json jobs = Json::array();
-  for (const JobRecord& j : list) jobs.push_back(statusInfo(j, nullptr));
-  Json doc = Json::object();
-  doc["jobs"] = jobs;
-  doc["numberMatched"] = total;
-  doc["numberReturned"] = jobs.size();
+  return filter;
+}
+
+/// The self, next and prev links of a page of `returned` jobs out of `total` matching `filter`.
+Json jobPageLinks(const JobFilter& filter, std::size_t returned, std::int64_t total) {
   std::string query;
   if (!filter.statuses.empty()) {
     query += "&status=";
@@ -62,11 +62,26 @@ void getJobs(ServerContext& ctx, const Request& req, Response& res) {
     return "/jobs?limit=" + std::to_string(filter.limit) + "&offset=" + std::to_string(offset) + query;
   };
   Json links = Json::array({link(page(filter.offset), "self")});
-  if (filter.offset + static_cast<std::int64_t>(list.size()) < total) {
+  if (filter.offset + static_cast<std::int64_t>(returned) < total) {
     links.push_back(link(page(filter.offset + filter.limit), "next"));
   }
   if (filter.offset > 0) links.push_back(link(page(std::max<std::int64_t>(0, filter.offset - filter.limit)), "prev"));
-  doc["links"] = links;
+  return links;
+}
+
+}  // namespace
+
+void getJobs(ServerContext& ctx, const Request& req, Response& res) {
+  const JobFilter filter = jobFilterOf(req);
+  std::int64_t total = 0;
+  auto list = ctx.store->listJobs(filter, total);
+  Json jobs = Json::array();
+  for (const JobRecord& j : list) jobs.push_back(statusInfo(j, nullptr));
+  Json doc = Json::object();
+  doc["jobs"] = jobs;
+  doc["numberMatched"] = total;
+  doc["numberReturned"] = jobs.size();
+  doc["links"] = jobPageLinks(filter, list.size(), total);
   if (wantsHtml(req)) {
     Json current = {{"name", filter.nameContains}, {"processID", filter.processId},
                     {"status", filter.statuses.size() == 1 ? toString(filter.statuses[0]) : ""}};

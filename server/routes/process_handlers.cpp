@@ -110,6 +110,122 @@ void replayJob(ServerContext& ctx, const Request& req, Response& res, const Idem
   sendJson(res, statusInfo(*record, &runs), 201);
 }
 
+/// A POST /processes/{id}/execution body, checked member by member: the spec's inputs for `scenario`
+/// and the job's name (the sweep, replicates and refinement are read by planJob).
+struct Submission {
+  Json body;
+  std::string name;
+  const Json& inputs() const { return body.at("inputs"); }
+  const Json* member(const char* key) const {
+    auto it = body.find(key);
+    return it == body.end() ? nullptr : &*it;
+  }
+};
+
+Submission readSubmission(const std::string& text, const std::string& scenario) {
+  Submission s{parseJsonBody(text), {}};
+  const Json& body = s.body;
+  if (!body.is_object()) {
+    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                   "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
+  }
+  static const std::vector<std::string> allowedKeys = {"inputs",  "sweep",    "sweep_mode", "name",      "replicates",
+                                                       "refine",  "outputs",  "response",   "subscriber"};
+  for (const auto& [key, value] : body.items()) {
+    if (std::find(allowedKeys.begin(), allowedKeys.end(), key) == allowedKeys.end()) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "unknown member '" + key +
+                         "' in the request body; allowed: inputs, sweep, sweep_mode, name, replicates, refine",
+                     key, Json{{"in", "body"}});
+    }
+  }
+  auto inputsIt = body.find("inputs");
+  if (inputsIt == body.end() || !inputsIt->is_object()) {
+    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                   "\"inputs\" is required and must be an object: the spec without \"scenario\"", "inputs",
+                   Json{{"in", "body"}});
+  }
+  const Json& inputs = *inputsIt;
+  if (const std::string empty = findEmptyKey(inputs, ""); !empty.empty()) {
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                   "inputs has a member whose name is the empty string (at " + empty +
+                       "); every field needs a name",
+                   empty, Json{{"in", "inputs"}});
+  }
+  if (auto sc = inputs.find("scenario"); sc != inputs.end() && *sc != scenario) {
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                   "inputs.scenario is " + sc->dump() + " but the URL names '" + scenario +
+                       "'; leave it out, the URL decides",
+                   "scenario", Json{{"in", "inputs"}, {"value", *sc}, {"allowed", Json::array({scenario})}});
+  }
+  if (auto n = body.find("name"); n != body.end() && !n->is_null()) {
+    if (!n->is_string() || n->get<std::string>().size() > 200) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "name must be a string of at most 200 characters", "name", Json{{"in", "body"}});
+    }
+    s.name = n->get<std::string>();
+  }
+  return s;
+}
+
+/// The job a submission makes: its sweep expanded and replicated into runs, each run's spec checked
+/// against the operator's limits (size, memory, queue room, runs per job), and its study (replicates,
+/// refinement) recorded.
+NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission& submission) {
+  const Json& inputs = submission.inputs();
+  const SweepPlan plan = parseSweepPlan(submission.member("sweep"), submission.member("sweep_mode"));
+  const ReplicatePlan replicates = parseReplicatePlan(submission.member("replicates"), scenario, plan);
+  const std::size_t maxRuns = static_cast<std::size_t>(ctx.config.maxRuns);
+  std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
+  if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
+    const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
+    throw ApiError(400, problem::kTooManyRuns, "Too many runs",
+                   "the sweep's " + std::to_string(sweepPoints.size()) + " points x " +
+                       std::to_string(replicates.count) + " replicates make " + std::to_string(total) +
+                       " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
+                   "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
+  }
+  // Every spec holds the whole inputs (a large description, many probes): moved, never copied.
+  std::vector<ReplicatedPoint> replicated = expandReplicates(std::move(sweepPoints), replicates, scenario);
+  std::vector<SweepPoint> points;
+  std::vector<int> replicateIndex;
+  points.reserve(replicated.size());
+  for (ReplicatedPoint& rp : replicated) {
+    points.push_back(std::move(rp.point));
+    replicateIndex.push_back(rp.replicate);
+  }
+  replicated.clear();
+  const std::size_t runCount = points.size();
+  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+  requireQueueRoom(ctx, runCount, inputs.dump().size());
+  const std::optional<RefinePlan> refine =
+      parseRefinePlan(submission.member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
+
+  NewJob job;
+  job.processId = scenario;
+  job.name = submission.name;
+  job.sweepMode = toString(plan.mode);
+  job.sweptPaths = Json::array();
+  for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
+  job.inputs = inputs;
+  const Json* sweep = submission.member("sweep");
+  job.sweep = sweep && sweep->is_object() ? *sweep : Json::object();
+  job.runs.reserve(runCount);
+  for (std::size_t k = 0; k < runCount; ++k) {
+    job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));
+    job.replicates.push_back(replicateIndex[k]);
+  }
+  if (replicates.requested() || refine) {
+    job.study = Json::object();
+    if (replicates.requested()) job.study["replicates"] = replicates.toJson();
+    if (refine) {
+      job.study["refine"] = refine->toJson();
+      job.study["refinement"] = {{"state", "pending"}, {"rounds", 0}, {"runs_added", 0}, {"points", Json::array()}};
+    }
+  }
+  return job;
+}
+
 }  // namespace
 
 namespace handlers {
@@ -173,123 +289,31 @@ void postExecution(ServerContext& ctx, const Request& req, Response& res) {
   }
   const std::string scenario = req.matches[1];
   if (!knownScenario(scenario)) throw noSuchProcess(scenario);
+  const Submission submission = readSubmission(req.body, scenario);
 
-  const Json body = parseJsonBody(req.body);
-  if (!body.is_object()) {
-    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
-                   "the request body must be a JSON object with \"inputs\"", "", Json{{"in", "body"}});
-  }
-  static const std::vector<std::string> allowedKeys = {"inputs",  "sweep",    "sweep_mode", "name",      "replicates",
-                                                       "refine",  "outputs",  "response",   "subscriber"};
-  for (const auto& [key, value] : body.items()) {
-    if (std::find(allowedKeys.begin(), allowedKeys.end(), key) == allowedKeys.end()) {
-      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
-                     "unknown member '" + key +
-                         "' in the request body; allowed: inputs, sweep, sweep_mode, name, replicates, refine",
-                     key, Json{{"in", "body"}});
-    }
-  }
-  auto inputsIt = body.find("inputs");
-  if (inputsIt == body.end() || !inputsIt->is_object()) {
-    throw ApiError(400, problem::kInvalidRequest, "Invalid request",
-                   "\"inputs\" is required and must be an object: the spec without \"scenario\"", "inputs",
-                   Json{{"in", "body"}});
-  }
-  const Json& inputs = *inputsIt;
-  if (const std::string empty = findEmptyKey(inputs, ""); !empty.empty()) {
-    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
-                   "inputs has a member whose name is the empty string (at " + empty +
-                       "); every field needs a name",
-                   empty, Json{{"in", "inputs"}});
-  }
-  if (auto sc = inputs.find("scenario"); sc != inputs.end() && *sc != scenario) {
-    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
-                   "inputs.scenario is " + sc->dump() + " but the URL names '" + scenario +
-                       "'; leave it out, the URL decides",
-                   "scenario", Json{{"in", "inputs"}, {"value", *sc}, {"allowed", Json::array({scenario})}});
-  }
-  std::string name;
-  if (auto n = body.find("name"); n != body.end() && !n->is_null()) {
-    if (!n->is_string() || n->get<std::string>().size() > 200) {
-      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
-                     "name must be a string of at most 200 characters", "name", Json{{"in", "body"}});
-    }
-    name = n->get<std::string>();
-  }
-  auto member = [&](const char* key) -> const Json* {
-    auto it = body.find(key);
-    return it == body.end() ? nullptr : &*it;
-  };
   // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.
   const std::string idempotencyKey = idempotencyKeyOf(req);
-  const std::string requestHash = idempotencyKey.empty() ? std::string() : requestFingerprint(scenario, body);
+  const std::string requestHash =
+      idempotencyKey.empty() ? std::string() : requestFingerprint(scenario, submission.body);
   if (!idempotencyKey.empty()) {
     if (auto earlier = ctx.store->jobForIdempotencyKey(idempotencyKey)) {
-      replayJob(ctx, req, res, *earlier, requestHash, scenario, body);
+      replayJob(ctx, req, res, *earlier, requestHash, scenario, submission.body);
       return;
     }
   }
-  const SweepPlan plan = parseSweepPlan(member("sweep"), member("sweep_mode"));
-  const ReplicatePlan replicates = parseReplicatePlan(member("replicates"), scenario, plan);
-  const std::size_t maxRuns = static_cast<std::size_t>(ctx.config.maxRuns);
-  std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
-  if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
-    const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
-    throw ApiError(400, problem::kTooManyRuns, "Too many runs",
-                   "the sweep's " + std::to_string(sweepPoints.size()) + " points x " +
-                       std::to_string(replicates.count) + " replicates make " + std::to_string(total) +
-                       " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
-                   "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
-  }
-  // Every spec holds the whole inputs (a large description, many probes): moved, never copied.
-  std::vector<ReplicatedPoint> replicated = expandReplicates(std::move(sweepPoints), replicates, scenario);
-  std::vector<SweepPoint> points;
-  std::vector<int> replicateIndex;
-  points.reserve(replicated.size());
-  for (ReplicatedPoint& rp : replicated) {
-    points.push_back(std::move(rp.point));
-    replicateIndex.push_back(rp.replicate);
-  }
-  replicated.clear();
-  const std::size_t runCount = points.size();
-  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
-  requireQueueRoom(ctx, runCount, inputs.dump().size());
-  const std::optional<RefinePlan> refine =
-      parseRefinePlan(member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
-
-  NewJob job;
-  job.processId = scenario;
-  job.name = name;
-  job.sweepMode = toString(plan.mode);
-  job.sweptPaths = Json::array();
-  for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
-  job.inputs = inputs;
-  job.sweep = body.contains("sweep") && body["sweep"].is_object() ? body["sweep"] : Json::object();
-  job.runs.reserve(runCount);
-  for (std::size_t k = 0; k < runCount; ++k) {
-    job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));
-    job.replicates.push_back(replicateIndex[k]);
-  }
-  points.clear();
-  if (replicates.requested() || refine) {
-    job.study = Json::object();
-    if (replicates.requested()) job.study["replicates"] = replicates.toJson();
-    if (refine) {
-      job.study["refine"] = refine->toJson();
-      job.study["refinement"] = {{"state", "pending"}, {"rounds", 0}, {"runs_added", 0}, {"points", Json::array()}};
-    }
-  }
+  NewJob job = planJob(ctx, scenario, submission);
   job.idempotencyKey = idempotencyKey;
   job.requestHash = requestHash;
   const CreatedJob created = ctx.store->createJobOnce(job);
   if (!created.created) {  // a concurrent request with the same key won the race
-    replayJob(ctx, req, res, IdempotentJob{created.id, created.requestHash}, requestHash, scenario, body);
+    replayJob(ctx, req, res, IdempotentJob{created.id, created.requestHash}, requestHash, scenario, submission.body);
     return;
   }
   const std::int64_t id = created.id;
-  ctx.scheduler->enqueue(id, static_cast<int>(runCount));
-  logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(runCount) +
-          " run(s)" + (name.empty() ? "" : ", \"" + name + "\""));
+  const int runCount = static_cast<int>(job.runs.size());
+  ctx.scheduler->enqueue(id, runCount);
+  logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(runCount) + " run(s)" +
+          (job.name.empty() ? "" : ", \"" + job.name + "\""));
 
   auto record = ctx.store->job(id);
   auto runs = ctx.store->runs(id);

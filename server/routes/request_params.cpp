@@ -46,28 +46,31 @@ int runIndexFrom(const Request& req, const JobRecord& job) {
   return static_cast<int>(*k);
 }
 
-bool wantsCsv(const Request& req) {
-  if (req.has_param("format")) {
-    const std::string f = req.get_param_value("format");
-    if (f == "csv") return true;
-    if (f == "json") return false;
-    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                   "format must be 'json' or 'csv', got '" + f + "'", "format",
-                   Json{{"in", "query"}, {"value", f}, {"allowed", Json::array({"json", "csv"})}});
+std::optional<std::string> choiceParam(const Request& req, const char* name,
+                                       std::initializer_list<const char*> allowed) {
+  if (!req.has_param(name)) return std::nullopt;
+  std::string value = req.get_param_value(name);
+  std::string listed;
+  Json names = Json::array();
+  for (const char* a : allowed) {
+    if (value == a) return value;
+    listed += (listed.empty() ? "'" : names.size() + 1 == allowed.size() ? " or '" : ", '") + std::string(a) + "'";
+    names.push_back(a);
   }
+  throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                 std::string(name) + " must be " + listed + ", got '" + value + "'", name,
+                 Json{{"in", "query"}, {"value", value}, {"allowed", names}});
+}
+
+bool wantsCsv(const Request& req) {
+  if (const auto f = choiceParam(req, "format", {"json", "csv"})) return *f == "csv";
   const std::string accept = req.get_header_value("Accept");
   return accept.find("text/csv") != std::string::npos && accept.find("application/json") == std::string::npos;
 }
 
 /// OGC API style: ?f=html, or a browser's Accept (text/html) when ?f is absent; ?f=json is JSON.
 bool wantsHtml(const Request& req) {
-  if (req.has_param("f")) {
-    const std::string f = req.get_param_value("f");
-    if (f == "html") return true;
-    if (f == "json") return false;
-    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter", "f must be 'html' or 'json', got '" + f + "'",
-                   "f", Json{{"in", "query"}, {"value", f}, {"allowed", Json::array({"html", "json"})}});
-  }
+  if (const auto f = choiceParam(req, "f", {"html", "json"})) return *f == "html";
   return req.get_header_value("Accept").find("text/html") != std::string::npos;
 }
 
@@ -130,13 +133,7 @@ std::int64_t intParam(const Request& req, const char* name, std::int64_t fallbac
 
 /// ?aggregate=replicates (statistics per sweep point) or ?aggregate=none (the runs; default).
 bool aggregateParam(const Request& req) {
-  if (!req.has_param("aggregate")) return false;
-  const std::string v = req.get_param_value("aggregate");
-  if (v == "replicates") return true;
-  if (v == "none") return false;
-  throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                 "aggregate must be 'replicates' or 'none', got '" + v + "'", "aggregate",
-                 Json{{"in", "query"}, {"value", v}, {"allowed", Json::array({"replicates", "none"})}});
+  return choiceParam(req, "aggregate", {"replicates", "none"}) == "replicates";
 }
 
 std::optional<double> numberParam(const Request& req, const char* name) {
@@ -153,14 +150,8 @@ std::optional<double> numberParam(const Request& req, const char* name) {
 }
 
 AxisScale scaleParam(const Request& req, const char* name) {
-  if (!req.has_param(name)) return AxisScale::Auto;
-  const std::string v = req.get_param_value(name);
-  if (v == "auto") return AxisScale::Auto;
-  if (v == "linear") return AxisScale::Linear;
-  if (v == "log") return AxisScale::Log;
-  throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                 std::string(name) + " must be auto, linear or log, got '" + v + "'", name,
-                 Json{{"in", "query"}, {"value", v}, {"allowed", Json::array({"auto", "linear", "log"})}});
+  const std::string v = choiceParam(req, name, {"auto", "linear", "log"}).value_or("auto");
+  return v == "linear" ? AxisScale::Linear : v == "log" ? AxisScale::Log : AxisScale::Auto;
 }
 
 JobRecord loadJob(ServerContext& ctx, const Request& req) {

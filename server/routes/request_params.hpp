@@ -2,6 +2,7 @@
 // What handlers read from a request: path ids, query parameters, content negotiation and the
 // token, each failing with a problem that names the parameter; and the job or run a path names.
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,9 @@ bool knownScenario(const std::string& name);
 std::int64_t jobIdFrom(const httplib::Request& req);
 int runIndexFrom(const httplib::Request& req, const JobRecord& job);
 
+/// ?name= as one of `allowed` (nullopt when absent); a 400 naming the allowed values otherwise.
+std::optional<std::string> choiceParam(const httplib::Request& req, const char* name,
+                                       std::initializer_list<const char*> allowed);
 /// ?format=csv|json, else the Accept header.
 bool wantsCsv(const httplib::Request& req);
 /// OGC API style: ?f=html, or a browser's Accept (text/html) when ?f is absent; ?f=json is JSON.

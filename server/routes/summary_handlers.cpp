@@ -97,12 +97,7 @@ void requireRenderable(const PlotRequest& plot, int scale, long long maxPixels) 
 /// The plot as SVG, or with ?format=png&scale=1..4 as PNG.
 void sendPlot(const Request& req, Response& res, const SummaryTable& table, const PlotRequest& plot,
                      RenderGate& gate) {
-  const std::string format = req.has_param("format") ? req.get_param_value("format") : "svg";
-  if (format != "svg" && format != "png") {
-    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                   "format must be 'svg' or 'png', got '" + format + "'", "format",
-                   Json{{"in", "query"}, {"value", format}, {"allowed", Json::array({"svg", "png"})}});
-  }
+  const std::string format = choiceParam(req, "format", {"svg", "png"}).value_or("svg");
   const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
   if (format == "png") requireRenderable(plot, scale, gate.maxPixels());
   const std::string svg = rupture::server::summarySvg(table, plot);

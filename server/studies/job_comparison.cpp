@@ -22,15 +22,6 @@ void addColumn(Json& columns, const Json& column) {
   columns.push_back(column);
 }
 
-/// {"a": {"mean": 1}} -> {"a.mean": 1}; arrays (run lists) are left out of CSV cells.
-void flattenCells(const Json& value, const std::string& prefix, Json& out) {
-  if (value.is_object()) {
-    for (const auto& [k, v] : value.items()) flattenCells(v, prefix.empty() ? k : prefix + "." + k, out);
-  } else if (!value.is_array()) {
-    out[prefix] = value;
-  }
-}
-
 }  // namespace
 
 std::string jobLabel(const JobRecord& job) {
@@ -77,7 +68,7 @@ std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) 
       Json row = Json::object();
       row["job"] = std::to_string(j.job.id);
       row["job_name"] = j.job.name;
-      flattenCells(r, "", row);
+      flattenInto(r, "", row, /*arrays=*/false);
       for (const auto& [k, v] : row.items()) {
         if (std::find(header.begin(), header.end(), k) == header.end()) header.push_back(k);
       }

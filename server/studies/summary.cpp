@@ -10,18 +10,14 @@
 #include <sstream>
 
 namespace rupture::server {
-namespace {
 
-void flatten(const Json& value, const std::string& prefix, Json& out) {
+void flattenInto(const Json& value, const std::string& prefix, Json& out, bool arrays) {
   if (value.is_object()) {
-    for (const auto& [k, v] : value.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, out);
-  } else if (!prefix.empty()) {
+    for (const auto& [k, v] : value.items()) flattenInto(v, prefix.empty() ? k : prefix + "." + k, out, arrays);
+  } else if (!prefix.empty() && (arrays || !value.is_array())) {
     out[prefix] = value;
   }
 }
-
-
-}  // namespace
 
 std::string csvTextCell(const std::string& text) {
   std::string cell = text;
@@ -115,7 +111,7 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
     row.status = run.status;
     row.swept = run.swept.is_array() ? run.swept : Json::array();
     row.scalars = Json::object();
-    if (run.summary.is_object()) flatten(run.summary, "", row.scalars);
+    if (run.summary.is_object()) flattenInto(run.summary, "", row.scalars);
     row.error = run.error;
     row.replicate = run.replicate;
     for (const auto& [k, v] : row.scalars.items()) {

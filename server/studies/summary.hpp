@@ -58,6 +58,10 @@ Json summaryJson(const SummaryTable& table);
 /// one line per run.
 std::string summaryCsv(const SummaryTable& table);
 
+/// {"a": {"mean": 1}} -> {"a.mean": 1}, added to `out` under `prefix`; `arrays` false leaves
+/// arrays out (a CSV cell cannot hold a list of runs).
+void flattenInto(const Json& value, const std::string& prefix, Json& out, bool arrays = true);
+
 /// Formats a number the way JSON would (shortest round-trip form); "" for NaN and infinities.
 std::string formatNumber(double value);
 
