@@ -20,8 +20,23 @@ double estimatedElements(const SampleSpec& sample);
 double estimatedMemoryBytes(const SampleSpec& sample, const MaterialSpec& material);
 /// The RunEstimate of a bonded scenario (field "sample.element_radius" or "sample.spacing").
 RunEstimate estimateBondedRun(const SampleSpec& sample, const MaterialSpec& material);
+/// The same for a scenario's spec that holds `sample` and `material` (a Scenario's estimate).
+template <class Spec>
+RunEstimate estimateBondedSpec(const Spec& spec) {
+  return estimateBondedRun(spec.sample, spec.material);
+}
 /// Reads "material" from the spec root (dimension-independent).
 MaterialSpec parseMaterial(const SpecReader& root);
+
+/// The head every bonded scenario's spec opens with, read in this order into `spec`: "scenario"
+/// (which must be `scenario`), "description", "sample" and "material".
+template <class Spec>
+void parseBondedHead(const SpecReader& root, const std::string& scenario, Spec& spec) {
+  root.choice("scenario", {scenario});
+  spec.description = root.string("description", "");
+  spec.sample = parseSample(root);
+  spec.material = parseMaterial(root);
+}
 
 nlohmann::json toJson(const SampleSpec& sample);
 nlohmann::json toJson(const MaterialSpec& material);

@@ -37,36 +37,22 @@ int readThreadsAndSteps(const Args& args, const std::string& workload, int& thre
   return 0;
 }
 
-/// rupture bench W2 [--threads N] [--steps N]: the peridynamics workload (bench/README.md).
-int benchW2(const Args& args) {
-  bench::W2Options options;
-  if (int code = readThreadsAndSteps(args, "W2", options.threads, options.steps)) return code;
-  printReport(bench::runW2(options));
-  return 0;
-}
-
-/// rupture bench TANK [--threads N] [--steps N]: the tank-impact FXA5 workload (bench/README.md).
-int benchTank(const Args& args) {
-  bench::TankImpactOptions options;
-  if (int code = readThreadsAndSteps(args, "TANK", options.threads, options.steps)) return code;
-  printReport(bench::runTankImpactBenchmark(options));
-  return 0;
-}
-
-/// rupture bench W3 [--threads N] [--steps N]: the SPH workload (bench/README.md).
-int benchW3(const Args& args) {
-  bench::W3Options options;
-  if (int code = readThreadsAndSteps(args, "W3", options.threads, options.steps)) return code;
-  printReport(bench::runW3(options));
+/// rupture bench W2|W3|TANK [--threads N] [--steps N]: a workload that takes a thread count and a
+/// step count (bench/README.md), run and reported.
+template <class Options>
+int benchThreadsAndSteps(const Args& args, nlohmann::json (*run)(const Options&)) {
+  Options options;
+  if (int code = readThreadsAndSteps(args, args[0], options.threads, options.steps)) return code;
+  printReport(run(options));
   return 0;
 }
 
 }  // namespace
 
 int benchCommand(const Args& args) {
-  if (!args.empty() && args[0] == "W3") return benchW3(args);
-  if (!args.empty() && args[0] == "TANK") return benchTank(args);
-  if (!args.empty() && args[0] == "W2") return benchW2(args);
+  if (!args.empty() && args[0] == "W2") return benchThreadsAndSteps(args, bench::runW2);  // peridynamics
+  if (!args.empty() && args[0] == "W3") return benchThreadsAndSteps(args, bench::runW3);  // SPH
+  if (!args.empty() && args[0] == "TANK") return benchThreadsAndSteps(args, bench::runTankImpactBenchmark);
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
                       "'; allowed: W1, W2, W3, TANK");

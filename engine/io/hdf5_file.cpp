@@ -109,6 +109,22 @@ void checkRc(herr_t rc, const std::string& file, const std::string& obj, const s
   if (rc < 0) fail(file, obj, what);
 }
 
+/// The names of an object's attributes, in `order`.
+std::vector<std::string> attributeNames(hid_t obj, H5_index_t order, const std::string& file, const std::string& path) {
+  std::vector<std::string> names;
+  // A C callback must not let an exception escape: report it as an iteration failure instead.
+  auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {
+    try {
+      static_cast<std::vector<std::string>*>(data)->emplace_back(attrName);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  };
+  checkRc(H5Aiterate2(obj, order, H5_ITER_INC, nullptr, collect, &names), file, path, "cannot list attributes");
+  return names;
+}
+
 std::string attrLabel(const std::string& objPath, const std::string& name) {
   return objPath + "@" + name;
 }
@@ -201,14 +217,19 @@ void checkNumericClass(hid_t type, Accept accept, const std::string& file,
        accept == Accept::IntegerOnly ? "not an integer type" : "not a numeric type");
 }
 
+/// The attribute `name` of the object at `objPath` (`label` names it in errors).
+Handle openAttribute(hid_t file, const std::string& objPath, const std::string& name, const std::string& fileName,
+                     const std::string& label) {
+  return Handle(checkId(H5Aopen_by_name(file, objPath.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), fileName,
+                        label, "cannot open attribute"),
+                H5Aclose);
+}
+
 /// Reads a one-element numeric attribute into *out as memType.
 void readScalarAttribute(hid_t file, const std::string& fileName, const std::string& objPath,
                          const std::string& name, hid_t memType, Accept accept, void* out) {
   const std::string label = attrLabel(objPath, name);
-  Handle attr(checkId(H5Aopen_by_name(file, objPath.c_str(), name.c_str(), H5P_DEFAULT,
-                                      H5P_DEFAULT),
-                      fileName, label, "cannot open attribute"),
-              H5Aclose);
+  const Handle attr = openAttribute(file, objPath, name, fileName, label);
   Handle type(checkId(H5Aget_type(attr.get()), fileName, label, "cannot get attribute type"),
               H5Tclose);
   checkNumericClass(type.get(), accept, fileName, label);
@@ -535,10 +556,7 @@ std::string Hdf5File::readAttributeString(const std::string& objPath,
                                           const std::string& name) const {
   requireOpen();
   const std::string label = attrLabel(objPath, name);
-  Handle attr(checkId(H5Aopen_by_name(m_id, objPath.c_str(), name.c_str(), H5P_DEFAULT,
-                                      H5P_DEFAULT),
-                      m_path, label, "cannot open attribute"),
-              H5Aclose);
+  const Handle attr = openAttribute(m_id, objPath, name, m_path, label);
   Handle fileType(checkId(H5Aget_type(attr.get()), m_path, label, "cannot get attribute type"),
                   H5Tclose);
   if (H5Tget_class(fileType.get()) != H5T_STRING) fail(m_path, label, "not a string attribute");
@@ -584,18 +602,7 @@ bool Hdf5File::hasAttribute(const std::string& objPath, const std::string& name)
 std::vector<std::string> Hdf5File::listAttributes(const std::string& objPath) const {
   requireOpen();
   const Handle obj = openObject(m_id, m_path, objPath);
-  std::vector<std::string> names;
-  // A C callback must not let an exception escape: report it as an iteration failure instead.
-  auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {
-    try {
-      static_cast<std::vector<std::string>*>(data)->emplace_back(attrName);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  };
-  checkRc(H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), m_path,
-          objPath, "cannot list attributes");
+  std::vector<std::string> names = attributeNames(obj.get(), H5_INDEX_NAME, m_path, objPath);
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -766,17 +773,7 @@ H5_index_t attributeOrder(hid_t obj, const std::string& file, const std::string&
 void copyAttributes(hid_t src, const std::string& srcFile, const std::string& srcPath, hid_t dst,
                     const std::string& dstFile, const std::string& dstPath) {
   const H5_index_t order = attributeOrder(src, srcFile, srcPath);
-  std::vector<std::string> names;
-  auto collect = [](hid_t, const char* attrName, const H5A_info_t*, void* data) -> herr_t {
-    try {
-      static_cast<std::vector<std::string>*>(data)->emplace_back(attrName);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  };
-  checkRc(H5Aiterate2(src, order, H5_ITER_INC, nullptr, collect, &names), srcFile, srcPath,
-          "cannot list attributes");
+  const std::vector<std::string> names = attributeNames(src, order, srcFile, srcPath);
 
   for (const std::string& name : names) {
     const std::string from = attrLabel(srcPath, name);

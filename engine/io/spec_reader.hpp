@@ -28,6 +28,8 @@ struct Range {
 class SpecReader {
 public:
   SpecReader(const nlohmann::json& node, std::string path);
+  /// The reader keeps a reference to `node`: a temporary would leave it dangling.
+  SpecReader(nlohmann::json&& node, std::string path) = delete;
 
   /// The dotted path of a key in this object ("sample.porosity").
   std::string pathOf(const std::string& key) const;
@@ -70,3 +72,9 @@ private:
 std::string describeValue(const nlohmann::json& value);
 
 }  // namespace rupture::io
+
+namespace rupture {
+// Every scenario's parser reads its spec with these.
+using io::Range;
+using io::SpecReader;
+}  // namespace rupture

@@ -15,16 +15,23 @@ struct MaterialPreset {
   LemaitreChabocheDamage damage;    ///< delayed Lemaitre–Chaboche parameters
 };
 
+/// A metal with Johnson & Cook hardening σ_y = A + B ε_p^n (Pa) and Lemaitre–Chaboche damage of the
+/// same Poisson ratio (the damage's default thresholds), for the presets below.
+inline MaterialPreset johnsonCookPreset(const char* name, double density, double youngModulus, double poissonRatio,
+                                        double a, double b, double n) {
+  MaterialPreset p{name, density, {}, {}};
+  p.material.youngModulus = youngModulus;
+  p.material.poissonRatio = poissonRatio;
+  p.material.hardening = {HardeningKind::johnsonCook, a, b, n};
+  p.damage = LemaitreChabocheDamage{};
+  p.damage.poissonRatio = poissonRatio;
+  return p;
+}
+
 /// AU4G = 2024-T351: E, ν (ASM handbook values), Johnson & Cook (1983) A, B, n and density; ε_p^c
 /// from the Johnson & Cook (1985) fracture fit at η = 1/3; see the doc for D_c, ε_p^s, τ_c, a.
 inline MaterialPreset au4g2024T351() {
-  MaterialPreset p{"au4g_2024_t351", 2770.0, {}, {}};
-  p.material.youngModulus = 73.1e9;
-  p.material.poissonRatio = 0.33;
-  p.material.hardening = {HardeningKind::johnsonCook, 265.0e6, 426.0e6, 0.34};
-  p.damage = LemaitreChabocheDamage{};
-  p.damage.poissonRatio = 0.33;
-  return p;
+  return johnsonCookPreset("au4g_2024_t351", 2770.0, 73.1e9, 0.33, 265.0e6, 426.0e6, 0.34);
 }
 
 /// AU4G 2024-T351 with the values Caleyron et al. 2013 give: density, E, ν of its Table 1 (ρ = 2780
@@ -46,12 +53,7 @@ inline MaterialPreset au4g2024T351Seed() {
 /// Cylinder steel: the seed's grade table is lost; 4340 steel of Johnson & Cook (1983)
 /// (A, B, n, density, G = 77.5 GPa → E = 200 GPa with ν = 0.29) stands in.
 inline MaterialPreset steel4340() {
-  MaterialPreset p{"steel_4340", 7830.0, {}, {}};
-  p.material.youngModulus = 200.0e9;
-  p.material.poissonRatio = 0.29;
-  p.material.hardening = {HardeningKind::johnsonCook, 792.0e6, 510.0e6, 0.26};
-  p.damage = LemaitreChabocheDamage{};
-  p.damage.poissonRatio = 0.29;
+  MaterialPreset p = johnsonCookPreset("steel_4340", 7830.0, 200.0e9, 0.29, 792.0e6, 510.0e6, 0.26);
   // ε_p^c at η = 1/3 from the Johnson & Cook (1985) 4340 fit (D1 = 0.05, D2 = 3.44, D3 = −2.12):
   // 0.05 + 3.44 exp(−2.12/3) = 1.75 is far beyond what the impact reaches: the cylinder does not fail.
   p.damage.criticalPlasticStrain = 1.75;

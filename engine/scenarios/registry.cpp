@@ -1,6 +1,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "scenarios/scenario.hpp"
 #include "io/spec_reader.hpp"
@@ -31,6 +32,14 @@ std::string embeddedSchema(const std::string& name) {
   for (const Entry& e : entries)
     if (name == e.name) return e.text;
   return {};
+}
+
+ScenarioInfo describedScenario(const std::string& name, ResultFields summary, ResultFields series) {
+  const std::string text = embeddedSchema(name);
+  if (text.empty()) throw std::logic_error("scenario \"" + name + "\" has no embedded schema");
+  const nlohmann::json schema = nlohmann::json::parse(text);
+  return {name, schema.at("title").get<std::string>(), schema.at("description").get<std::string>(),
+          std::move(summary), std::move(series)};
 }
 
 const Scenario& scenarioFor(const nlohmann::json& spec) {

@@ -2,6 +2,7 @@
 // Small helpers every scenario driver uses to talk to its watcher (RunControl) and to write numbers
 // into messages.
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <string>
 
@@ -32,6 +33,25 @@ RunOutcome finishRun(File& file, const nlohmann::json& summary, const std::map<s
   if (completed) reportProgress(control, 1.0);
   logStage(control, completed ? "done: " + stopReason : "cancelled: file marked incomplete");
   return {summary, completed};
+}
+
+/// A run cancelled before it had a state to record (its sample or lattice still being built): the
+/// file holds the spec and a summary saying so (completed 0, stop reason, wall time, and the
+/// scenario's `known` scalars), and is marked incomplete. `File` as for finishRun, with writeSpec.
+template <class File>
+RunOutcome cancelledBeforeStart(File& file, const nlohmann::json& resolvedSpec, const nlohmann::json& inputSpec,
+                                nlohmann::json known, const std::map<std::string, std::string>& units,
+                                const std::string& stage, RunControl& control,
+                                std::chrono::steady_clock::time_point wallStart) {
+  file.writeSpec(resolvedSpec, inputSpec);
+  nlohmann::json summary = std::move(known);
+  summary["completed"] = 0;
+  summary["stop_reason"] = "cancelled";
+  summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  file.writeAttributes("/summary", summary, units);
+  file.finish(false);
+  logStage(control, "cancelled while " + stage + ": file marked incomplete");
+  return {summary, false};
 }
 
 }  // namespace rupture

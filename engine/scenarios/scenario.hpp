@@ -29,16 +29,22 @@ struct Scenario {
       run;
 };
 
-/// The one way a scenario file builds its Scenario: its parse, estimate and run functions over its
-/// own spec type.
+/// A scenario's info: `name`, the title and description of its embedded JSON Schema, and its result
+/// declarations. Throws std::logic_error when the build embedded no schema of that name.
+ScenarioInfo describedScenario(const std::string& name, ResultFields summary, ResultFields series);
+
+/// The one way a scenario file builds its Scenario: its name (the title and description come from its
+/// JSON Schema, api/schemas/<name>.schema.json, where they are written once), its result declarations, and
+/// its parse, estimate and run functions over its own spec type.
 template <class Spec>
-Scenario scenarioOf(ScenarioInfo info, Spec (*parse)(const nlohmann::json&),
+Scenario scenarioOf(const std::string& name, ResultFields summary, ResultFields series,
+                    Spec (*parse)(const nlohmann::json&),
                     std::type_identity_t<RunEstimate (*)(const Spec&)> estimate,
                     std::type_identity_t<RunOutcome (*)(const Spec&, const nlohmann::json&, const std::string&,
                                                         RunControl&)>
                         run) {
   Scenario s;
-  s.info = std::move(info);
+  s.info = describedScenario(name, std::move(summary), std::move(series));
   s.parse = [parse](const nlohmann::json& spec) -> std::shared_ptr<const void> {
     return std::make_shared<const Spec>(parse(spec));
   };

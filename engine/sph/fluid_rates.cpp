@@ -137,7 +137,7 @@ template <class L, bool Diffuse, bool UniformMass>
       const int s = n0 + part * kWidth;
       if (part > 0 && s >= end) break;
       const int m = std::min(kWidth, end - s);
-      const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+      const __mmask8 valid = firstLanes(m);
       // Lanes past the end read the next list's entries (or the padding): valid particles, their F
       // masked to 0 and their scatter skipped.
       const std::int32_t* jj = list + s;
@@ -230,8 +230,7 @@ struct WallSums {
       for (int part = 0; part < kParts; ++part) {
         const int s = n0 + part * kWidth;
         if (part > 0 && s >= count) break;
-        const int m = std::min(kWidth, count - s);
-        const __mmask8 valid = static_cast<__mmask8>((1u << m) - 1u);
+        const __mmask8 valid = firstLanes(std::min(kWidth, count - s));
         // As the pair loop: the records kPrefetch entries ahead, which may be the next wall's (the
         // walls' lists lie back to back too).
         for (int l = 0; l < kWidth; ++l) __builtin_prefetch(&pk[list[s + kPrefetch + l]], 0, 3);

@@ -82,6 +82,13 @@ FluidRunSpec parseFluidRun(const SpecReader& root, double defaultEndTime) {
   return r;
 }
 
+nlohmann::json withoutPointArrays(const nlohmann::json& spec, std::initializer_list<const char*> pointKeys) {
+  if (!spec.is_object()) throw SpecError("(root)", describeValue(spec), "a JSON object");
+  nlohmann::json rest = spec;
+  for (const char* key : pointKeys) rest.erase(key);
+  return rest;
+}
+
 std::vector<std::array<double, 3>> parseProbes(const nlohmann::json& spec, int dimension) {
   std::vector<std::array<double, 3>> out;
   auto it = spec.find("probes");

@@ -4,6 +4,7 @@
 // api/schemas/{dam-break,piston-column}.schema.json.
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <vector>
 
@@ -52,6 +53,11 @@ inline constexpr double kFluidBytesPerParticle = 1e3;
 /// The RunEstimate of an SPH scenario with `particles` fluid and wall particles (field
 /// "resolution.spacing").
 RunEstimate estimateFluidRun(double particles);
+/// The same for a scenario's spec that holds `estimatedParticles` (a Scenario's estimate).
+template <class Spec>
+RunEstimate estimateFluidSpec(const Spec& spec) {
+  return estimateFluidRun(spec.estimatedParticles);
+}
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha);
 ResolutionSpec parseResolution(const SpecReader& root);
@@ -59,6 +65,19 @@ FluidRunSpec parseFluidRun(const SpecReader& root, double defaultEndTime);
 /// "probes": an optional array of points, each `dimension` numbers (m); read from the raw spec
 /// (the root reader is given a copy without the key). Bounds are checked by the scenario.
 std::vector<std::array<double, 3>> parseProbes(const nlohmann::json& spec, int dimension);
+
+/// The spec without its arrays of points (`pointKeys`, read separately by parseProbes), for the
+/// SpecReader of the rest; SpecError("(root)") unless `spec` is a JSON object.
+nlohmann::json withoutPointArrays(const nlohmann::json& spec, std::initializer_list<const char*> pointKeys);
+
+/// The head a 2D-or-3D fluid scenario's spec opens with, read in this order into `spec`:
+/// "scenario" (which must be `scenario`), "description" and "dimension" (2 or 3, default 2).
+template <class Spec>
+void parseFluidHead(const SpecReader& root, const std::string& scenario, Spec& spec) {
+  root.choice("scenario", {scenario});
+  spec.description = root.string("description", "");
+  spec.dimension = static_cast<int>(root.integer("dimension", 2, 3, 2));
+}
 
 nlohmann::json toJson(const FluidSpec& f, double soundSpeed);
 nlohmann::json toJson(const ResolutionSpec& r);

@@ -58,6 +58,9 @@ struct LaneArithmetic {
   static Vec mul(Vec a, Vec b) { return a * b; }
 };
 
+/// The mask of a block's first `count` lanes (count in [0, 8]): its entries before the list's end.
+inline __mmask8 firstLanes(int count) { return static_cast<__mmask8>((1u << count) - 1u); }
+
 /// The sum of 8 lanes held as two halves of 4 (lanes l and l + 4 first, then the two 128-bit
 /// halves, then the two lanes left): the one order of both widths.
 inline double sumOfHalves(__m256d low, __m256d high) {

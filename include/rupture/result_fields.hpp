@@ -38,6 +38,13 @@ const ResultField* findResultField(const ResultFields& fields, const std::string
 /// io::ResultFile::writeAttributes takes).
 std::map<std::string, std::string> unitMap(const ResultFields& fields, int dimension = 3);
 
+/// unitMap of the fields a declaration function returns (3-D), built once: a scenario's summary units.
+template <const ResultFields& (*declared)()>
+const std::map<std::string, std::string>& declaredUnits() {
+  static const std::map<std::string, std::string> units = unitMap(declared());
+  return units;
+}
+
 /// The spatial dimension of a spec: its "dimension" key, else the schema's default for it, else 3.
 int specDimension(const nlohmann::json& schema, const nlohmann::json& spec);
 

@@ -19,6 +19,7 @@
 #include "io/spec_reader.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/elastic_properties/elastic_properties.hpp"
+#include "scenarios/elastic_properties/elastic_properties_results.hpp"
 
 namespace rupture {
 namespace {
@@ -47,7 +48,7 @@ const std::vector<std::string> kWithTarget = {"beam_young_modulus", "beam_radius
 /// Every listed /summary attribute is there with its unit, and equals the returned summary.
 void expectSummaryInFile(const io::Hdf5File& file, const nlohmann::json& summary,
                          const std::vector<std::string>& names) {
-  const auto& units = elasticPropertiesSummaryUnits();
+  const auto& units = declaredUnits<elasticPropertiesSummaryFields>();
   for (const std::string& name : names) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(file.hasAttribute("/summary", name));

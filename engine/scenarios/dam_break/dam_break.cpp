@@ -16,12 +16,9 @@ namespace rupture {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                        RunControl& control) {
-  const auto wallStart = Clock::now();
-  control.progress.store(0.0);
+  const auto wallStart = std::chrono::steady_clock::now();
   const int dim = spec.dimension;
   sph::SphSystem s;
   RunOutcome cancelled;
@@ -29,15 +26,12 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
       s, control, resultPath, "dam-break", toJson(spec), json, wallStart, cancelled, [&] { return buildDamBreak(s, spec); });
   if (!built) return cancelled;
   const DamBreakLattice& g = *built;
-  const std::size_t fluidCount = static_cast<std::size_t>(
-      std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+  const std::size_t fluidCount = fluidParticleCount(s);
   logStage(control, "dam break: " + std::to_string(fluidCount) + " fluid and " +
                         std::to_string(s.particles.size() - fluidCount) + " wall particles, c0 " +
                         formatNumber(spec.soundSpeed) + " m/s");
 
-  std::vector<std::string> probePositions;
-  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "dam-break", seriesColumns(damBreakSeriesFields(), dim), probePositions);
+  io::FluidRecorder recorder = openFluidRecorder(resultPath, "dam-break", damBreakSeriesFields(), dim, spec.probes);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},
@@ -90,29 +84,15 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
       {"kinetic_energy_final", s.kineticEnergy()},
       {"potential_energy_initial", potential0},
       {"potential_energy_final", s.potentialEnergy()}};
-  const std::map<std::string, std::string> units = unitMap(damBreakSummaryFields(), dim);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
-                        std::move(summary), units, control, wallStart);
+                        std::move(summary), damBreakSummaryFields(), dim, control, wallStart);
 }
 
 }  // namespace
 
 Scenario damBreakScenario() {
-  ScenarioInfo info;
-  info.name = "dam-break";
-  info.title = "Collapse of a water column in a tank (weakly compressible SPH)";
-  info.description =
-      "A water column of width a and height H at the back of a tank is released under gravity and surges along the "
-      "floor (Martin & Moyce 1952). Weakly compressible SPH: cubic spline kernel, Tait or acoustic equation of state, "
-      "Monaghan artificial viscosity, delta-SPH density diffusion, walls of dummy particles with pressure extrapolated from the fluid (Adami 2012), 2D or 3D. "
-      "Outputs the surge front position, pressure at probe points, mass, kinetic and potential energy against time, "
-      "and snapshots of position, velocity, density and pressure.";
-  info.summary = damBreakSummaryFields();
-  info.series = damBreakSeriesFields();
-  return scenarioOf<DamBreakSpec>(
-      std::move(info), parseDamBreakSpec,
-      [](const DamBreakSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
-      runDamBreak);
+  return scenarioOf<DamBreakSpec>("dam-break", damBreakSummaryFields(), damBreakSeriesFields(), parseDamBreakSpec,
+                                  io::estimateFluidSpec<DamBreakSpec>, runDamBreak);
 }
 
 }  // namespace rupture

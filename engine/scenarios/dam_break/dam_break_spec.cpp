@@ -9,9 +9,6 @@ namespace rupture {
 
 namespace {
 
-using io::Range;
-using io::SpecReader;
-
 constexpr const char* kScenarioName = "dam-break";
 // About 0.6 kB per particle (neighbour lists of ~100 entries and 25 fields): 5e6 is 3 GB.
 constexpr double kMaxParticles = 5e6;
@@ -32,14 +29,10 @@ DamBreakGeometry parseGeometry(const SpecReader& root, int dimension) {
 }  // namespace
 
 DamBreakSpec parseDamBreakSpec(const nlohmann::json& json) {
-  if (!json.is_object()) throw SpecError("(root)", io::describeValue(json), "a JSON object");
-  nlohmann::json rest = json;
-  rest.erase("probes");  // read separately: an array of points
+  const nlohmann::json rest = io::withoutPointArrays(json, {"probes"});  // the reader holds a reference
   const SpecReader root(rest, "");
-  root.choice("scenario", {kScenarioName});
   DamBreakSpec s;
-  s.description = root.string("description", "");
-  s.dimension = static_cast<int>(root.integer("dimension", 2, 3, 2));
+  io::parseFluidHead(root, kScenarioName, s);
   s.geometry = parseGeometry(root, s.dimension);
   s.resolution = io::parseResolution(root);
   s.fluid = io::parseFluid(root, 0.1);

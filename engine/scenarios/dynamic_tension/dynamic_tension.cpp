@@ -15,7 +15,7 @@
 #include "scenarios/bonded/intact_network.hpp"
 #include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
 #include "scenarios/dynamic_tension/preliminary_field_cache.hpp"
-#include "scenarios/bonded/sample_cache.hpp"
+#include "scenarios/bonded/bonded_run.hpp"
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "scenarios/dynamic_tension/tension_recorder.hpp"
@@ -174,42 +174,27 @@ nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v)
 RunOutcome cancelledDuringBuild(const DynamicTensionSpec& spec, const nlohmann::json& input,
                                 const std::string& resultPath, RunControl& control, Clock::time_point wallStart) {
   TensionRecorder recorder(resultPath);
-  recorder.writeSpec(toJson(spec), input);
-  const nlohmann::json summary = {{"completed", 0},
-                                  {"stop_reason", "cancelled"},
-                                  {"strain_rate", spec.loading.strainRate},
-                                  {"initial_velocity", toString(spec.loading.initialVelocity)},
-                                  {"wall_time_s", seconds(wallStart)}};
-  recorder.writeAttributes("/summary", summary, dynamicTensionSummaryUnits());
-  recorder.finish(false);
-  logStage(control, "cancelled while building the sample: file marked incomplete");
-  return {summary, false};
+  return cancelledBeforeStart(recorder, toJson(spec), input,
+                              {{"strain_rate", spec.loading.strainRate},
+                               {"initial_velocity", toString(spec.loading.initialVelocity)}},
+                              declaredUnits<dynamicTensionSummaryFields>(), "building the sample", control, wallStart);
 }
 
 }  // namespace
 
-const std::map<std::string, std::string>& dynamicTensionSummaryUnits() {
-  static const std::map<std::string, std::string> units = unitMap(dynamicTensionSummaryFields());
-  return units;
-}
-
 RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                              RunControl& control) {
   const auto wallStart = Clock::now();
-  control.progress.store(0.0);
 
   // Sample, loaded faces, time step.
-  logStage(control, "building the sample");
   BondedSystem system;
-  SampleReport report;
   SampleCacheUse sampleCache;
-  try {
-    const std::string cacheDirectory =
-        spec.output.cacheSample ? preliminaryCacheDirectory(control.cacheDirectory, resultPath) : "";
-    report = buildSampleCached(spec.sample, spec.material, system, cacheDirectory, control.cancel, sampleCache);
-  } catch (const RunCancelled&) {
-    return cancelledDuringBuild(spec, json, resultPath, control, wallStart);
-  }
+  const std::string cacheDirectory =
+      spec.output.cacheSample ? preliminaryCacheDirectory(control.cacheDirectory, resultPath) : "";
+  const std::optional<SampleReport> built =
+      buildRunSample(spec.sample, spec.material, system, control, cacheDirectory, &sampleCache);
+  if (!built) return cancelledDuringBuild(spec, json, resultPath, control, wallStart);
+  const SampleReport& report = *built;
   if (sampleCache.fromCache) logStage(control, "sample read from the cache " + sampleCache.file);
   const TensionGeometry geometry = tensionGeometry(system, spec.sample, report);
   const double criticalStep = system.criticalTimeStep();
@@ -340,7 +325,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       cracksCrossing(system.particles, spec.sample.dimension, piece, crackLineSpacing, crackLineSpacing);
   recorder.writeFragments(pieces, minFragment, spec.output.fragmentMinFraction, cracks);
 
-  // Summary (SI units; see dynamicTensionSummaryUnits).
+  // Summary (SI units; see dynamicTensionSummaryFields).
   const double onsetTime = observed.onsetTime();
   nlohmann::json summary = observed.summary();
   summary.update(nlohmann::json{
@@ -356,12 +341,6 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
                                     : static_cast<double>(pieces.fragmentSizes.front()) / static_cast<double>(elementCount)},
       {"cracks_crossing", static_cast<std::int64_t>(cracks)},
       {"final_strain", strain},
-      {"final_time", system.time},
-      {"steps", static_cast<std::int64_t>(system.steps)},
-      {"time_step", dt},
-      {"critical_time_step", criticalStep},
-      {"elements", static_cast<std::int64_t>(report.elements)},
-      {"bonds", static_cast<std::int64_t>(report.bonds)},
       {"mean_coordination", report.meanCoordination},
       {"porosity", report.porosity},
       {"strain_rate", spec.loading.strainRate},
@@ -374,32 +353,19 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       {"section", geometry.section},
       {"sample_from_cache", sampleCache.fromCache ? 1 : 0},
   });
+  summary.update(bondedRunScalars(system, dt, criticalStep, report));
   if (field == InitialVelocityField::V0 && onsetTime < rampTime)
     logStage(control, "note: the first bond broke during the V0 ramp, at " +
                      formatNumber(summary["strain_rate_at_onset"].get<double>()) +
                      " /s: the requested strain rate is above eq. 7's limit for this ramp time");
   summary["wall_time_s"] = seconds(wallStart);
-  return finishRun(recorder, summary, dynamicTensionSummaryUnits(), completed, stopReason, control);
+  return finishRun(recorder, summary, declaredUnits<dynamicTensionSummaryFields>(), completed, stopReason, control);
 }
 
 Scenario dynamicTensionScenario() {
-  ScenarioInfo info;
-  info.name = "dynamic-tension";
-  info.title = "Uniaxial dynamic tension of a porous brittle bonded sample (Longchamp et al. 2024)";
-  info.description =
-      "A bonded discrete-element sample is pulled along x: zero x-velocity on the X_min face, an imposed "
-      "x-velocity V(t) on the X_max face (sinusoidal rise to V_max = strain_rate x L0 over a ramp time), lateral "
-      "faces free. Initial velocity field at rest (V0), linear (VL) or heterogeneous (VH, from a cached "
-      "low-rate preliminary run). Runs until no path of intact bonds joins the two loaded faces and the cracks have "
-      "stopped (or a strain limit). Outputs the boundary stresses, broken-bond fraction and energies versus strain, snapshots of "
-      "positions, velocities, virial stress and damage, and the peak stress, crack-onset strain, macroscopic fragments, debris, cracks "
-      "crossing the section and the equilibrium ratio of the loading branch.";
-  info.summary = dynamicTensionSummaryFields();
-  info.series = dynamicTensionSeriesFields();
-  return scenarioOf<DynamicTensionSpec>(
-      std::move(info), parseDynamicTensionSpec,
-      [](const DynamicTensionSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
-      runDynamicTension);
+  return scenarioOf<DynamicTensionSpec>("dynamic-tension", dynamicTensionSummaryFields(), dynamicTensionSeriesFields(),
+                                        parseDynamicTensionSpec, io::estimateBondedSpec<DynamicTensionSpec>,
+                                        runDynamicTension);
 }
 
 }  // namespace rupture

@@ -30,7 +30,5 @@ Scenario dynamicTensionScenario();
 RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                              RunControl& control);
 
-/// Units of the summary scalars (the "<name>_unit" attributes of /summary).
-const std::map<std::string, std::string>& dynamicTensionSummaryUnits();
 
 }  // namespace rupture

@@ -9,9 +9,6 @@ namespace rupture {
 
 namespace {
 
-using io::Range;
-using io::SpecReader;
-
 constexpr const char* kScenarioName = "dynamic-tension";
 
 TensionLoadingSpec parseLoading(const SpecReader& root) {
@@ -80,11 +77,8 @@ std::string toString(InitialVelocityField field) {
 
 DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
   const SpecReader root(json, "");
-  root.choice("scenario", {kScenarioName});
   DynamicTensionSpec s;
-  s.description = root.string("description", "");
-  s.sample = io::parseSample(root);
-  s.material = io::parseMaterial(root);
+  io::parseBondedHead(root, kScenarioName, s);
   s.loading = parseLoading(root);
   s.run = parseRun(root);
   s.output = parseOutput(root);

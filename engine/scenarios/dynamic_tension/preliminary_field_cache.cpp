@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 
 #include "io/hdf5_file.hpp"
 #include "io/interleave.hpp"
@@ -21,6 +22,26 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::int64_t kFormatVersion = 1;
+
+// The scalars a cached preliminary run keeps, by attribute name: the one list that storing and
+// loading both walk.
+constexpr std::pair<const char*, double PreliminaryResult::*> kScalars[] = {
+    {"face_velocity", &PreliminaryResult::faceVelocity},
+    {"strain_rate", &PreliminaryResult::strainRate},
+    {"ramp_time", &PreliminaryResult::rampTime},
+    {"time_step", &PreliminaryResult::timeStep},
+    {"capture_strain", &PreliminaryResult::captureStrain},
+    {"capture_time", &PreliminaryResult::captureTime},
+    {"onset_strain", &PreliminaryResult::onsetStrain},
+    {"modulus", &PreliminaryResult::modulus},
+    {"wave_speed", &PreliminaryResult::waveSpeed},
+    {"equilibrium_ratio", &PreliminaryResult::equilibriumRatio},
+    {"wall_time_s", &PreliminaryResult::wallTime},
+};
+constexpr std::pair<const char*, std::int64_t PreliminaryResult::*> kCounts[] = {
+    {"capture_steps", &PreliminaryResult::captureSteps},
+    {"steps", &PreliminaryResult::steps},
+};
 
 void split(const std::vector<double>& in, std::vector<double>& a, std::vector<double>& b, std::vector<double>& c) {
   const std::size_t n = in.size() / 3;
@@ -53,21 +74,8 @@ std::optional<PreliminaryResult> loadPreliminary(const std::string& file, const 
   return readCacheEntry(file, key, kFormatVersion, [&](io::Hdf5File& f) -> std::optional<PreliminaryResult> {
     if (f.readAttributeInt("/", "elements") != static_cast<std::int64_t>(elements)) return std::nullopt;
     PreliminaryResult r;
-    auto d = [&](const char* name) { return f.readAttributeDouble("/", name); };
-    auto i = [&](const char* name) { return f.readAttributeInt("/", name); };
-    r.faceVelocity = d("face_velocity");
-    r.strainRate = d("strain_rate");
-    r.rampTime = d("ramp_time");
-    r.timeStep = d("time_step");
-    r.captureStrain = d("capture_strain");
-    r.captureTime = d("capture_time");
-    r.captureSteps = i("capture_steps");
-    r.steps = i("steps");
-    r.onsetStrain = d("onset_strain");
-    r.modulus = d("modulus");
-    r.waveSpeed = d("wave_speed");
-    r.equilibriumRatio = d("equilibrium_ratio");
-    r.wallTime = d("wall_time_s");
+    for (const auto& [name, member] : kScalars) r.*member = f.readAttributeDouble("/", name);
+    for (const auto& [name, member] : kCounts) r.*member = f.readAttributeInt("/", name);
     const auto v = f.readDatasetDouble("/velocity");
     const auto w = f.readDatasetDouble("/angular_velocity");
     if (v.size() != 3 * elements || w.size() != 3 * elements) return std::nullopt;
@@ -82,19 +90,8 @@ bool storePreliminary(const std::string& file, const nlohmann::json& key, const 
     f.setAttribute("/", "format_version", kFormatVersion);
     f.setAttribute("/", "key", key.dump());
     f.setAttribute("/", "elements", static_cast<std::int64_t>(r.field.vx.size()));
-    f.setAttribute("/", "face_velocity", r.faceVelocity);
-    f.setAttribute("/", "strain_rate", r.strainRate);
-    f.setAttribute("/", "ramp_time", r.rampTime);
-    f.setAttribute("/", "time_step", r.timeStep);
-    f.setAttribute("/", "capture_strain", r.captureStrain);
-    f.setAttribute("/", "capture_time", r.captureTime);
-    f.setAttribute("/", "capture_steps", r.captureSteps);
-    f.setAttribute("/", "steps", r.steps);
-    f.setAttribute("/", "onset_strain", r.onsetStrain);
-    f.setAttribute("/", "modulus", r.modulus);
-    f.setAttribute("/", "wave_speed", r.waveSpeed);
-    f.setAttribute("/", "equilibrium_ratio", r.equilibriumRatio);
-    f.setAttribute("/", "wall_time_s", r.wallTime);
+    for (const auto& [name, member] : kScalars) f.setAttribute("/", name, r.*member);
+    for (const auto& [name, member] : kCounts) f.setAttribute("/", name, r.*member);
     const std::size_t n = r.field.vx.size();
     f.writeDataset("/velocity", io::interleave(r.field.vx, r.field.vy, r.field.vz), {n, 3}, "m/s");
     f.writeDataset("/angular_velocity", io::interleave(r.field.wx, r.field.wy, r.field.wz), {n, 3}, "rad/s");

@@ -15,6 +15,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/spec_reader.hpp"
 #include "io/result_file.hpp"
+#include "scenarios/bonded/bonded_run.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/elastic_properties/elastic_properties_results.hpp"
 
@@ -24,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using io::Range;
-using io::SpecReader;
 
 constexpr const char* kScenarioName = "elastic-properties";
 /// Share of the progress bar given to building the sample (it reports no progress of its own).
@@ -37,11 +36,8 @@ nlohmann::json orNull(bool present, double v) { return present ? nlohmann::json(
 
 ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
   const SpecReader root(json, "");
-  root.choice("scenario", {kScenarioName});
   ElasticPropertiesSpec s;
-  s.description = root.string("description", "");
-  s.sample = io::parseSample(root);
-  s.material = io::parseMaterial(root);
+  io::parseBondedHead(root, kScenarioName, s);
   if (const auto target = root.optionalObject("target")) {
     // The fit varies the beams; lattice springs and PMB are mapped from E and ν directly.
     if (!materialStyle(s.material.model).calibratable())
@@ -87,23 +83,13 @@ nlohmann::json toJson(const ElasticPropertiesSpec& s) {
   return j;
 }
 
-const std::map<std::string, std::string>& elasticPropertiesSummaryUnits() {
-  static const std::map<std::string, std::string> units = unitMap(elasticPropertiesSummaryFields());
-  return units;
-}
-
 RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                                 RunControl& control) {
   const auto wallStart = Clock::now();
-  control.progress.store(0.0);
-
-  logStage(control, "building the sample");
   BondedSystem system;
-  SampleReport report;
-  try {
-    report = buildSample(spec.sample, spec.material, system, &control.cancel);
-  } catch (const RunCancelled&) {  // nothing measured: the summary below reports nulls
-  }
+  // Cancelled while building: nothing measured, the summary below reports nulls.
+  const SampleReport report =
+      buildRunSample(spec.sample, spec.material, system, control).value_or(SampleReport{});
   io::ResultFile file(resultPath, kScenarioName);
   file.writeSpec(toJson(spec), json);
 
@@ -195,7 +181,7 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
     summary["evaluations"] = fit.evaluations;
   }
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
-  file.writeAttributes("/summary", summary, elasticPropertiesSummaryUnits());
+  file.writeAttributes("/summary", summary, declaredUnits<elasticPropertiesSummaryFields>());
   file.finish(completed);
   if (completed) reportProgress(control, 1.0);
   logStage(control, completed ? "done: E = " + formatNumber(result.youngModulus) + " Pa, nu = " + formatNumber(result.poissonRatio)
@@ -204,23 +190,9 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
 }
 
 Scenario elasticPropertiesScenario() {
-  ScenarioInfo info;
-  info.name = kScenarioName;
-  info.title = "Macroscopic Young's modulus and Poisson ratio of a bonded sample (beam calibration)";
-  info.description =
-      "A bonded discrete-element sample is stretched quasi-statically along x: every element starts on an affine "
-      "field at a small strain, the X_min and X_max faces are held in x (free laterally), and damped dynamics "
-      "relaxes the interior to equilibrium without failure or contact. Outputs the macroscopic Young's modulus "
-      "(mean face stress over strain) and Poisson ratio (lateral contraction); for beams also the quasi-static "
-      "tensile strength (peak mean face stress of a damped strain-step test to failure) and crack-onset strain. "
-      "With a target E and nu, the beams' Young's modulus and radius ratio are fitted to reach them (André et al. "
-      "2012), up to about 20 tension tests; with a target tensile strength, the beams' failure stress is fitted; "
-      "the fitted beams are reported with the values they achieve.";
-  info.summary = elasticPropertiesSummaryFields();
-  return scenarioOf<ElasticPropertiesSpec>(
-      std::move(info), parseElasticPropertiesSpec,
-      [](const ElasticPropertiesSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
-      runElasticProperties);
+  return scenarioOf<ElasticPropertiesSpec>(kScenarioName, elasticPropertiesSummaryFields(), {},
+                                           parseElasticPropertiesSpec, io::estimateBondedSpec<ElasticPropertiesSpec>,
+                                           runElasticProperties);
 }
 
 }  // namespace rupture

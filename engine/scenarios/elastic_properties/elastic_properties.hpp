@@ -50,8 +50,6 @@ nlohmann::json toJson(const ElasticPropertiesSpec& spec);
 RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                                 RunControl& control);
 
-/// Units of the summary scalars (the "<name>_unit" attributes of /summary).
-const std::map<std::string, std::string>& elasticPropertiesSummaryUnits();
 
 /// The registry entry (declared in scenarios/registry.cpp).
 Scenario elasticPropertiesScenario();

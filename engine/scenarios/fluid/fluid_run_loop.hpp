@@ -3,17 +3,20 @@
 // the Monaghan–Kos time step, records a series row every output interval (and the last state),
 // snapshots at the requested times, checks cancel every step and reports progress.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sph/fluid_recorder.hpp"
 #include "sph/fluid_spec.hpp"
 #include "io/result_file.hpp"
 #include "rupture/run.hpp"
+#include "scenarios/fluid/fluid_results.hpp"
 #include "scenarios/run_support.hpp"
 #include "sph/sph_system.hpp"
 
@@ -96,16 +99,17 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
   return runFluidLoop(s, run, control, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
 }
 
-/// The set-up of an SPH run with the system polling control.cancel: `setup()` places particles,
-/// walls and bodies (and whatever else the scenario builds), then the first lists and rates are
-/// built (SphSystem::initialise). Returns the set-up's value, or nullopt when it was cancelled, after
-/// writing a file that holds the spec and a summary saying so (marked incomplete) and setting
-/// `cancelled` to the outcome to return.
+/// The set-up of an SPH run (progress 0), with the system polling control.cancel: `setup()`
+/// places particles, walls and bodies (and whatever else the scenario builds), then the first lists
+/// and rates are built (SphSystem::initialise). Returns the set-up's value, or nullopt when it was
+/// cancelled, after writing a file that holds the spec and a summary saying so (marked incomplete)
+/// and setting `cancelled` to the outcome to return.
 template <class Setup>
 auto setUpFluidRun(sph::SphSystem& s, RunControl& control, const std::string& resultPath, const std::string& scenario,
                    const nlohmann::json& resolvedSpec, const nlohmann::json& inputSpec,
                    std::chrono::steady_clock::time_point wallStart, RunOutcome& cancelled, Setup&& setup)
     -> std::optional<decltype(setup())> {
+  control.progress.store(0.0);
   s.cancel = &control.cancel;
   try {
     auto built = setup();
@@ -113,16 +117,26 @@ auto setUpFluidRun(sph::SphSystem& s, RunControl& control, const std::string& re
     return built;
   } catch (const RunCancelled&) {
     io::ResultFile result(resultPath, scenario);
-    result.writeSpec(resolvedSpec, inputSpec);
-    const nlohmann::json summary = {
-        {"completed", 0}, {"stop_reason", "cancelled"},
-        {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}};
-    result.writeAttributes("/summary", summary, {{"completed", "1"}, {"stop_reason", ""}, {"wall_time_s", "s"}});
-    result.finish(false);
-    logStage(control, "cancelled while setting up: file marked incomplete");
-    cancelled = {summary, false};
+    cancelled = cancelledBeforeStart(result, resolvedSpec, inputSpec, nlohmann::json::object(),
+                                     {{"completed", "1"}, {"stop_reason", ""}, {"wall_time_s", "s"}}, "setting up",
+                                     control, wallStart);
     return std::nullopt;
   }
+}
+
+/// The fluid particles of `s` (its walls and bodies not counted).
+inline std::size_t fluidParticleCount(const sph::SphSystem& s) {
+  return static_cast<std::size_t>(std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+}
+
+/// A fluid scenario's recorder: its declared `series` columns in `dimension` and one pressure
+/// column per probe point.
+inline io::FluidRecorder openFluidRecorder(const std::string& resultPath, const std::string& scenario,
+                                           const ResultFields& series, int dimension,
+                                           const std::vector<std::array<double, 3>>& probes) {
+  std::vector<std::string> positions;
+  for (const auto& point : io::probesJson(probes, dimension)) positions.push_back(point.dump());
+  return io::FluidRecorder(resultPath, scenario, seriesColumns(series, dimension), std::move(positions));
 }
 
 /// What a fluid run tracked while it ran, for the summary every SPH scenario reports.
@@ -136,10 +150,11 @@ struct FluidRunTotals {
 
 /// Adds the scalars every SPH run reports (completion, stop reason, mass and density errors,
 /// particles outside, steps and time steps, counts, c0, h, list builds, wall time) to the
-/// scenario's own, writes /summary, finishes the file and tells the watcher.
+/// scenario's own, writes /summary (units from the scenario's `declared` fields in `dimension`),
+/// finishes the file and tells the watcher.
 inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSystem& s, const FluidLoopOutcome& loop,
                                  const FluidRunTotals& totals, nlohmann::json summary,
-                                 const std::map<std::string, std::string>& units, RunControl& control,
+                                 const ResultFields& declared, int dimension, RunControl& control,
                                  std::chrono::steady_clock::time_point wallStart) {
   const bool completed = loop.stopReason != "cancelled";
   auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
@@ -159,7 +174,7 @@ inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSyst
       {"smoothing_length", s.model.h()},
       {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())},
       {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}});
-  return finishRun(recorder, summary, units, completed, loop.stopReason, control);
+  return finishRun(recorder, summary, unitMap(declared, dimension), completed, loop.stopReason, control);
 }
 
 }  // namespace rupture

@@ -14,6 +14,7 @@
 #include "scenarios/bonded/bond_snapshot.hpp"
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
+#include "scenarios/bonded/bonded_run.hpp"
 #include "scenarios/run_support.hpp"
 #include "rupture/spec_error.hpp"
 #include "scenarios/scenario.hpp"
@@ -78,32 +79,19 @@ struct Projectile {
   double x[3], v[3], f[3] = {0, 0, 0};
 };
 
-const std::map<std::string, std::string>& summaryUnits() {
-  static const std::map<std::string, std::string> units = unitMap(impactSummaryFields());
-  return units;
-}
-
 }  // namespace
 
 RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                      RunControl& control) {
   const auto wallStart = Clock::now();
-  control.progress.store(0.0);
-  logStage(control, "building the sample");
   BondedSystem system;
-  SampleReport report;
-  try {
-    report = buildSample(spec.sample, spec.material, system, &control.cancel);
-  } catch (const RunCancelled&) {  // no sample: the file holds the spec and a summary saying so
+  const std::optional<SampleReport> built = buildRunSample(spec.sample, spec.material, system, control);
+  if (!built) {  // no sample: the file holds the spec and a summary saying so
     io::ResultFile result(resultPath, "impact");
-    result.writeSpec(toJson(spec), json);
-    const nlohmann::json summary = {{"completed", 0}, {"stop_reason", "cancelled"},
-                                    {"wall_time_s", std::chrono::duration<double>(Clock::now() - wallStart).count()}};
-    result.writeAttributes("/summary", summary, summaryUnits());
-    result.finish(false);
-    logStage(control, "cancelled while building the sample: file marked incomplete");
-    return {summary, false};
+    return cancelledBeforeStart(result, toJson(spec), json, nlohmann::json::object(),
+                                declaredUnits<impactSummaryFields>(), "building the sample", control, wallStart);
   }
+  const SampleReport& report = *built;
   ParticleStore& p = system.particles;
   const int d = spec.sample.dimension;
   const double spacing = spec.sample.lattice == "random" ? 2.0 * spec.sample.elementRadius : spec.sample.spacing;
@@ -276,35 +264,18 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       {"fragments", static_cast<std::int64_t>(countFragments(system.bonds, n))},
       {"broken_bonds", static_cast<std::int64_t>(system.bonds.size() - system.bonds.intactCount())},
       {"broken_bond_fraction", static_cast<double>(system.bonds.size() - system.bonds.intactCount()) / bondCount},
-      {"final_time", system.time},
-      {"steps", static_cast<std::int64_t>(system.steps)},
-      {"time_step", dt},
-      {"critical_time_step", criticalStep},
-      {"elements", static_cast<std::int64_t>(report.elements)},
-      {"bonds", static_cast<std::int64_t>(report.bonds)},
       {"kinetic_energy", system.kineticEnergy()},
       {"elastic_energy", system.elasticEnergy()},
       {"projectile_final_speed", v ? nlohmann::json(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])) : nlohmann::json(nullptr)},
   };
+  summary.update(bondedRunScalars(system, dt, criticalStep, report));
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
-  return finishRun(result, summary, summaryUnits(), completed, stopReason, control);
+  return finishRun(result, summary, declaredUnits<impactSummaryFields>(), completed, stopReason, control);
 }
 
 Scenario impactScenario() {
-  ScenarioInfo info;
-  info.name = "impact";
-  info.title = "Dynamic fracture of a notched bonded plate under impact (beams, lattice springs or peridynamics)";
-  info.description =
-      "A 2D or 3D bonded plate (random packing or regular lattice, any bonded material model, optional notches) is "
-      "hit by a rigid projectile (penalty contact), driven by imposed velocities on boxes of particles, or loaded by "
-      "tractions on boxes at an edge; free elsewhere. Outputs the crack tip (farthest cracked particle from the "
-      "notch), its smoothed speed, branching, fragments, energies and damage-field snapshots.";
-  info.summary = impactSummaryFields();
-  info.series = impactSeriesFields();
-  return scenarioOf<ImpactSpec>(
-      std::move(info), parseImpactSpec,
-      [](const ImpactSpec& spec) { return io::estimateBondedRun(spec.sample, spec.material); },
-      runImpact);
+  return scenarioOf<ImpactSpec>("impact", impactSummaryFields(), impactSeriesFields(), parseImpactSpec,
+                                io::estimateBondedSpec<ImpactSpec>, runImpact);
 }
 
 }  // namespace rupture

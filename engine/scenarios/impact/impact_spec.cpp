@@ -9,8 +9,6 @@ namespace rupture {
 
 namespace {
 
-using io::Range;
-using io::SpecReader;
 
 std::array<double, 3> vector3(const SpecReader& r, const std::string& key, int d, const Range& range, const std::string& unit) {
   const auto v = r.numbers(key, static_cast<std::size_t>(d), static_cast<std::size_t>(d), range, unit);
@@ -40,10 +38,7 @@ nlohmann::json point(const std::array<double, 3>& p, int d) {
 ImpactSpec parseImpactSpec(const nlohmann::json& json) {
   const SpecReader root(json, "");
   ImpactSpec s;
-  root.choice("scenario", {"impact"});
-  s.description = root.string("description", "");
-  s.sample = io::parseSample(root);
-  s.material = io::parseMaterial(root);
+  io::parseBondedHead(root, "impact", s);
   const int d = s.sample.dimension;
 
   const SpecReader loading = root.object("loading");

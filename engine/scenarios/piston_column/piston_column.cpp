@@ -10,6 +10,7 @@
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
 #include "scenarios/fluid/fluid_run_loop.hpp"
+#include "scenarios/fluid/pressure_peaks.hpp"
 #include "scenarios/piston_column/piston_column_lattice.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
@@ -18,12 +19,9 @@ namespace rupture {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                            RunControl& control) {
-  const auto wallStart = Clock::now();
-  control.progress.store(0.0);
+  const auto wallStart = std::chrono::steady_clock::now();
   const int dim = spec.dimension;
 
   sph::SphSystem s;
@@ -32,17 +30,15 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
       s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] { return buildPistonColumn(s, spec); });
   if (!built) return cancelled;
   const ColumnLattice& g = *built;
-  const std::size_t fluidCount = static_cast<std::size_t>(
-      std::count(s.particles.body.begin(), s.particles.body.end(), sph::kFluid));
+  const std::size_t fluidCount = fluidParticleCount(s);
   const sph::RigidBody& piston = s.bodies[kColumnPiston];
   const double v0 = piston.speed, rho0 = s.model.eos.referenceDensity;
   logStage(control, "piston column: " + std::to_string(fluidCount) + " fluid and " +
                         std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
                         sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
 
-  std::vector<std::string> probePositions;
-  for (const auto& point : io::probesJson(spec.probes, dim)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "piston-column", seriesColumns(pistonColumnSeriesFields(), dim), probePositions);
+  io::FluidRecorder recorder =
+      openFluidRecorder(resultPath, "piston-column", pistonColumnSeriesFields(), dim, spec.probes);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
@@ -55,12 +51,9 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
 
   // The fluid's push on the bottom, over its area: the mean bottom pressure.
   auto bottomPressure = [&] { return -s.bodies[kColumnBottom].force[dim - 1] / g.area; };
-  // The first peak: the bottom holds the doubled pressure from H/c0 until the wave reflected there
-  // comes back from the piston at 3H/c0 (a little earlier: the compressed column is faster); the
-  // window stops halfway, at 2.5 H/c0.
-  const double firstWindow = 2.5 * g.H() / spec.soundSpeed;
+  PressurePeaks bottomPeaks(firstTransitWindow(g.H(), spec.soundSpeed), bottomPressure());
   const double mass0 = s.fluidMass();
-  double peakProbe = 0, peakBottom = bottomPressure(), firstPeak = peakBottom, firstPeakTime = 0, maxDensityError = 0;
+  double peakProbe = 0, maxDensityError = 0;
   std::int64_t outsideMax = 0;
   std::vector<double> probes(spec.probes.size());
   double lastStep = 0;
@@ -89,12 +82,7 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
   };
   auto afterStep = [&](double dt) {
     lastStep = dt;
-    const double pb = bottomPressure();
-    peakBottom = std::max(peakBottom, pb);
-    if (s.time <= firstWindow && pb > firstPeak) {
-      firstPeak = pb;
-      firstPeakTime = s.time;
-    }
+    bottomPeaks.observe(s.time, bottomPressure());
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
   const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
@@ -104,9 +92,9 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
   const sph::PistonShock shock = sph::pistonShock(s.model.eos, std::max(v0, 1e-12));
   nlohmann::json summary = {
       {"peak_pressure", spec.probes.empty() ? nlohmann::json(nullptr) : nlohmann::json(peakProbe)},
-      {"peak_bottom_pressure", peakBottom},
-      {"first_peak_bottom_pressure", firstPeak},
-      {"time_of_first_peak", firstPeakTime},
+      {"peak_bottom_pressure", bottomPeaks.peak},
+      {"first_peak_bottom_pressure", bottomPeaks.first},
+      {"time_of_first_peak", bottomPeaks.firstTime},
       {"acoustic_pressure", rho0 * spec.soundSpeed * v0},
       {"shock_pressure", v0 > 0 ? nlohmann::json(shock.pressure) : nlohmann::json(0.0)},
       {"piston_initial_speed", v0},
@@ -116,29 +104,15 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
                            piston.impulse[2] * piston.axis[2])},
       {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
       {"section_area", g.area}};
-  const std::map<std::string, std::string> units = unitMap(pistonColumnSummaryFields(), dim);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
-                        std::move(summary), units, control, wallStart);
+                        std::move(summary), pistonColumnSummaryFields(), dim, control, wallStart);
 }
 
 }  // namespace
 
 Scenario pistonColumnScenario() {
-  ScenarioInfo info;
-  info.name = "piston-column";
-  info.title = "Pressure wave in a water column hit by a piston (weakly compressible SPH)";
-  info.description =
-      "A water column in a rigid tube of diameter D and height H, closed by a rigid bottom, is hit by a piston: a "
-      "free rigid body of mass M and initial speed V decelerated by the fluid (the drop test of seed 002), or a "
-      "prescribed speed history. Weakly compressible SPH with dummy-particle walls (Adami 2012), 2D slice or 3D. Outputs "
-      "the mean pressure on the bottom, pressure at probe points, piston position, velocity and force against "
-      "time, snapshots, and the first bottom pressure peak next to rho0 c0 V.";
-  info.summary = pistonColumnSummaryFields();
-  info.series = pistonColumnSeriesFields();
-  return scenarioOf<PistonColumnSpec>(
-      std::move(info), parsePistonColumnSpec,
-      [](const PistonColumnSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
-      runPistonColumn);
+  return scenarioOf<PistonColumnSpec>("piston-column", pistonColumnSummaryFields(), pistonColumnSeriesFields(),
+                                      parsePistonColumnSpec, io::estimateFluidSpec<PistonColumnSpec>, runPistonColumn);
 }
 
 }  // namespace rupture

@@ -9,9 +9,6 @@ namespace rupture {
 
 namespace {
 
-using io::Range;
-using io::SpecReader;
-
 constexpr const char* kScenarioName = "piston-column";
 
 PistonSpec parsePiston(const SpecReader& root) {
@@ -47,14 +44,10 @@ PistonSpec parsePiston(const SpecReader& root) {
 }  // namespace
 
 PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
-  if (!json.is_object()) throw SpecError("(root)", io::describeValue(json), "a JSON object");
-  nlohmann::json rest = json;
-  rest.erase("probes");  // read separately: an array of points
+  const nlohmann::json rest = io::withoutPointArrays(json, {"probes"});  // the reader holds a reference
   const SpecReader root(rest, "");
-  root.choice("scenario", {kScenarioName});
   PistonColumnSpec s;
-  s.description = root.string("description", "");
-  s.dimension = static_cast<int>(root.integer("dimension", 2, 3, 2));
+  io::parseFluidHead(root, kScenarioName, s);
   {
     const SpecReader geo = root.object("geometry");
     s.diameter = geo.number("diameter", Range::positive(), "m");

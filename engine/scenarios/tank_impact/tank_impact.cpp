@@ -13,6 +13,7 @@
 #include "fsi/fluid_shell_coupling.hpp"
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid/fluid_run_loop.hpp"
+#include "scenarios/fluid/pressure_peaks.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/tank_impact/plate_geometry.hpp"
@@ -25,8 +26,6 @@
 namespace rupture {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// Body index the plate nodes carry in snapshots (after the cylinder and the piston).
 constexpr std::int32_t kPlateBody = 2;
@@ -80,8 +79,7 @@ io::StructurePoints plateSnapshot(const SphShell& shell, double density) {
 
 RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                          RunControl& control) {
-  const auto wallStart = Clock::now();
-  control.progress.store(0.0);
+  const auto wallStart = std::chrono::steady_clock::now();
   const double t = spec.plate.shell.thickness, dx = spec.resolution.spacing;
 
   // Water, cylinder and piston.
@@ -128,9 +126,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
                         " contact, carriage " + formatNumber(spec.impactor.mass) + " kg at " +
                         formatNumber(spec.impactor.speed) + " m/s");
 
-  std::vector<std::string> probePositions;
-  for (const auto& point : io::probesJson(spec.probes, 3)) probePositions.push_back(point.dump());
-  io::FluidRecorder recorder(resultPath, "tank-impact", seriesColumns(tankImpactSeriesFields(), 3), probePositions);
+  io::FluidRecorder recorder = openFluidRecorder(resultPath, "tank-impact", tankImpactSeriesFields(), 3, spec.probes);
   recorder.writeSpec(toJson(spec), json);
   recorder.writeAttributes("/geometry",
                            {{"inner_diameter", 2 * g.R()}, {"water_height", g.H()}, {"section_area", g.area},
@@ -145,10 +141,10 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
                             {"contact_stand_off", "m"}, {"contact_cell_radius", "m"}, {"plate_body", "1"}});
 
   const double rho0 = s.model.eos.referenceDensity;
-  const double firstWindow = 2.5 * g.H() / spec.soundSpeed;
   const double mass0 = s.fluidMass();
   auto gauge = [&] { return s.probePressure(spec.gauge[0], spec.gauge[1], spec.gauge[2]); };
-  double peakGauge = gauge(), firstPeak = peakGauge, firstPeakTime = 0, peakProbe = 0, maxDensityError = 0;
+  PressurePeaks gaugePeaks(firstTransitWindow(g.H(), spec.soundSpeed), gauge());
+  double peakProbe = 0, maxDensityError = 0;
   double maxJet = 0, lastJet = 0, maxDeflection = 0, lastStep = 0;
   double timeToFracture = std::numeric_limits<double>::quiet_NaN();
   bool anyJet = false;
@@ -193,12 +189,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   };
   auto afterStep = [&](double dt) {
     lastStep = dt;
-    const double pg = gauge();
-    peakGauge = std::max(peakGauge, pg);
-    if (s.time <= firstWindow && pg > firstPeak) {
-      firstPeak = pg;
-      firstPeakTime = s.time;
-    }
+    gaugePeaks.observe(s.time, gauge());
     if (std::isnan(timeToFracture) && plate.fracturedCount() > initiallyFractured) timeToFracture = s.time;
   };
   auto snapshot = [&](const std::string& trigger) {
@@ -217,9 +208,9 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
 
   auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json summary = {
-      {"first_pressure_peak", firstPeak},
-      {"time_of_first_peak", firstPeakTime},
-      {"peak_gauge_pressure", peakGauge},
+      {"first_pressure_peak", gaugePeaks.first},
+      {"time_of_first_peak", gaugePeaks.firstTime},
+      {"peak_gauge_pressure", gaugePeaks.peak},
       {"peak_pressure", nullUnless(!spec.probes.empty(), peakProbe)},
       {"acoustic_pressure", rho0 * spec.soundSpeed * spec.impactor.speed},
       {"max_jet_speed", nullUnless(anyJet, maxJet)},
@@ -241,29 +232,15 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"shell_time_s", coupling.timings().shell},
       {"contact_time_s", coupling.timings().contact},
       {"contact_method", contactMethodName(spec.contact.method)}};
-  const std::map<std::string, std::string> units = unitMap(tankImpactSummaryFields(), 3);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, g.fluidParticles, spec.soundSpeed},
-                        std::move(summary), units, control, wallStart);
+                        std::move(summary), tankImpactSummaryFields(), 3, control, wallStart);
 }
 
 }  // namespace
 
 Scenario tankImpactScenario() {
-  ScenarioInfo info;
-  info.name = "tank-impact";
-  info.title = "Water-filled tank closed by a plate, hit through a piston (SPH water, SPH shell, contact)";
-  info.description =
-      "Seed 002's drop test: a water column in a rigid cylinder of diameter D, closed at the bottom by an aluminium "
-      "plate (SPH Mindlin-Reissner shell, plasticity and Lemaitre-Chaboche damage, clamped at its rim; optional hole "
-      "and pre-cracks), hit through a piston by a carriage of mass M at speed V. Water and plate interact by pinball "
-      "or master-slave contact; the water leaves through the hole and opened cracks. Outputs the gauge pressure, "
-      "carriage motion, jet speed, plate deflection, tongue angle, cracked length and crack paths, with snapshots.";
-  info.summary = tankImpactSummaryFields();
-  info.series = tankImpactSeriesFields();
-  return scenarioOf<TankImpactSpec>(
-      std::move(info), parseTankImpactSpec,
-      [](const TankImpactSpec& spec) { return io::estimateFluidRun(spec.estimatedParticles); },
-      runTankImpact);
+  return scenarioOf<TankImpactSpec>("tank-impact", tankImpactSummaryFields(), tankImpactSeriesFields(),
+                                    parseTankImpactSpec, io::estimateFluidSpec<TankImpactSpec>, runTankImpact);
 }
 
 }  // namespace rupture

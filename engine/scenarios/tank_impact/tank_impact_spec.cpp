@@ -12,9 +12,6 @@ namespace rupture {
 
 namespace {
 
-using io::Range;
-using io::SpecReader;
-
 constexpr const char* kScenarioName = "tank-impact";
 constexpr double kColumnPlusPlate = 0.205;  ///< seed §2.1: H = (205 − e_p) mm
 constexpr double kMaxParticles = 5e6;       ///< as the other SPH scenarios (about 1 kB each, 5 GB)
@@ -153,10 +150,7 @@ std::string toString(PrecrackShape shape) {
 std::string toString(ContactMethod method) { return method == ContactMethod::Pinball ? "pinball" : "master_slave"; }
 
 TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
-  if (!json.is_object()) throw SpecError("(root)", io::describeValue(json), "a JSON object");
-  nlohmann::json rest = json;
-  rest.erase("probes");  // arrays of points, read separately
-  rest.erase("gauge");
+  const nlohmann::json rest = io::withoutPointArrays(json, {"probes", "gauge"});  // the reader holds a reference
   const SpecReader root(rest, "");
   root.choice("scenario", {kScenarioName});
   TankImpactSpec s;
