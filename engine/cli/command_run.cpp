@@ -28,6 +28,7 @@
 #include "cli/spec_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf_writer.hpp"
+#include "rupture/quantity_text.hpp"
 #include "rupture/progress.hpp"
 #include "rupture/run.hpp"
 
@@ -48,15 +49,12 @@ void printReadableSummary(const nlohmann::json& spec, const nlohmann::json& summ
   for (const ResultField& f : scenario->summary) {
     auto it = summary.find(f.name);
     if (it == summary.end()) continue;
-    std::string value = it->is_string() ? it->get<std::string>() : it->is_null() ? "n/a" : it->dump();
-    if (it->is_number_float()) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.6g", it->get<double>());
-      value = buf;
-    }
-    const std::string& unit = f.unitFor(dimension);
-    std::cerr << "  " << f.label << std::string(width - f.label.size(), ' ') << "  " << value
-              << (unit.empty() || unit == "1" || it->is_null() ? "" : " " + unit) << "\n";
+    // As people read them (rupture/quantity_text.hpp); the JSON on stdout keeps full precision.
+    const std::string value = it->is_number()   ? formatQuantity(it->get<double>(), f.unitFor(dimension))
+                              : it->is_string() ? it->get<std::string>()
+                              : it->is_null()   ? "n/a"
+                                                : it->dump();
+    std::cerr << "  " << f.label << std::string(width - f.label.size(), ' ') << "  " << value << "\n";
   }
 }
 

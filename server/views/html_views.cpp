@@ -1,9 +1,11 @@
 #include "views/html_views.hpp"
 
 #include <algorithm>
+#include <map>
 #include <random>
 
 #include "io/xml_escape.hpp"
+#include "rupture/quantity_text.hpp"
 
 namespace rupture::server {
 namespace {
@@ -50,6 +52,13 @@ HtmlPage page(const std::string& title, const std::string& content, const std::s
 std::string cell(const Json& v) {
   const bool number = v.is_number();
   return std::string(number ? "<td class=\"num\">" : "<td>") + esc(v) + "</td>";
+}
+
+/// A table cell for a value in `unit`: a number as people read it (rupture::formatQuantity), its
+/// full precision in the title; anything else as cell() writes it.
+std::string quantityCell(const Json& v, const std::string& unit) {
+  if (!v.is_number()) return cell(v);
+  return "<td class=\"num\" title=\"" + esc(v) + "\">" + xmlEscape(rupture::formatQuantity(v.get<double>(), unit)) + "</td>";
 }
 
 std::string unitOfSchema(const Json& node) {
@@ -162,12 +171,19 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
                   esc(status.value("eta_s", Json())) + "</span> s; updated <span id=\"updated\">" + esc(status["updated"]) +
                   "</span></p>\n<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
   const Json swept = status.value("swept", Json::array());
+  std::map<std::string, std::string> sweptUnit;  // from the summary's columns, once it has them
+  if (summary.is_object())
+    for (const auto& col : summary.value("columns", Json::array()))
+      if (col.is_object()) sweptUnit[col.value("name", "")] = col.value("unit", "");
   for (const auto& p : swept) c += "<th>" + esc(p) + "</th>";
   c += "<th>Status</th><th>Progress</th><th>Stage</th><th>Files</th></tr>\n";
   for (const auto& r : status.value("runs", Json::array())) {
     const std::string k = std::to_string(r.value("index", 0));
     c += "<tr id=\"run-" + k + "\"><td>" + k + "</td>";
-    for (const auto& p : swept) c += cell(r["swept"].value(p.get<std::string>(), Json()));
+    for (const auto& p : swept) {
+      const std::string path = p.get<std::string>();
+      c += quantityCell(r["swept"].value(path, Json()), sweptUnit[path]);
+    }
     c += "<td class=\"st\">" + esc(r["status"]) + "</td><td class=\"num pr\">" + esc(r["progress"]) +
          "</td><td class=\"sg\">" + esc(r.value("stage", Json(""))) + "</td><td>";
     if (r["status"] == "successful") {
@@ -179,22 +195,45 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
   }
   c += "</table>\n";
   if (summary.is_object()) {
-    c += "<h2>Summary</h2><table id=\"summary\"><tr><th>Run</th><th>Status</th>";
-    std::vector<std::string> names;
+    // Declared labels as headers (the key on hover), values with their unit and three significant
+    // digits (the full value on hover; the JSON and CSV keep full precision). The table that fits a
+    // laptop shows the swept inputs and the first kShownResults declared results (the declarations
+    // put the headline results first); every column is one click away.
+    constexpr std::size_t kShownResults = 8;
+    struct Column { std::string name, unit, label; bool swept; };
+    std::vector<Column> columns;
     for (const auto& col : summary.value("columns", Json::array())) {
-      const std::string name = col.is_object() ? col.value("name", "") : col.get<std::string>();
-      std::string unit = col.is_object() ? col.value("unit", "") : "";
-      if (summary.contains("units") && summary["units"].contains(name)) unit = summary["units"][name].get<std::string>();
-      names.push_back(name);
-      c += "<th>" + xmlEscape(name) + (unit.empty() || unit == "1" ? "" : " <span class=\"unit\">[" + xmlEscape(unit) + "]</span>") + "</th>";
+      Column k;
+      k.name = col.is_object() ? col.value("name", "") : col.get<std::string>();
+      k.unit = col.is_object() ? col.value("unit", "") : "";
+      if (summary.contains("units") && summary["units"].contains(k.name)) k.unit = summary["units"][k.name].get<std::string>();
+      k.label = col.is_object() ? col.value("label", "") : "";
+      if (k.label.empty()) k.label = k.name;
+      k.swept = col.is_object() && col.value("kind", "") == "swept";
+      columns.push_back(std::move(k));
     }
-    c += "</tr>\n";
-    for (const auto& row : summary.value("rows", Json::array())) {
-      c += "<tr>" + cell(row.value("run", Json())) + cell(row.value("status", Json()));
-      for (const auto& n : names) c += cell(row.value(n, Json()));
-      c += "</tr>\n";
+    auto table = [&](const std::string& id, const std::vector<const Column*>& shown) {
+      std::string h = "<table id=\"" + id + "\"><tr><th>Run</th><th>Status</th>";
+      for (const Column* k : shown) h += "<th title=\"" + xmlEscape(k->name) + "\">" + xmlEscape(k->label) + "</th>";
+      h += "</tr>\n";
+      for (const auto& row : summary.value("rows", Json::array())) {
+        h += "<tr>" + cell(row.value("run", Json())) + cell(row.value("status", Json()));
+        for (const Column* k : shown) h += quantityCell(row.value(k->name, Json()), k->unit);
+        h += "</tr>\n";
+      }
+      return h + "</table>";
+    };
+    std::vector<const Column*> all, headline;
+    std::size_t results = 0;
+    for (const Column& k : columns) {
+      all.push_back(&k);
+      if (k.swept || results++ < kShownResults) headline.push_back(&k);
     }
-    c += "</table>";
+    c += "<h2>Summary</h2>" + table("summary", headline);
+    if (headline.size() < all.size()) {
+      c += "<details><summary>All " + std::to_string(all.size()) + " columns</summary>" + table("summary-all", all) +
+           "</details>";
+    }
   }
   if (!plotPath.empty()) c += "<h2>Plot</h2><p><img alt=\"summary plot\" src=\"" + href(plotPath) + "\"></p>";
   c += "<h2>Downloads</h2><ul><li><a href=\"" + href(base + "/results") + "\">every run in one HDF5 file</a></li>"

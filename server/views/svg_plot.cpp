@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "rupture/quantity_text.hpp"
 #include "io/xml_escape.hpp"
 #include "common/problem.hpp"
 
@@ -64,6 +65,15 @@ std::string shortNumber(double v) {
 }
 
 std::string valueText(const Json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+
+/// A marker's hover text as people read it: "run 2: Strain rate 1e7 /s, Peak stress 51.1 MPa
+/// ± 2.3 MPa" (declared labels, engineering units, rupture::formatQuantity).
+std::string pointTitle(int run, const ColumnInfo& x, const Json& xValue, const ColumnInfo& y, double yValue,
+                       double error) {
+  const std::string xText = xValue.is_number() ? formatQuantity(xValue.get<double>(), x.unit) : valueText(xValue);
+  return "run " + std::to_string(run) + ": " + x.label + " " + xText + ", " + y.label + " " +
+         formatQuantity(yValue, y.unit) + (error > 0 ? " ± " + formatQuantity(error, y.unit) : std::string());
+}
 
 /// A legend value: text as is; a number with 4 significant digits, powers of ten as 10⁷ or
 /// 2.5×10⁷ beyond 10⁴, and its unit ("10⁷ 1/s").
@@ -412,6 +422,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
 
   // Series, clipped to the plot area (a y range may cut points off). Categories are not joined by
   // lines; each series is shifted a little sideways so that markers of equal values stay visible.
+  const ColumnInfo xInfo = table.columnInfo(request.x), yInfo = table.columnInfo(request.y);
   svg << "<g clip-path=\"url(#plot-area)\">\n";
   for (std::size_t s = 0; s < seriesOrder.size(); ++s) {
     const std::string colour = kPalette[s % std::size(kPalette)];
@@ -435,9 +446,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
             << 'M' << num(x - 4) << ',' << num(lo) << 'H' << num(x + 4) << "\"/>\n";
       }
       svg << "<circle cx=\"" << num(x) << "\" cy=\"" << num(py(p.y)) << "\" r=\"4\" fill=\"" << colour
-          << "\"><title>run " << p.run << ": " << io::xmlEscape(request.x) << "=" << io::xmlEscape(valueText(p.xRaw))
-          << ", " << io::xmlEscape(request.y) << "=" << io::xmlEscape(shortNumber(p.y))
-          << (p.err > 0 ? " ± " + shortNumber(p.err) : std::string()) << "</title></circle>\n";
+          << "\"><title>" << io::xmlEscape(pointTitle(p.run, xInfo, p.xRaw, yInfo, p.y, p.err)) << "</title></circle>\n";
     }
     svg << "</g>\n";
   }

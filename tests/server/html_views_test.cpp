@@ -62,6 +62,16 @@ TEST_F(HtmlViews, PagesListTheJobItsRunsSummaryAndPlot) {
   EXPECT_NE(page.find("id=\"run-1\""), std::string::npos);
   EXPECT_NE(page.find("<table id=\"summary\">"), std::string::npos);
   EXPECT_NE(page.find("peak_stress"), std::string::npos);
+  EXPECT_NE(page.find("<th title=\"peak_stress\">Peak stress</th>"), std::string::npos) << "the declared label heads it";
+  EXPECT_NE(page.find("Pa</td>"), std::string::npos) << "stresses with an engineering prefix: " << page;
+  const std::size_t headline = page.find("<table id=\"summary\">"), all = page.find("<table id=\"summary-all\">");
+  ASSERT_NE(all, std::string::npos) << "every column one click away";
+  const std::string shown = page.substr(headline, page.find("</table>", headline) - headline);
+  std::size_t headers = 0;
+  for (std::size_t at = shown.find("<th"); at != std::string::npos; at = shown.find("<th", at + 1)) ++headers;
+  EXPECT_EQ(headers, 2u + 1u + 8u) << "run, status, the swept rate and eight results: " << shown;
+  EXPECT_EQ(shown.find("title=\"bonds\""), std::string::npos) << "a bookkeeping column is not a headline: " << shown;
+  EXPECT_NE(page.substr(all).find("title=\"bonds\""), std::string::npos);
   EXPECT_NE(page.find("/summary.svg?x=loading.strain_rate&amp;y=peak_stress"), std::string::npos);
   EXPECT_NE(page.find("/runs/0/bundle"), std::string::npos);
   EXPECT_EQ(client->Get(("/jobs/" + id + "?f=xml").c_str())->status, 400);
