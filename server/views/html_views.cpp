@@ -38,7 +38,7 @@ HtmlPage page(const std::string& title, const std::string& content, const std::s
            "<style nonce=\"" + p.nonce + "\">"
            "body{font-family:system-ui,sans-serif;margin:1.5em auto;max-width:72em;padding:0 1em;color:#222}"
            "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left}"
-           "th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums}"
+           "th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}"
            "nav a{margin-right:1em}progress{width:16em}.unit{color:#666;font-weight:normal}"
            "img{max-width:100%;border:1px solid #ddd}</style></head><body>"
            "<nav><a href=\"/?f=html\">Rupture</a><a href=\"/processes?f=html\">Scenarios</a>"
