@@ -101,11 +101,10 @@ void getJob(ServerContext& ctx, const Request& req, Response& res) {
     if (job.runsAccepted + job.runsRunning == 0 && job.runsSuccessful > 0) {
       const SummaryTable table = buildSummary(job, runs);
       summary = summaryJson(table);
-      if (!table.sweptPaths.empty() && !table.scalarNames.empty()) {
-        const bool peak = std::find(table.scalarNames.begin(), table.scalarNames.end(), "peak_stress") != table.scalarNames.end();
+      if (const std::string y = table.headlineQuantity(); !table.sweptPaths.empty() && !y.empty()) {
         plot = "/jobs/" + std::to_string(job.id) + "/summary.svg?x=" +
                httplib::detail::encode_query_param(table.sweptPaths.front()) +
-               "&y=" + httplib::detail::encode_query_param(peak ? "peak_stress" : table.scalarNames.front());
+               "&y=" + httplib::detail::encode_query_param(y);
       }
     }
     return sendHtml(res, jobHtml(statusInfo(job, &runs), summary, plot));

@@ -66,6 +66,26 @@ std::string columnLabel(const SummaryTable& table, const std::string& column) {
 /// The plot query options shared by summary.svg and /plot: xscale, yscale, width, height, ymin,
 /// ymax and yerror (a column of `table` holding each point's error half-width).
 void readPlotOptions(const Request& req, const SummaryTable& table, PlotRequest& plot) {
+  // Every option is honoured or refused: a parameter a plot does not know (fontsize, a typo) is a
+  // 400 naming it, never silently ignored.
+  static const std::vector<std::string> known = {"x",     "y",    "xscale", "yscale", "width", "height", "ymin",
+                                                 "ymax",  "yerror", "title", "format", "scale", "jobs"};
+  for (const auto& [name, value] : req.params) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string allowed;
+    for (const std::string& k : known) allowed += (allowed.empty() ? "" : ", ") + k;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "a plot has no parameter '" + name + "'; allowed: " + allowed, name,
+                   Json{{"in", "query"}, {"allowed", known}});
+  }
+  if (req.has_param("title")) {
+    plot.title = req.get_param_value("title");
+    if (plot.title.size() > 300) {
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                     "title must be at most 300 bytes, got " + std::to_string(plot.title.size()), "title",
+                     Json{{"in", "query"}});
+    }
+  }
   plot.xScale = scaleParam(req, "xscale");
   plot.yScale = scaleParam(req, "yscale");
   plot.width = static_cast<int>(intParam(req, "width", 800, kMinWidth, kMaxWidth));
@@ -146,7 +166,7 @@ void getComparedPlot(ServerContext& ctx, const Request& req, Response& res) {
   const SummaryTable table = comparisonPlotTable(jobs);
   PlotRequest plot;
   plot.x = req.has_param("x") ? req.get_param_value("x") : (table.sweptPaths.size() > 1 ? table.sweptPaths[1] : "");
-  plot.y = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
+  plot.y = req.has_param("y") ? req.get_param_value("y") : table.headlineQuantity();
   if (plot.x.empty()) {
     throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
                    "these jobs sweep nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
@@ -156,7 +176,8 @@ void getComparedPlot(ServerContext& ctx, const Request& req, Response& res) {
   readPlotOptions(req, table, plot);
   std::string ids;
   for (const ComparedJob& j : jobs) ids += (ids.empty() ? "" : ", ") + std::to_string(j.job.id);
-  plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids + " - mean, 95 % CI";
+  if (plot.title.empty())
+    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids + " - mean, 95 % CI";
   sendPlot(req, res, table, plot, *ctx.renders);
 }
 
@@ -166,7 +187,7 @@ void getJobSummaryPlot(ServerContext& ctx, const Request& req, Response& res) {
   PlotRequest plot;
   plot.x = req.has_param("x") ? req.get_param_value("x")
                               : (table.sweptPaths.empty() ? std::string() : table.sweptPaths.front());
-  plot.y = req.has_param("y") ? req.get_param_value("y") : "peak_stress";
+  plot.y = req.has_param("y") ? req.get_param_value("y") : table.headlineQuantity();
   if (plot.x.empty()) {
     throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
                    "this job sweeps nothing; name the x column with ?x=", "x", Json{{"in", "query"}});
@@ -179,8 +200,11 @@ void getJobSummaryPlot(ServerContext& ctx, const Request& req, Response& res) {
     if (table.hasColumn(ciHalfWidthColumn(plot.y))) plot.yError = ciHalfWidthColumn(plot.y);
   }
   readPlotOptions(req, table, plot);
-  plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - job " + std::to_string(job.id) +
-               (job.name.empty() ? "" : " (" + job.name + ")") + (replicated ? " - mean, 95 % CI" : "");
+  if (plot.title.empty()) {
+    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - job " +
+                 std::to_string(job.id) + (job.name.empty() ? "" : " (" + job.name + ")") +
+                 (replicated ? " - mean, 95 % CI" : "");
+  }
   sendPlot(req, res, table, plot, *ctx.renders);
 }
 

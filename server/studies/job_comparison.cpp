@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "rupture/result_fields.hpp"
 #include "studies/replicate_statistics.hpp"
 
 namespace rupture::server {
@@ -55,6 +56,9 @@ Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
   doc["aggregate"] = aggregate ? "replicates" : "none";
   if (aggregate) doc["confidence_level"] = kConfidenceLevel;
   doc["columns"] = columns;
+  Json units = Json::object();
+  for (const auto& c : columns) units[c.value("name", "")] = c.value("unit", "");
+  doc["units"] = units;
   doc["rows"] = rows;
   return doc;
 }
@@ -62,9 +66,13 @@ Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
 std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) {
   std::vector<std::string> header = {"job", "job_name"};
   std::vector<Json> flat;
+  Json unitOf = Json::object();  // column -> unit, from the first job that declares it
   for (const ComparedJob& j : jobs) {
     Json columns;
-    for (const auto& r : rowsOf(j, aggregate, columns)) {
+    const Json jobRows = rowsOf(j, aggregate, columns);
+    for (const auto& c : columns)
+      if (!unitOf.contains(c.value("name", ""))) unitOf[c.value("name", "")] = c.value("unit", "");
+    for (const auto& r : jobRows) {
       Json row = Json::object();
       row["job"] = std::to_string(j.job.id);
       row["job_name"] = j.job.name;
@@ -76,7 +84,16 @@ std::string comparisonCsv(const std::vector<ComparedJob>& jobs, bool aggregate) 
     }
   }
   std::ostringstream out;
-  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << csvTextCell(header[i]);
+  // Headers carry their units as the per-job CSV's do ("peak_stress [Pa]"); a statistic's member
+  // ("peak_stress.mean") has its column's unit, its count ".n" is "1".
+  auto unitFor = [&](const std::string& name) -> std::string {
+    if (unitOf.contains(name)) return unitOf[name].get<std::string>();
+    const std::size_t dot = name.rfind('.');
+    if (dot == std::string::npos || !unitOf.contains(name.substr(0, dot))) return "";
+    return name.substr(dot + 1) == "n" ? "1" : unitOf[name.substr(0, dot)].get<std::string>();
+  };
+  for (std::size_t i = 0; i < header.size(); ++i)
+    out << (i ? "," : "") << csvTextCell(i < 2 ? header[i] : rupture::nameWithUnit(header[i], unitFor(header[i])));
   out << "\r\n";
   for (const Json& row : flat) {
     for (std::size_t i = 0; i < header.size(); ++i) {

@@ -77,6 +77,24 @@ ColumnInfo SummaryTable::columnInfo(const std::string& column) const {
   return it != info.end() ? it->second : ColumnInfo{"", column, ""};
 }
 
+std::string SummaryTable::headlineQuantity() const {
+  auto numeric = [&](const std::string& name) {
+    for (const SummaryRow& row : rows)
+      if (value(row, name).is_number()) return true;
+    return false;
+  };
+  if (std::find(scalarNames.begin(), scalarNames.end(), "peak_stress") != scalarNames.end() && numeric("peak_stress"))
+    return "peak_stress";
+  for (const std::string& name : scalarNames)
+    if (numeric(name)) return name;
+  // No run has reported yet: the declared headline, so that the plot fills in as runs finish.
+  if (std::find(declaredScalars.begin(), declaredScalars.end(), "peak_stress") != declaredScalars.end())
+    return "peak_stress";
+  for (const std::string& name : declaredScalars)
+    if (!columnInfo(name).unit.empty()) return name;  // numbers have a unit ("1" at least); text has none
+  return "";
+}
+
 namespace {
 
 /// True when scalar `name` repeats swept column `path` (same last segment, same value in every row

@@ -45,6 +45,10 @@ struct SummaryTable {
   /// The value of a column (swept path or scalar) in a row; null when absent.
   Json value(const SummaryRow& row, const std::string& column) const;
   bool hasColumn(const std::string& column) const;
+  /// The y of a plot nobody chose: peak_stress where the runs report it (the seeds' headline), else
+  /// the first scalar, in declaration order, that some row holds as a number; before any run has
+  /// reported, the declared peak_stress or first declared number; "" when there is none.
+  std::string headlineQuantity() const;
 };
 
 SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs);

@@ -40,7 +40,7 @@ HtmlPage page(const std::string& title, const std::string& content, const std::s
            "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left}"
            "th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}"
            "nav a{margin-right:1em}progress{width:16em}.unit{color:#666;font-weight:normal}"
-           "img{max-width:100%;border:1px solid #ddd}</style></head><body>"
+           "img{max-width:100%;border:1px solid #ddd}.error{color:#a40000}</style></head><body>"
            "<nav><a href=\"/?f=html\">Rupture</a><a href=\"/processes?f=html\">Scenarios</a>"
            "<a href=\"/jobs?f=html\">Jobs</a><a href=\"/openapi.yaml\">API</a></nav>\n<h1>" +
            xmlEscape(title) + "</h1>\n" + content;
@@ -169,7 +169,12 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
                   "</span> %, <span id=\"stage\">" + esc(status.value("stage", Json(""))) + "</span>; elapsed <span id=\"elapsed\">" +
                   esc(status.value("elapsed_s", Json())) + "</span> s, ETA <span id=\"eta\">" +
                   esc(status.value("eta_s", Json())) + "</span> s; updated <span id=\"updated\">" + esc(status["updated"]) +
-                  "</span></p>\n<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
+                  "</span></p>\n";
+  // A job that did not succeed says why (the same message as its JSON), before anything else.
+  const std::string jobStatus = status.value("status", "");
+  if ((jobStatus == "failed" || jobStatus == "dismissed") && !status.value("message", "").empty())
+    c += "<p class=\"error\" id=\"reason\">Why: " + esc(status["message"]) + "</p>\n";
+  c += "<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
   const Json swept = status.value("swept", Json::array());
   std::map<std::string, std::string> sweptUnit;  // from the summary's columns, once it has them
   if (summary.is_object())
@@ -190,6 +195,8 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
       const std::string rb = base + "/runs/" + k;
       c += "<a href=\"" + href(rb + "/results") + "\">HDF5</a> <a href=\"" + href(rb + "/bundle") +
            "\">ParaView bundle</a> <a href=\"" + href(rb + "/series?format=csv") + "\">series CSV</a>";
+    } else if (r.contains("error")) {  // a failed run's files do not exist: its reason instead
+      c += "<span class=\"error\">" + esc(r["error"]) + "</span>";
     }
     c += "</td></tr>\n";
   }
@@ -236,8 +243,12 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     }
   }
   if (!plotPath.empty()) c += "<h2>Plot</h2><p><img alt=\"summary plot\" src=\"" + href(plotPath) + "\"></p>";
-  c += "<h2>Downloads</h2><ul><li><a href=\"" + href(base + "/results") + "\">every run in one HDF5 file</a></li>"
-       "<li><a href=\"" + href(base + "/summary?format=csv") + "\">summary table (CSV)</a></li>"
+  // The merged file exists only once a run has succeeded: no link that would answer 404.
+  const bool anySuccessful =
+      status.contains("runs_by_status") && status["runs_by_status"].value("successful", 0) > 0;
+  c += "<h2>Downloads</h2><ul>";
+  if (anySuccessful) c += "<li><a href=\"" + href(base + "/results") + "\">every run in one HDF5 file</a></li>";
+  c += "<li><a href=\"" + href(base + "/summary?format=csv") + "\">summary table (CSV)</a></li>"
        "<li><a href=\"" + href(base + "/summary") + "\">summary (JSON)</a></li>"
        "<li><a href=\"" + href(base) + "\">status (JSON)</a></li></ul>";
   // Live progress: poll the JSON while the job runs; reload once it ends (for the summary and plot).

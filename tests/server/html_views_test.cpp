@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "server_test_support.hpp"
+#include "views/html_views.hpp"
 
 namespace rupture::server {
 namespace {
@@ -75,6 +76,21 @@ TEST_F(HtmlViews, PagesListTheJobItsRunsSummaryAndPlot) {
   EXPECT_NE(page.find("/summary.svg?x=loading.strain_rate&amp;y=peak_stress"), std::string::npos);
   EXPECT_NE(page.find("/runs/0/bundle"), std::string::npos);
   EXPECT_EQ(client->Get(("/jobs/" + id + "?f=xml").c_str())->status, 400);
+}
+
+TEST(HtmlJobPage, AFailedJobSaysWhyAndOffersNoFileThatDoesNotExist) {
+  const Json status = {
+      {"jobID", "7"}, {"processID", "dynamic-tension"}, {"status", "failed"}, {"progress", 12},
+      {"message", "1 of 1 run failed"}, {"created", "2026-11-28T00:00:00Z"}, {"updated", "2026-11-28T00:00:01Z"},
+      {"swept", Json::array()},
+      {"runs_by_status", {{"accepted", 0}, {"running", 0}, {"successful", 0}, {"failed", 1}, {"dismissed", 0}}},
+      {"runs", Json::array({{{"index", 0}, {"swept", Json::object()}, {"status", "failed"}, {"progress", 12},
+                             {"error", "sample.porosity = <0.9> leaves no path between the faces"}}})}};
+  const std::string page = jobHtml(status, Json(), "").body;
+  EXPECT_NE(page.find("id=\"reason\">Why: 1 of 1 run failed"), std::string::npos) << page;
+  EXPECT_NE(page.find("sample.porosity = &lt;0.9&gt; leaves no path"), std::string::npos) << "the run's reason, escaped";
+  EXPECT_EQ(page.find("/runs/0/results"), std::string::npos) << "a failed run has no file to link";
+  EXPECT_EQ(page.find("every run in one HDF5 file"), std::string::npos) << "nor the job a merged file";
 }
 
 }  // namespace

@@ -65,5 +65,23 @@ TEST(SphHttp, SmallDamBreakJobRunsToASummary) {
   EXPECT_NE(series.dump().find("front_position"), std::string::npos) << series.dump().substr(0, 300);
 }
 
+TEST(SphHttp, ADamBreakSweepHasADefaultPlotWithoutAPeakStress) {
+  LiveServer live;
+  auto client = live.client();
+  const Json body = {{"inputs", smallDamBreak()}, {"sweep", {{"resolution.spacing", {0.006, 0.005}}}}};
+  auto res = test::postJson(*client, "/processes/dam-break/execution", body);
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  const std::string id = Json::parse(res->body)["jobID"].get<std::string>();
+  ASSERT_EQ(test::waitForJob(*client, std::stoll(id), {"successful", "failed", "dismissed"}, 120)["status"], "successful");
+  auto plot = client->Get(("/jobs/" + id + "/summary.svg").c_str());
+  ASSERT_TRUE(plot);
+  EXPECT_EQ(plot->status, 200) << "the plot nobody tuned works for every scenario: " << plot->body.substr(0, 300);
+  EXPECT_NE(plot->body.find("Final front position"), std::string::npos) << "its first declared result";
+  auto page = client->Get(("/jobs/" + id + "?f=html").c_str());
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("summary.svg?x=resolution.spacing&amp;y=front_position_final"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rupture::server

@@ -1,6 +1,7 @@
 // Studies over HTTP on the small dynamic-tension example (runs of about a second): a 2-point x
 // 3-replicate sweep whose statistics are checked against its own rows, the comparison of two jobs,
 // and an adaptive refinement that adds exactly its budget.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -131,6 +132,9 @@ TEST_F(StudyHttp, ReplicatedSweepReportsMeansAndIntervalsOfItsRowsAndComparesWit
   const auto compareRows = test::parseCsv(compareCsv->body);
   ASSERT_EQ(compareRows.size(), 8u);
   EXPECT_EQ(compareRows[0][0], "job");
+  EXPECT_NE(std::find(compareRows[0].begin(), compareRows[0].end(), "peak_stress [Pa]"), compareRows[0].end())
+      << "headers carry their units, as the per-job CSV's do";
+  EXPECT_EQ(compared["units"]["peak_stress"], "Pa");
   EXPECT_EQ(compareRows[7][0], std::to_string(other));
   auto plot = client->Get(("/plot?jobs=" + both).c_str());
   ASSERT_TRUE(plot);

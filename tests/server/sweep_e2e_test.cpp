@@ -151,6 +151,12 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?format=gif").c_str()), 400, "format");
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?width=10").c_str()), 400, "width");
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?ymin=abc").c_str()), 400, "ymin");
+  // Every plot option is honoured or refused, never ignored.
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?fontsize=14").c_str()), 400, "fontsize");
+  auto titled = client->Get(("/jobs/" + id + "/summary.svg?title=Figure%203%20of%20the%20seed").c_str());
+  ASSERT_TRUE(titled);
+  EXPECT_EQ(titled->status, 200);
+  EXPECT_NE(titled->body.find("Figure 3 of the seed"), std::string::npos);
 
   // Both HDF5 downloads open with the HDF5 API; the merged one has a self-contained group per run.
   test::TempDir tmp;
