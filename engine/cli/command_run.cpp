@@ -281,10 +281,10 @@ int runCommand(const Args& args) {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
       if (std::chrono::steady_clock::now() - lastProgressWrite >= std::chrono::seconds(1)) {
         lastProgressWrite = std::chrono::steady_clock::now();
-        progressFile.write(control.progress.load());
+        progressFile.write(runningFraction(control.progress.load()));
       }
       noticeInterrupt();
-      if (!finished.load()) view.update(control.progress.load());
+      if (!finished.load()) view.update(runningFraction(control.progress.load()));
     }
     worker.join();
     noticeInterrupt();

@@ -45,7 +45,7 @@ Timing timingOf(Status status, const std::string& started, const std::string& fi
                 const std::string& now) {
   Timing t;
   if (!started.empty()) t.elapsed = secondsBetween(started, isTerminal(status) && !finished.empty() ? finished : now);
-  if (status == Status::Running) t.eta = estimateRemainingSeconds(t.elapsed, progress);
+  if (status == Status::Running) t.eta = estimateRemainingSeconds(t.elapsed, runningFraction(progress));
   if (status == Status::Successful) t.eta = 0;
   return t;
 }

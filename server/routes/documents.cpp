@@ -6,7 +6,7 @@
 #include "common/public_message.hpp"
 #include "jobs/progress_info.hpp"
 #include "routes/answers.hpp"
-
+#include "rupture/progress.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
@@ -24,7 +24,10 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   }
   doc["swept"] = swept;
   doc["status"] = toString(run.status);
-  doc["progress"] = run.status == Status::Successful ? 100 : percent(run.progress);
+  // 100 only once the run has finished (rupture::runningFraction).
+  doc["progress"] = run.status == Status::Successful ? 100
+                    : run.status == Status::Running  ? percent(rupture::runningFraction(run.progress))
+                                                     : percent(run.progress);
   if (!run.started.empty()) doc["started"] = run.started;
   if (!run.finished.empty()) doc["finished"] = run.finished;
   if (run.attempts > 1) doc["attempts"] = run.attempts;
@@ -53,7 +56,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   if (!job.name.empty()) doc["name"] = job.name;
   doc["status"] = toString(job.status);
   doc["message"] = publicMessage(job.message);
-  doc["progress"] = percent(job.progress);
+  doc["progress"] = isTerminal(job.status) ? percent(job.progress) : percent(rupture::runningFraction(job.progress));
   doc["created"] = job.created;
   if (!job.started.empty()) doc["started"] = job.started;
   if (!job.finished.empty()) doc["finished"] = job.finished;

@@ -2,6 +2,9 @@
 // problem document naming the field, and a small dam-break job runs to a summary.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "server_test_support.hpp"
 
 namespace rupture::server {
@@ -63,6 +66,39 @@ TEST(SphHttp, SmallDamBreakJobRunsToASummary) {
   // The series of the run, as the API serves them.
   const Json series = getJson(*client, "/jobs/" + id + "/runs/0/series?names=time,front_position");
   EXPECT_NE(series.dump().find("front_position"), std::string::npos) << series.dump().substr(0, 300);
+}
+
+TEST(SphHttp, ProgressReaches100OnlyOnceTheRunHasFinished) {
+  LiveServer live;
+  auto client = live.client();
+  Json inputs = smallDamBreak();
+  inputs["resolution"]["spacing"] = 0.004;
+  inputs["run"]["end_time"] = 0.3;  // a second or two: polled many times while it runs
+  auto res = test::postJson(*client, "/processes/dam-break/execution", Json{{"inputs", inputs}});
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  const std::string id = Json::parse(res->body)["jobID"].get<std::string>();
+  int polledWhileRunning = 0;
+  for (int k = 0; k < 1200; ++k) {
+    const Json job = getJson(*client, "/jobs/" + id);
+    const std::string status = job["status"].get<std::string>();
+    if (status == "successful" || status == "failed" || status == "dismissed") {
+      EXPECT_EQ(status, "successful");
+      EXPECT_EQ(job["progress"], 100);
+      EXPECT_EQ(job["runs"][0]["progress"], 100);
+      break;
+    }
+    EXPECT_LT(job["progress"].get<int>(), 100) << "job " << status;
+    if (job["runs"][0]["status"] == "running") {
+      ++polledWhileRunning;
+      EXPECT_LT(job["runs"][0]["progress"].get<int>(), 100) << job["runs"][0].dump();
+      if (!job["runs"][0]["eta_s"].is_null()) {
+        EXPECT_GE(job["runs"][0]["eta_s"].get<double>(), 0.0);
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  EXPECT_GT(polledWhileRunning, 0) << "the run was seen running";
 }
 
 TEST(SphHttp, ADamBreakSweepHasADefaultPlotWithoutAPeakStress) {
