@@ -67,7 +67,8 @@ std::string formatQuantity(double value, const std::string& siUnit, int signific
   if (takesPrefix(siUnit)) {
     const std::string_view head = std::string_view(siUnit).substr(0, siUnit.find_first_of(" /"));
     const int engineering = std::clamp(static_cast<int>(std::floor(e / 3.0)) * 3, -12, head == "s" ? 0 : 12);
-    if (e >= engineering)  // else below the smallest prefix: a power of ten of the base unit
+    // Beyond the prefixes (below p, above T, seconds above 99999 s): a power of ten of the base unit.
+    if (e >= engineering && e < engineering + 5)
       return std::string(sign).append(plainText(magnitude / std::pow(10.0, engineering), digits))
           .append(" ").append(prefixOf(engineering)).append(siUnit);
   }

@@ -13,6 +13,7 @@ inline constexpr int kReadableDigits = 3;
 /// for none) as text:
 /// - units whose leading symbol is Pa, s, m, J, N or W take an engineering prefix (p to T; seconds
 ///   stop at s): 51075064.86 Pa -> "51.1 MPa", 3.6348e-9 s -> "3.63 ns", 85.7 m/s -> "85.7 m/s";
+///   beyond the prefixes, a power of ten of the base unit (1e-20 J, 1e6 s, 1e300 Pa);
 /// - other units and dimensionless values are written plainly between 0.001 and 100000 (0.321,
 ///   1234) and as a short power of ten outside (1e7, 3.2e-4), with the unit after a space; a unit
 ///   "1/x" is written "/x" (1e7 /s);

@@ -35,6 +35,8 @@ TEST(QuantityText, ReadsAsPeopleWriteQuantities) {
       {4.5e-4, "s", "450 µs"},
       {1220.708, "s", "1221 s"},
       {2e-15, "s", "2e-15 s"},  // below the smallest prefix: a power of ten of the base unit
+      {1e6, "s", "1e6 s"},        // seconds take no kilo
+      {1e300, "Pa", "1e300 Pa"},  // above the largest prefix
       // m, J, and a unit with a denominator that keeps its head's prefix.
       {2.5e-3, "m", "2.5 mm"},
       {3.3e-9, "m", "3.3 nm"},

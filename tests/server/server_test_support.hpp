@@ -146,9 +146,10 @@ inline httplib::Result postJson(httplib::Client& client, const std::string& path
   return client.Post(path.c_str(), headers, body.dump(), "application/json");
 }
 
-/// Posts a sweep and returns the job id (the POST must answer 201).
-inline std::int64_t submit(httplib::Client& client, const Json& body, const httplib::Headers& headers = {}) {
-  auto res = postJson(client, std::string("/processes/") + kScenario + "/execution", body, headers);
+/// Posts a sweep of `scenario` and returns the job id (the POST must answer 201).
+inline std::int64_t submit(httplib::Client& client, const Json& body, const httplib::Headers& headers = {},
+                           const std::string& scenario = kScenario) {
+  auto res = postJson(client, "/processes/" + scenario + "/execution", body, headers);
   if (!res) {
     ADD_FAILURE() << "POST: no response";
     return -1;
