@@ -1,12 +1,19 @@
 // rupture calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU] [--target-tensile-strength S]
 //                             [--threads N]
+//
+// Prints the result as one JSON line on stdout; what it is doing goes to stderr as it happens (the
+// sample's size once built, a progress bar per test or fit, the values each stage measured), since
+// a calibration on the seed's sample takes minutes.
 #include <omp.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <iostream>
 
 #include "cli/cli.hpp"
+#include "cli/progress_view.hpp"
+#include "rupture/quantity_text.hpp"
 #include "cli/spec_file.hpp"
 #include "bonded/materials/registry.hpp"
 #include "samples/material_assignment.hpp"
@@ -63,8 +70,30 @@ int calibrateCommand(const Args& args) {
   }
   omp_set_num_threads(static_cast<int>(threads));
   const auto start = std::chrono::steady_clock::now();
+  ProgressView view("rupture calibrate", ::isatty(STDERR_FILENO) == 1);
+  view.message("building the sample");
   BondedSystem sample;
   const SampleReport report = buildSample(sampleSpec, material, sample);
+  view.message(std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) + " bonds, porosity " +
+               formatQuantity(report.porosity, "1"));
+  // The fraction a test or fit reports, drawn at most five times a second; no ETA: a relaxation
+  // has no known length, so its fraction is no measure of time left.
+  auto progressOf = [&view](const std::string& label) {
+    return [&view, label, last = std::chrono::steady_clock::time_point{}](double fraction) mutable {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(200)) return;
+      last = now;
+      view.update(fraction, false, label, false);
+    };
+  };
+  auto said = [&view](const std::string& text) {
+    view.close();
+    view.message(text);
+  };
+  auto elasticText = [](const ElasticProperties& e) {
+    return "E = " + formatQuantity(e.youngModulus, "Pa") + ", nu = " + formatQuantity(e.poissonRatio, "1") +
+           (e.converged ? "" : " (not converged)");
+  };
   nlohmann::json out;
   out["sample"] = {{"elements", report.elements},
                    {"bonds", report.bonds},
@@ -76,7 +105,11 @@ int calibrateCommand(const Args& args) {
                       quotedStyleNames(&MaterialStyle::calibratable) + " (the calibration fits beams)");
   try {
     if (haveYoung) {
-      const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson);
+      view.message("fitting the beams to E and nu (up to " + std::to_string(kMaxFitEvaluations) + " tension tests)");
+      CalibrationOptions options;
+      options.progress = progressOf("fit E, nu");
+      const BeamFit fit = fitBeamParameters(sample, sampleSpec, targetYoung, targetPoisson, options);
+      said("fitted in " + std::to_string(fit.evaluations) + " tests: " + elasticText(fit.achieved));
       assignBeams(sample, material, fit.beam);  // the strength below is that of the fitted beams
       out["beam"] = {{"young_modulus", fit.beam.youngModulus},
                      {"poisson_ratio", fit.beam.poissonRatio},
@@ -89,7 +122,12 @@ int calibrateCommand(const Args& args) {
       out["evaluations"] = fit.evaluations;
     }
     if (haveStrength) {
-      const StrengthFit fit = fitFailureStress(sample, sampleSpec, targetStrength);
+      view.message("fitting the beams' failure stress to the tensile strength (up to four strength tests)");
+      StrengthOptions options;
+      options.elastic.progress = progressOf("fit strength");
+      const StrengthFit fit = fitFailureStress(sample, sampleSpec, targetStrength, options);
+      said("fitted in " + std::to_string(fit.evaluations) + " tests: tensile strength " +
+           formatQuantity(fit.achieved.tensileStrength, "Pa"));
       out["beam"]["young_modulus"] = sample.beam.youngModulus;
       out["beam"]["poisson_ratio"] = sample.beam.poissonRatio;
       out["beam"]["radius_ratio"] = sample.beam.radiusRatio;
@@ -106,13 +144,22 @@ int calibrateCommand(const Args& args) {
     }
     if (!haveYoung && !haveStrength && !calibratable) {
       // Lattice and peridynamic laws: elastic properties only (their strength has its own criteria).
-      const ElasticProperties measured = measureElasticProperties(sample, sampleSpec);
+      view.message("measuring E and nu (quasi-static tension)");
+      CalibrationOptions options;
+      options.progress = progressOf("tension test");
+      const ElasticProperties measured = measureElasticProperties(sample, sampleSpec, options);
+      said(elasticText(measured));
       out["young_modulus"] = measured.youngModulus;
       out["poisson_ratio"] = measured.poissonRatio;
       out["converged"] = measured.converged;
       out["relaxation_steps"] = measured.steps;
     } else if (!haveYoung && !haveStrength) {
-      const StrengthResult measured = measureTensileStrength(sample, sampleSpec);
+      view.message("measuring E, nu and the tensile strength (quasi-static tension to failure)");
+      StrengthOptions options;
+      options.elastic.progress = progressOf("tension test");
+      const StrengthResult measured = measureTensileStrength(sample, sampleSpec, options);
+      said(elasticText(measured.elastic) + ", tensile strength " + formatQuantity(measured.tensileStrength, "Pa") +
+           ", onset strain " + formatQuantity(measured.crackOnsetStrain, "1"));
       out["young_modulus"] = measured.elastic.youngModulus;
       out["poisson_ratio"] = measured.elastic.poissonRatio;
       out["converged"] = measured.elastic.converged;
@@ -122,6 +169,7 @@ int calibrateCommand(const Args& args) {
       out["relaxation_steps"] = measured.steps;
     }
   } catch (const CalibrationError& e) {
+    view.close();
     return usageError(std::string("calibrate: ") + e.what());
   }
   out["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

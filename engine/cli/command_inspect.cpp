@@ -8,16 +8,83 @@
 
 namespace rupture::cli {
 
+namespace {
+
+/// A server request file (the body of POST /processes/NAME/execution) has "inputs" (the spec without
+/// "scenario": the URL names it) and no "scenario" of its own.
+bool isServerRequest(const nlohmann::json& doc) {
+  return doc.is_object() && doc.contains("inputs") && !doc.contains("scenario");
+}
+
+}  // namespace
+
 int validateCommand(const Args& args) {
-  if (args.size() != 1) return usageError("validate: usage: rupture validate SPEC.json");
-  nlohmann::json spec;
-  if (int code = readSpecFile(args[0], spec)) return code;
+  constexpr const char* usage = "validate: usage: rupture validate SPEC.json | REQUEST.json [--scenario NAME]";
+  std::string path, scenarioOption;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    if (args[k] == "--scenario") {
+      if (k + 1 >= args.size()) return usageError("validate: option --scenario needs a value; " + std::string(usage));
+      scenarioOption = args[++k];
+    } else if (!args[k].empty() && args[k][0] == '-') {
+      return usageError("validate: unknown option '" + args[k] + "'; allowed: --scenario");
+    } else if (path.empty()) {
+      path = args[k];
+    } else {
+      return usageError(usage);
+    }
+  }
+  if (path.empty()) return usageError(usage);
+  nlohmann::json doc;
+  if (int code = readSpecFile(path, doc)) return code;
+
+  if (!isServerRequest(doc)) {
+    if (!scenarioOption.empty())
+      return usageError("validate: --scenario is for a server request file; " + path + " is a spec (it names its scenario)");
+    try {
+      validateSpec(doc);
+    } catch (const SpecError& e) {
+      return reportSpecError(path, e);
+    }
+    std::cout << path << ": valid " << doc["scenario"].get<std::string>() << " spec\n";
+    return 0;
+  }
+
+  // A request: its inputs are the spec; the scenario comes from --scenario or inputs.scenario.
+  const nlohmann::json& inputs = doc["inputs"];
+  std::string scenario = scenarioOption;
+  if (inputs.is_object() && inputs.contains("scenario") && inputs["scenario"].is_string()) {
+    const std::string named = inputs["scenario"].get<std::string>();
+    if (!scenario.empty() && scenario != named) {
+      std::cerr << path << ": a server request file whose inputs.scenario is '" << named << "' but --scenario is '"
+                << scenario << "'\n";
+      return 2;
+    }
+    scenario = named;
+  }
+  if (scenario.empty()) {
+    std::cerr << path << ": a server request file (the body of POST /processes/NAME/execution): its scenario is "
+              << "named by the URL, not the file; give it with --scenario NAME (see rupture scenarios)\n";
+    return 2;
+  }
+  if (!inputs.is_object()) {
+    std::cerr << path << ": a server request file whose \"inputs\" is " << inputs.type_name()
+              << "; allowed: an object, the spec without \"scenario\"\n";
+    return 2;
+  }
+  nlohmann::json spec = inputs;
+  spec["scenario"] = scenario;
   try {
     validateSpec(spec);
   } catch (const SpecError& e) {
-    return reportSpecError(args[0], e);
+    std::cerr << path << ": a server request file for " << scenario << "; in its inputs: " << e.what() << "\n";
+    return 2;
   }
-  std::cout << args[0] << ": valid " << spec["scenario"].get<std::string>() << " spec\n";
+  std::cout << path << ": a server request file for POST /processes/" << scenario
+            << "/execution; its inputs are a valid " << scenario << " spec"
+            << (doc.contains("sweep") || doc.contains("refine") || doc.contains("replicates")
+                    ? " (the sweep, refine and replicates members are checked by the server)"
+                    : "")
+            << "\n";
   return 0;
 }
 

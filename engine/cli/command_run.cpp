@@ -1,9 +1,10 @@
-// rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE]
+// rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force]
 //
-// Validates the spec (exit 2 naming the field), runs it on a worker thread through rupture::runSpec
-// while this thread shows the progress on stderr (a bar with an ETA on a terminal, a plain line at
-// most every 10 s otherwise), writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary
-// as JSON on stdout. Ctrl-C (SIGINT) or SIGTERM (what Slurm's scancel sends) asks the run to stop:
+// Validates the spec (exit 2 naming the field), refuses to replace an existing RUN.h5 unless
+// --force, runs the spec on a worker thread through rupture::runSpec while this thread shows the
+// progress on stderr (a bar with an ETA on a terminal, a plain line at most every 10 s otherwise),
+// writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary once on stdout: a table in
+// engineering units for a reader, or with --json the JSON at full precision for scripts. Ctrl-C (SIGINT) or SIGTERM (what Slurm's scancel sends) asks the run to stop:
 // the file is still written, marked incomplete (/summary completed = 0), the summary is printed and
 // the exit code is 130. A second signal kills the process at once. --progress-file keeps a small
 // JSON file up to date (about once a second), for watchers on other machines (the Slurm executor).
@@ -25,6 +26,7 @@
 #include <thread>
 
 #include "cli/cli.hpp"
+#include "cli/progress_view.hpp"
 #include "cli/spec_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf_writer.hpp"
@@ -35,9 +37,8 @@
 namespace rupture::cli {
 namespace {
 
-/// The summary for a reader, on stderr (stdout stays the JSON that scripts and the Slurm executor
-/// parse): each declared scalar with its label and unit, in the scenario's order.
-void printReadableSummary(const nlohmann::json& spec, const nlohmann::json& summary) {
+/// The summary for a reader: each declared scalar with its label and unit, in the scenario's order.
+void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const nlohmann::json& summary) {
   const ScenarioInfo* scenario = spec.contains("scenario") && spec["scenario"].is_string()
                                      ? findScenario(spec["scenario"].get<std::string>())
                                      : nullptr;
@@ -54,13 +55,9 @@ void printReadableSummary(const nlohmann::json& spec, const nlohmann::json& summ
                               : it->is_string() ? it->get<std::string>()
                               : it->is_null()   ? "n/a"
                                                 : it->dump();
-    std::cerr << "  " << f.label << std::string(width - f.label.size(), ' ') << "  " << value << "\n";
+    out << "  " << f.label << std::string(width - f.label.size(), ' ') << "  " << value << "\n";
   }
 }
-
-}  // namespace
-
-namespace {
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
 
@@ -134,74 +131,29 @@ std::string sidecarPath(const std::string& h5Path) {
   return h5Path + ".xdmf2";
 }
 
-std::string clock(double seconds) {
-  if (!(seconds >= 0) || seconds > 1e7) return "--";
-  const long s = static_cast<long>(seconds + 0.5);
-  char buffer[32];
-  if (s >= 3600) std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
-  else std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
-  return buffer;
-}
-
-/// Progress on stderr: a redrawn bar on a terminal, sparse plain lines otherwise.
-class ProgressView {
-public:
-  explicit ProgressView(bool terminal) : m_terminal(terminal), m_start(std::chrono::steady_clock::now()) {}
-
-  void message(const std::string& text) {
-    std::lock_guard lock(m_mutex);
-    if (m_terminal && m_barShown) std::cerr << "\r\033[K";
-    std::cerr << "rupture run: " << text << "\n";
-    m_barShown = false;
-  }
-
-  void update(double fraction, bool force = false) {
-    std::lock_guard lock(m_mutex);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    const double eta = estimateRemainingSeconds(elapsed, fraction);
-    if (m_terminal) {
-      constexpr int width = 30;
-      const int filled = static_cast<int>(fraction * width + 0.5);
-      std::string bar(static_cast<std::size_t>(filled), '#');
-      bar.append(static_cast<std::size_t>(width - filled), '.');
-      char line[160];
-      std::snprintf(line, sizeof line, "\r\033[K[%s] %5.1f %%  elapsed %s  ETA %s", bar.c_str(), 100.0 * fraction,
-                    clock(elapsed).c_str(), clock(eta).c_str());
-      std::cerr << line << std::flush;
-      m_barShown = true;
-    } else if (force || elapsed - m_lastLine >= 10.0) {
-      m_lastLine = elapsed;
-      char line[160];
-      std::snprintf(line, sizeof line, "rupture run: %.0f %% (elapsed %s, ETA %s)\n", 100.0 * fraction,
-                    clock(elapsed).c_str(), clock(eta).c_str());
-      std::cerr << line << std::flush;
-    }
-  }
-
-  void close() {
-    std::lock_guard lock(m_mutex);
-    if (m_terminal && m_barShown) std::cerr << "\n";
-    m_barShown = false;
-  }
-
-private:
-  bool m_terminal;
-  std::chrono::steady_clock::time_point m_start;
-  std::mutex m_mutex;
-  bool m_barShown = false;
-  double m_lastLine = 0;
-};
+constexpr const char* kRunUsage =
+    "usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force]\n"
+    "  -o, --output RUN.h5     the result file (HDF5; RUN.xdmf2 is written beside it for ParaView)\n"
+    "  --threads N             OpenMP threads (default: all cores)\n"
+    "  --progress-file FILE    keep FILE up to date (about once a second) with the progress as JSON\n"
+    "  --json                  print the summary as JSON at full precision instead of the table\n"
+    "  --force                 overwrite RUN.h5 if it exists (otherwise: exit 2)\n"
+    "  -h, --help              this text\n";
 
 }  // namespace
 
 int runCommand(const Args& args) {
-  constexpr const char* usage = "run: usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE]";
   std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
+  bool json = false, force = false;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
+    if (a == "--help" || a == "-h") {
+      std::cout << kRunUsage;
+      return 0;
+    }
     if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file") {
-      if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; " + usage);
+      if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; see rupture run --help");
       if (a == "--threads") {
         if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
       } else if (a == "--progress-file") {
@@ -210,16 +162,21 @@ int runCommand(const Args& args) {
         output = args[k + 1];
       }
       ++k;
+    } else if (a == "--json") {
+      json = true;
+    } else if (a == "--force") {
+      force = true;
     } else if (!a.empty() && a[0] == '-') {
-      return usageError("run: unknown option '" + a + "'; allowed: -o/--output, --threads, --progress-file");
+      return usageError("run: unknown option '" + a +
+                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --help");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
-      return usageError(std::string("run: more than one spec file; ") + usage);
+      return usageError("run: more than one spec file; see rupture run --help");
     }
   }
-  if (specPath.empty()) return usageError(std::string("run: missing SPEC.json; ") + usage);
-  if (output.empty()) return usageError(std::string("run: missing -o RUN.h5; ") + usage);
+  if (specPath.empty()) return usageError("run: missing SPEC.json; see rupture run --help");
+  if (output.empty()) return usageError("run: missing -o RUN.h5; see rupture run --help");
 
   nlohmann::json spec;
   if (int code = readSpecFile(specPath, spec)) return code;
@@ -246,10 +203,14 @@ int runCommand(const Args& args) {
       return usageError("run: cannot write '" + output + "': it is a directory; name the HDF5 file, e.g. " +
                         (std::filesystem::path(output) / "run.h5").string());
     }
+    // A finished result may be hours of work: replacing it is asked for, never a side effect.
+    if (!force && std::filesystem::exists(std::filesystem::symlink_status(output, ec))) {
+      return usageError("run: '" + output + "' exists; pass --force to overwrite it, or name another -o");
+    }
   }
 
   RunControl control;
-  ProgressView view(::isatty(STDERR_FILENO) == 1);
+  ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1);
   ProgressFile progressFile(progressPath);
   // The interrupt notice comes before anything the run says about stopping: whichever thread sees
   // the cancel flag first prints it, once.
@@ -318,8 +279,8 @@ int runCommand(const Args& args) {
     std::cerr << "rupture run: cannot write the ParaView sidecar '" << sidecar << "': " << e.what() << "\n";
     code = code == 0 ? 1 : code;
   }
-  std::cout << outcome.summary.dump(2) << std::endl;
-  printReadableSummary(spec, outcome.summary);
+  if (json) std::cout << outcome.summary.dump(2) << std::endl;
+  else printReadableSummary(std::cout, spec, outcome.summary);
   std::cerr << "rupture run: " << (outcome.completed ? "done" : "interrupted, result marked incomplete") << ": "
             << output << (sidecar.empty() ? "" : " (+ " + sidecar + ")") << "\n";
   return code;

@@ -1,4 +1,5 @@
 // rupture: run, validate and inspect scenarios; calibrate beams; benchmark the engine.
+#include <algorithm>
 #include <iostream>
 
 #include "cli/cli.hpp"
@@ -8,24 +9,34 @@ namespace {
 constexpr const char* kUsage = R"(usage: rupture <command> [options]
 
 commands:
-  run SPEC.json -o RUN.h5 [--threads N]   run a scenario, write one HDF5 file (+ .xdmf2 sidecar),
-                                          print the summary as JSON
+  run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force]
+                                          run a scenario, write one HDF5 file (+ .xdmf2 sidecar) and
+                                          print its summary: a table, or with --json the JSON;
+                                          --progress-file keeps FILE up to date with the progress as
+                                          JSON; an existing RUN.h5 is replaced only with --force
+                                          (rupture run --help says more)
   xdmf RESULT.h5 [-o OUT.xdmf2]           write a ParaView sidecar for a run file, or one per run
                                           for a job's merged file (RESULT.run-<k>.xdmf2)
   validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
+  validate REQUEST.json [--scenario NAME] check a server request file (the body of
+                                          POST /processes/NAME/execution): its inputs against NAME
   scenarios                               list the scenarios
   schema SCENARIO                         print a scenario's JSON Schema
   calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU]
             [--target-tensile-strength S] [--threads N]
                                           measure macroscopic E, nu, tensile strength and onset
-                                          strain, or fit the beams to the targets
+                                          strain, or fit the beams to the targets; JSON on stdout,
+                                          progress on stderr
   bench W1 [--threads N] [--particles N] [--steps N]
   bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
   bench TANK [--threads N] [--steps N]  (tank-impact FXA5, fluid and shell timed apart)
                                           run a benchmark, print one JSON line
+  -o, --output FILE                       the output file of run and xdmf
+  --help, -h                              this text (rupture run --help: run's options in full)
+  --version                               the version
 
-exit codes: 0 done, 1 failure, 2 invalid input
+exit codes: 0 done, 1 failure, 2 invalid input, 130 interrupted (run: the file is kept, marked incomplete)
 )";
 
 }  // namespace
@@ -43,6 +54,13 @@ int main(int argc, char** argv) {
   }
   const std::string command = args[0];
   const Args rest(args.begin() + 1, args.end());
+  const bool wantsHelp = std::find_if(rest.begin(), rest.end(), [](const std::string& a) {
+                           return a == "--help" || a == "-h";
+                         }) != rest.end();
+  if (wantsHelp && command != "run") {  // run has its own, longer help
+    std::cout << kUsage;
+    return 0;
+  }
   try {
     if (command == "run") return runCommand(rest);
     if (command == "validate") return validateCommand(rest);

@@ -106,7 +106,7 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "rm -f \"run-$k.h5\" \"run-$k.h5.part\" \"run-$k.summary.json\" \"run-$k.status\"\n"
     << "# The engine leaves a result named *.part for its caller to rename: this script, once the summary is kept.\n"
     << shellQuote(m_settings.cli) << " run \"run-$k.spec.json\" -o \"run-$k.h5.part\" --threads "
-    << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" > \"run-$k.summary.tmp\" 2> \"run-$k.log\"\n"
+    << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" --json > \"run-$k.summary.tmp\" 2> \"run-$k.log\"\n"
     << "code=$?\n"
     << "rm -f \"run-$k.h5.part.xdmf2\"\n"
     << "if [ \"$code\" -eq 0 ]; then\n"

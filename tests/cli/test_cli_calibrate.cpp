@@ -28,6 +28,11 @@ TEST(CliCalibrate, MeasuresYoungModulusAndPoissonRatio) {
   EXPECT_GT(out.at("poisson_ratio").get<double>(), 0.0);
   EXPECT_LT(out.at("poisson_ratio").get<double>(), 1.0);
   EXPECT_GT(out.at("sample").at("elements").get<int>(), 100);
+  // What it is doing goes to stderr as it happens: the sample once built, then what it measured,
+  // in engineering units (the JSON on stdout keeps full precision).
+  EXPECT_NE(r.err.find("building the sample"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(out["sample"]["elements"].get<int>()) + " elements"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("GPa"), std::string::npos) << r.err;
 }
 
 TEST(CliCalibrate, WithoutTargetsAlsoPrintsStrengthAndOnset) {

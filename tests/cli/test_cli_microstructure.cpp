@@ -24,7 +24,7 @@ TEST(CliMicrostructure, GrainsInclusionsAndLocalDampingRunAndAreRecorded) {
   spec["sample"]["thickness"] = 0.001;
   spec["run"] = {{"end_time", 2e-5}};
   const fs::path out = dir.path() / "micro.h5";
-  const auto r = runCli("run " + writeSpec(spec, "cli-micro.json") + " -o " + out.string() + " --threads 1");
+  const auto r = runCli("run " + writeSpec(spec, "cli-micro.json") + " -o " + out.string() + " --threads 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["completed"], 1);

@@ -1,12 +1,14 @@
 // `rupture run` through the real binary: a run writes RUN.h5 + RUN.xdmf2 and prints the summary
-// JSON; invalid specs exit 2 naming the field; Ctrl-C (SIGINT) leaves a valid file marked
-// incomplete and exits 130.
+// once (a table, or with --json the JSON); it never replaces a file without --force; invalid specs
+// exit 2 naming the field; Ctrl-C (SIGINT) leaves a valid file marked incomplete and exits 130.
+// Also: --help lists every option the CLI accepts, and `validate` knows a server request file.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <set>
 #include <filesystem>
 #include <random>
 #include <regex>
@@ -36,7 +38,7 @@ TEST(CliRun, WritesResultSidecarAndSummary) {
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   spec["run"]["snapshot_strains"] = {0.0, 3e-4};
   const fs::path out = dir.path() / "run.h5";
-  const auto r = runCli("run " + writeSpec(spec, "cli-run-ok.json") + " -o " + out.string() + " --threads 1");
+  const auto r = runCli("run " + writeSpec(spec, "cli-run-ok.json") + " -o " + out.string() + " --threads 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);  // stdout is exactly the summary
   EXPECT_EQ(summary["completed"], 1);
@@ -127,7 +129,7 @@ TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
     ::dup2(o, 1);
     ::dup2(e, 2);
     ::execl(RUPTURE_CLI, RUPTURE_CLI, "run", specPath.c_str(), "-o", out.c_str(), "--threads", "1",
-            static_cast<char*>(nullptr));
+            "--json", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   // Wait until the main run has started, then press Ctrl-C.
@@ -149,6 +151,91 @@ TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
   EXPECT_GT(file.datasetDims("/series/time")[0], 1u);
   EXPECT_TRUE(fs::exists(dir.path() / "cut.xdmf2"));
   EXPECT_FALSE(fs::exists(out.string() + ".part"));
+}
+
+TEST(CliRun, PrintsOneTableAndNeverReplacesAFileUnasked) {
+  ScratchDir dir;
+  nlohmann::json spec = smallExample();
+  spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
+  const std::string specPath = writeSpec(spec, "cli-run-table.json");
+  const fs::path out = dir.path() / "run.h5";
+  const auto r = runCli("run " + specPath + " -o " + out.string() + " --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // The summary once, on stdout, as a table in engineering units; none of it on stderr.
+  EXPECT_NE(r.out.find("Peak stress"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" MPa\n"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('{'), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("e+"), std::string::npos) << "no e-notation for a reader: " << r.out;
+  EXPECT_EQ(r.err.find("Peak stress"), std::string::npos) << r.err;
+
+  // A second run to the same file is refused before any work, and the file is left as it was.
+  const auto sizeBefore = fs::file_size(out);
+  const auto timeBefore = fs::last_write_time(out);
+  const auto again = runCli("run " + specPath + " -o " + out.string() + " --threads 1");
+  EXPECT_EQ(again.exitCode, 2) << again.err;
+  EXPECT_NE(again.err.find("exists"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  EXPECT_EQ(fs::file_size(out), sizeBefore);
+  EXPECT_EQ(fs::last_write_time(out), timeBefore);
+
+  // --force replaces it; --json prints the JSON instead of the table.
+  const auto forced = runCli("run " + specPath + " -o " + out.string() + " --threads 1 --force --json");
+  ASSERT_EQ(forced.exitCode, 0) << forced.err;
+  EXPECT_EQ(nlohmann::json::parse(forced.out)["completed"], 1);
+  EXPECT_EQ(forced.out.find("Peak stress"), std::string::npos);
+}
+
+TEST(CliHelp, ListsEveryOptionTheCommandsAccept) {
+  // Every "--option" the CLI's sources compare an argument with is in `rupture --help`, and every
+  // option of `run` in `rupture run --help`.
+  const auto help = runCli("--help");
+  ASSERT_EQ(help.exitCode, 0);
+  const auto runHelp = runCli("run --help");
+  ASSERT_EQ(runHelp.exitCode, 0);
+  const std::regex option(R"re(== "(--[a-z][a-z-]*)")re");
+  std::set<std::string> seen;
+  for (const auto& entry : fs::directory_iterator(fs::path(RUPTURE_SOURCE_DIR) / "engine" / "cli")) {
+    const std::string text = readWhole(entry.path());
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), option); it != std::sregex_iterator(); ++it) {
+      const std::string name = (*it)[1].str();
+      seen.insert(name);
+      EXPECT_NE(help.out.find(name), std::string::npos) << name << " (" << entry.path().filename() << ")";
+      if (entry.path().filename() == "command_run.cpp") {
+        EXPECT_NE(runHelp.out.find(name), std::string::npos) << name;
+      }
+    }
+  }
+  for (const char* name : {"--progress-file", "--json", "--force", "--scenario", "--target-tensile-strength"})
+    EXPECT_TRUE(seen.count(name)) << name << " is accepted but the scan did not find it";
+  // A subcommand's --help is help, not an error.
+  EXPECT_EQ(runCli("calibrate --help").exitCode, 0);
+  EXPECT_EQ(runCli("validate -h").exitCode, 0);
+}
+
+TEST(CliValidate, RecognisesAServerRequestFile) {
+  nlohmann::json inputs = smallExample();
+  inputs.erase("scenario");
+  const nlohmann::json request = {{"name", "rate sweep"}, {"inputs", inputs},
+                                  {"sweep", {{"loading.strain_rate", {1e6, 1e7}}}}};
+  const std::string path = writeSpec(request, "request.json");
+  // Without the scenario (the URL names it) it says what the file is and what to add.
+  const auto unnamed = runCli("validate " + path);
+  EXPECT_EQ(unnamed.exitCode, 2);
+  EXPECT_NE(unnamed.err.find("server request file"), std::string::npos) << unnamed.err;
+  EXPECT_NE(unnamed.err.find("--scenario"), std::string::npos) << unnamed.err;
+  const auto named = runCli("validate " + path + " --scenario dynamic-tension");
+  EXPECT_EQ(named.exitCode, 0) << named.err;
+  EXPECT_NE(named.out.find("POST /processes/dynamic-tension/execution"), std::string::npos) << named.out;
+  // Its inputs are checked as the spec, naming the field.
+  nlohmann::json bad = request;
+  bad["inputs"]["sample"]["porosity"] = 2;
+  const auto invalid = runCli("validate " + writeSpec(bad, "request-bad.json") + " --scenario dynamic-tension");
+  EXPECT_EQ(invalid.exitCode, 2);
+  EXPECT_NE(invalid.err.find("sample.porosity"), std::string::npos) << invalid.err;
+  // A scenario that does not exist is named with the allowed ones.
+  const auto unknown = runCli("validate " + path + " --scenario no-such");
+  EXPECT_EQ(unknown.exitCode, 2);
+  EXPECT_NE(unknown.err.find("dynamic-tension"), std::string::npos) << unknown.err;
 }
 
 }  // namespace

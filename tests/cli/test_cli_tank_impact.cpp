@@ -28,7 +28,7 @@ nlohmann::json tinyTank() {
 TEST(CliTankImpact, RunsAndWritesWaterAndPlateSnapshots) {
   ScratchDir dir;
   const fs::path out = dir.path() / "tank.h5";
-  const auto r = runCli("run " + writeSpec(tinyTank(), "cli-tank.json") + " -o " + out.string() + " --threads 1");
+  const auto r = runCli("run " + writeSpec(tinyTank(), "cli-tank.json") + " -o " + out.string() + " --threads 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["completed"], 1);

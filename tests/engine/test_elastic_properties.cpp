@@ -277,7 +277,7 @@ TEST(ElasticPropertiesScenario, RunsThroughTheCli) {
   ScratchDir dir;
   const std::string specPath = rupture::testing::writeSpec(smallSpec(), "elastic-properties-cli.json");
   const fs::path out = dir.path() / "cli.h5";
-  const auto r = runCli("run " + specPath + " -o " + out.string() + " --threads 1");
+  const auto r = runCli("run " + specPath + " -o " + out.string() + " --threads 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["completed"], 1);

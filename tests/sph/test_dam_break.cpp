@@ -171,7 +171,7 @@ TEST(DamBreak, CliExitsTwoOnBadInputAndRunsASmallPistonColumn) {
                                  {"probes", {{0.0, 0.05}}},
                                  {"run", {{"end_time", 5e-5}}}};
   std::ofstream(dir / "piston.json") << piston.dump();
-  const CliResult ok = runCli("run " + (dir / "piston.json").string() + " -o " + (dir / "piston.h5").string());
+  const CliResult ok = runCli("run " + (dir / "piston.json").string() + " -o " + (dir / "piston.h5").string() + " --json");
   ASSERT_EQ(ok.exitCode, 0) << ok.err;
   const nlohmann::json summary = nlohmann::json::parse(ok.out);
   EXPECT_EQ(summary["completed"], 1);
