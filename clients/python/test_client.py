@@ -1,24 +1,32 @@
 #!/usr/bin/python3
-"""ctest label "python": the client against a real rupture-server (started here on a free port
-with its own data directory) with Debian's /usr/bin/python3 and the standard library only.
+"""ctest label "python": the client package installed as a user installs it, then used against a
+real rupture-server (started here on a free port with its own data directory).
 
     test_client.py RUPTURE_SERVER SOURCE_DIR
 
-Checks: a 2-run sweep end to end (submit, wait with progress, summary as a list of dicts with the
-swept values and a positive peak stress per run, download of a valid HDF5 file), and that a
-misspelled key raises RuptureError with the server's message and status 400.
+1. Installs clients/python with pip into a fresh venv made with --system-site-packages, offline
+   (--no-build-isolation --no-index: Debian's setuptools, wheel and pandas, no package index), from a
+   copy of the sources so that nothing is written into the source tree.
+2. Runs the checks below with the venv's python, which must import the installed package:
+   submit a 2-rate sweep with 2 replicates (and the same request again with reuse=True: the same
+   job), wait with progress, summary per run and aggregated (DataFrames with units), a run's series,
+   the files, a comparison of two jobs, a download of a valid HDF5 file, a plot, and the errors: a
+   misspelled key raises RuptureError with the server's message and status 400, an unknown job 404.
 """
 import json
 import pathlib
+import shutil
 import subprocess
 import sys
 import tempfile
 
-server_binary, source = sys.argv[1], pathlib.Path(sys.argv[2])
-sys.path.insert(0, str(source / "clients" / "python"))
-from rupture_client import Client, RuptureError  # noqa: E402
 
-with tempfile.TemporaryDirectory() as data:
+def checks(server_binary, source, data):
+    import rupture_client
+    from rupture_client import Client, RuptureError
+    import pandas
+
+    assert "site-packages" in rupture_client.__file__, f"imported from {rupture_client.__file__}, not the venv"
     server = subprocess.Popen([server_binary, "--port", "0", "--data-dir", data, "--workers", "2",
                                "--threads-per-run", "1"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
@@ -28,16 +36,47 @@ with tempfile.TemporaryDirectory() as data:
         spec = json.loads((source / "examples" / "dynamic-tension-small.json").read_text())
         spec.pop("scenario")
         spec["loading"]["initial_velocity"] = "VL"  # no preliminary run: about a second per run
-        job = client.submit("dynamic-tension", spec, {"loading.strain_rate": [1e6, 1e7]}, name="client test")
+        sweep = {"loading.strain_rate": [1e6, 1e7]}
+        job = client.submit("dynamic-tension", spec, sweep, name="client test", replicates=2, reuse=True)
+        assert client.submit("dynamic-tension", spec, sweep, name="client test", replicates=2, reuse=True) == job
         doc = client.wait(job, progress=True, poll=0.5, timeout=300)
         assert doc["status"] == "successful", doc
-        rows = client.summary(job, as_dataframe=False)
-        assert [r["loading.strain_rate"] for r in rows] == [1e6, 1e7], rows
-        assert all(r["status"] == "successful" and r["peak_stress"] > 0 for r in rows), rows
+
+        runs = client.summary(job)
+        assert isinstance(runs, pandas.DataFrame) and len(runs) == 4, runs
+        assert sorted(runs["loading.strain_rate"]) == [1e6, 1e6, 1e7, 1e7], runs
+        assert (runs["status"] == "successful").all() and (runs["peak_stress"] > 0).all(), runs
+        assert runs.attrs["units"]["peak_stress"] == "Pa", runs.attrs
+
+        points = client.summary(job, aggregate="replicates")
+        assert isinstance(points, pandas.DataFrame) and len(points) == 2, points
+        mean = [c for c in points.columns if c.startswith("peak_stress") and "mean" in c]
+        assert mean, list(points.columns)
+        for rate in (1e6, 1e7):
+            expected = runs.loc[runs["loading.strain_rate"] == rate, "peak_stress"].mean()
+            got = points.loc[points["loading.strain_rate"] == rate, mean[0]].iloc[0]
+            assert abs(got - expected) <= 1e-9 * abs(expected), (rate, got, expected)
+
+        series = client.series(job, 0)
+        assert isinstance(series, pandas.DataFrame) and len(series) > 1 and "time" in series.columns, series
+        assert series.attrs["units"]["time"] == "s" and series["time"].is_monotonic_increasing
+
+        files = client.files(job)
+        assert list(files["run"]) == [0, 1, 2, 3], files
+
+        other = client.submit("dynamic-tension", spec, {"loading.strain_rate": [1e7]}, name="client test 2")
+        client.wait(other, poll=0.5, timeout=300)
+        both = client.compare([job, other])
+        assert isinstance(both, pandas.DataFrame) and len(both) == 5, both
+        assert sorted(set(both["job"].astype(str))) == sorted({str(job), str(other)}), both
+
         path = pathlib.Path(data) / "job.h5"
         client.download(job, path)
         assert path.read_bytes()[:8] == b"\x89HDF\r\n\x1a\n", "not an HDF5 file"
         assert not pathlib.Path(str(path) + ".part").exists()
+        plot = pathlib.Path(data) / "peak.svg"
+        client.plot(job, plot, x="loading.strain_rate", y="peak_stress")
+        assert b"<svg" in plot.read_bytes()[:400], plot.read_bytes()[:400]
 
         spec["loading"]["strain_rte"] = spec["loading"].pop("strain_rate")
         try:
@@ -51,7 +90,34 @@ with tempfile.TemporaryDirectory() as data:
             raise AssertionError("an unknown job was found")
         except RuptureError as e:
             assert e.status == 404 and "no job '999'" in str(e), str(e)
-        print(f"ok: job {job}, {len(rows)} runs, {path.stat().st_size} bytes downloaded")
+        print(f"ok: job {job}, {len(runs)} runs, {path.stat().st_size} bytes downloaded")
     finally:
         server.terminate()
         server.wait(timeout=30)
+
+
+def main():
+    server_binary, source = str(pathlib.Path(sys.argv[1]).resolve()), pathlib.Path(sys.argv[2]).resolve()
+    with tempfile.TemporaryDirectory() as scratch:
+        scratch = pathlib.Path(scratch)
+        sources = scratch / "rupture-client"
+        shutil.copytree(source / "clients" / "python", sources,
+                        ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__"))
+        venv = scratch / "venv"
+        subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+        install = subprocess.run([str(venv / "bin" / "pip"), "install", "--quiet", "--no-build-isolation", "--no-index",
+                                  str(sources)], capture_output=True, text=True)
+        assert install.returncode == 0, install.stdout + install.stderr
+        data = scratch / "data"
+        data.mkdir()
+        # The checks run in the venv's interpreter, from a directory without the sources.
+        subprocess.run([str(venv / "bin" / "python"), str(pathlib.Path(__file__).resolve()), "--inside",
+                        server_binary, str(source), str(data)], check=True, cwd=str(scratch))
+
+
+if __name__ == "__main__":
+    if sys.argv[1] == "--inside":
+        sys.path = [p for p in sys.path if pathlib.Path(p or ".").resolve() != pathlib.Path(__file__).resolve().parent]
+        checks(sys.argv[2], pathlib.Path(sys.argv[3]), sys.argv[4])
+    else:
+        main()

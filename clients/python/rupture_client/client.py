@@ -1,24 +1,15 @@
-"""A small client for rupture-server, on Python's standard library (pandas and h5py are used when
-they are installed, never required).
-
-    from rupture_client import Client
-    c = Client("http://127.0.0.1:8080")            # token="..." when the server has one
-    job = c.submit("dynamic-tension", inputs, {"loading.strain_rate": [1e5, 1e6]}, name="rates")
-    c.wait(job, progress=True)                        # prints progress, stage and ETA on stderr
-    table = c.summary(job)                            # a pandas DataFrame, or a list of dicts
-    c.download(job, "job.h5")                         # every run in one HDF5 file
-
-Every error the server answers with raises RuptureError carrying its status, its problem document
-and the server's message (detail).
-"""
+"""The client: one method per thing a user does with rupture-server (submit, wait, read tables,
+series and files, compare jobs), on the standard library's HTTP and pandas for every table."""
+import hashlib
 import json
+import os
 import sys
 import time
 import urllib.error
 import urllib.parse
 import urllib.request
 
-__all__ = ["Client", "RuptureError"]
+import pandas
 
 FINAL = ("successful", "failed", "dismissed")
 
@@ -34,6 +25,53 @@ class RuptureError(Exception):
         self.field = problem.get("field") if isinstance(problem, dict) else None
 
 
+def _frame(rows, columns, units, labels=None):
+    """A DataFrame with the given leading columns (then any others, sorted), units and labels in attrs."""
+    extra = sorted({k for row in rows for k in row if k not in columns})
+    frame = pandas.DataFrame(rows, columns=list(columns) + extra)
+    frame.attrs["units"] = dict(units or {})
+    frame.attrs["labels"] = dict(labels or {})
+    return frame
+
+
+def _flatten(row):
+    """A replicate table's {"peak_stress": {"mean": ..., "sd": ...}} as "peak_stress.mean", ... columns."""
+    flat = {}
+    for key, value in row.items():
+        if isinstance(value, dict):
+            for member, inner in value.items():
+                flat[f"{key}.{member}"] = inner
+        else:
+            flat[key] = value
+    return flat
+
+
+class _ProgressLine:
+    """Progress on stderr: a redrawn bar on a terminal, one line per change otherwise."""
+
+    def __init__(self):
+        self.terminal = sys.stderr.isatty()
+        self.last = None
+
+    def show(self, doc):
+        eta = doc.get("eta_s")
+        eta_text = f"ETA {eta:.0f} s" if isinstance(eta, (int, float)) else "ETA unknown"
+        percent = doc.get("progress", 0)
+        if self.terminal:
+            filled = int(round(percent * 30 / 100))
+            line = (f"\r\033[Kjob {doc['jobID']} [{'#' * filled}{'.' * (30 - filled)}] {percent:3d} %  "
+                    f"{doc['status']}  {eta_text}  {doc.get('stage', '')}")[:160]
+        else:
+            line = f"job {doc['jobID']}: {doc['status']} {percent:3d} %  {doc.get('stage', '')}  {eta_text}"
+        if line != self.last:
+            print(line, file=sys.stderr, end="" if self.terminal else "\n", flush=True)
+            self.last = line
+
+    def close(self):
+        if self.terminal and self.last is not None:
+            print(file=sys.stderr, flush=True)
+
+
 class Client:
     def __init__(self, base_url="http://127.0.0.1:8080", token=None, timeout=60.0):
         self.base = base_url.rstrip("/")
@@ -42,8 +80,8 @@ class Client:
 
     # -- HTTP ------------------------------------------------------------------------------------
 
-    def _request(self, method, path, body=None, accept="application/json"):
-        headers = {"Accept": accept}
+    def _request(self, method, path, body=None, accept="application/json", headers=None):
+        headers = dict(headers or {}, Accept=accept)
         data = None
         if body is not None:
             data = json.dumps(body).encode("utf-8")
@@ -64,53 +102,97 @@ class Client:
         except urllib.error.URLError as e:
             raise RuptureError(0, {}, f"{method} {path}: cannot reach {self.base}: {e.reason}") from None
 
-    def _json(self, method, path, body=None):
-        with self._request(method, path, body) as response:
+    def _json(self, method, path, body=None, headers=None):
+        with self._request(method, path, body, headers=headers) as response:
             return json.loads(response.read().decode("utf-8"))
 
     @staticmethod
     def _id(job):
         return str(job["jobID"] if isinstance(job, dict) else job)
 
-    # -- the API -----------------------------------------------------------------------------------
+    def _save(self, path_on_server, path, accept):
+        """Streams a download to path + ".part" and renames it: a failed download leaves no file."""
+        part = str(path) + ".part"
+        try:
+            with self._request("GET", path_on_server, accept=accept) as response, open(part, "wb") as out:
+                while True:
+                    chunk = response.read(1 << 16)
+                    if not chunk:
+                        break
+                    out.write(chunk)
+        except BaseException:
+            if os.path.exists(part):
+                os.remove(part)
+            raise
+        os.replace(part, path)
+        return path
+
+    # -- jobs --------------------------------------------------------------------------------------
 
     def processes(self):
         """The scenario names."""
         return [p["id"] for p in self._json("GET", "/processes")["processes"]]
 
-    def submit(self, scenario, inputs, sweep=None, name=None, sweep_mode="grid"):
-        """Submits a sweep (dotted path -> list of values) and returns the job id (a string)."""
+    def submit(self, scenario, inputs, sweep=None, name=None, sweep_mode="grid", replicates=None, refine=None,
+               reuse=False):
+        """Submits a job and returns its id (a string).
+
+        inputs: the spec without "scenario"; sweep: {dotted path: [values]}; sweep_mode "grid" or
+        "zip"; replicates: runs per sweep point (an int n: n runs on sample seeds seed, seed+1, ...; or the server's
+        {"count": n, "vary": "sample.seed"}); refine: the server's
+        refinement request (docs/server.md, "Studies"). With reuse=True the same request returns the
+        job an earlier identical request made (through an Idempotency-Key derived from the request),
+        unless that job failed or was dismissed: then a new job is made."""
         body = {"inputs": inputs, "sweep_mode": sweep_mode}
-        if sweep:
-            body["sweep"] = sweep
-        if name:
-            body["name"] = name
+        if isinstance(replicates, int) and not isinstance(replicates, bool):
+            replicates = {"count": replicates, "vary": "sample.seed"}
+        for key, value in (("sweep", sweep), ("name", name), ("replicates", replicates), ("refine", refine)):
+            if value is not None:
+                body[key] = value
         path = "/processes/" + urllib.parse.quote(scenario, safe="") + "/execution"
-        return self._json("POST", path, body)["jobID"]
+        if not reuse:
+            return self._json("POST", path, body)["jobID"]
+        digest = hashlib.sha256(json.dumps([scenario, body], sort_keys=True).encode("utf-8")).hexdigest()
+        for attempt in range(100):
+            key = f"rupture-client-{digest}-{attempt}"
+            job = self._json("POST", path, body, headers={"Idempotency-Key": key})["jobID"]
+            if self.status(job)["status"] not in ("failed", "dismissed"):
+                return job
+        raise RuptureError(0, {}, "reuse: 100 earlier identical jobs all failed or were dismissed")
 
     def status(self, job):
         """The job's status document (status, progress, stage, elapsed_s, eta_s, runs, ...)."""
         return self._json("GET", "/jobs/" + self._id(job))
 
+    def jobs(self, status=None, limit=50):
+        """The jobs, newest first, as a DataFrame (jobID, name, processID, status, progress, ...)."""
+        query = {"limit": limit}
+        if status:
+            query["status"] = status if isinstance(status, str) else ",".join(status)
+        doc = self._json("GET", "/jobs?" + urllib.parse.urlencode(query))
+        rows = [{k: v for k, v in j.items() if not isinstance(v, (list, dict))} for j in doc.get("jobs", [])]
+        return _frame(rows, ["jobID", "name", "processID", "status", "progress"], {})
+
     def wait(self, job, progress=False, poll=1.0, timeout=None):
         """Polls until the job is successful, failed or dismissed; returns its last status document.
-        With progress=True prints one line per change on stderr. Raises RuptureError when the job
-        failed or was dismissed (the message says which runs and why), TimeoutError after timeout s."""
-        start, last = time.monotonic(), None
-        while True:
-            doc = self.status(job)
-            if progress:
-                eta = doc.get("eta_s")
-                line = (f"job {doc['jobID']}: {doc['status']} {doc['progress']:3d} %  {doc.get('stage', '')}"
-                        + (f"  ETA {eta:.0f} s" if isinstance(eta, (int, float)) else ""))
-                if line != last:
-                    print(line, file=sys.stderr, flush=True)
-                    last = line
-            if doc["status"] in FINAL:
-                break
-            if timeout is not None and time.monotonic() - start > timeout:
-                raise TimeoutError(f"job {doc['jobID']} still {doc['status']} after {timeout} s")
-            time.sleep(poll)
+        With progress=True shows a progress bar (a line per change when stderr is not a terminal).
+        Raises RuptureError when the job failed or was dismissed (the message says which runs and
+        why), TimeoutError after timeout s."""
+        start = time.monotonic()
+        line = _ProgressLine() if progress else None
+        try:
+            while True:
+                doc = self.status(job)
+                if line:
+                    line.show(doc)
+                if doc["status"] in FINAL:
+                    break
+                if timeout is not None and time.monotonic() - start > timeout:
+                    raise TimeoutError(f"job {doc['jobID']} still {doc['status']} after {timeout} s")
+                time.sleep(poll)
+        finally:
+            if line:
+                line.close()
         if doc["status"] != "successful":
             errors = [f"run {r['index']}: {r.get('error', r['status'])}" for r in doc.get("runs", [])
                       if r["status"] != "successful"]
@@ -118,50 +200,97 @@ class Client:
                                + "; ".join(errors))
         return doc
 
-    def summary(self, job, as_dataframe=None):
-        """One row per run: the swept values and the summary scalars. A pandas DataFrame when pandas
-        is installed (as_dataframe=False forces a list of dicts), with the units in .attrs["units"]."""
-        doc = self._json("GET", "/jobs/" + self._id(job) + "/summary")
-        rows = doc.get("rows", [])
-        columns = ["run", "status"] + [c["name"] if isinstance(c, dict) else c for c in doc.get("columns", [])]
-        units = {c["name"]: c.get("unit", "") for c in doc.get("columns", []) if isinstance(c, dict)}
-        units.update(doc.get("units") or {})
-        if as_dataframe is not False:
-            try:
-                import pandas
-            except ImportError:
-                if as_dataframe:
-                    raise
-            else:
-                extra = [k for row in rows for k in row if k not in columns]
-                frame = pandas.DataFrame(rows, columns=columns + sorted(set(extra)))
-                frame.attrs["units"] = units
-                return frame
-        return rows
-
-    def summary_document(self, job):
-        """The summary as the server sends it (columns, units, rows, ...)."""
-        return self._json("GET", "/jobs/" + self._id(job) + "/summary")
-
-    def download(self, job, path, run=None):
-        """Saves the job's merged HDF5 file (or one run's file with run=k) at path; returns path.
-        Written to path + ".part" and renamed, so a failed download leaves no file behind."""
-        where = "/jobs/" + self._id(job) + ("/results" if run is None else f"/runs/{int(run)}/results")
-        part = str(path) + ".part"
-        with self._request("GET", where, accept="application/x-hdf5") as response, open(part, "wb") as out:
-            while True:
-                chunk = response.read(1 << 16)
-                if not chunk:
-                    break
-                out.write(chunk)
-        import os
-        os.replace(part, path)
-        return path
-
-    def dismiss(self, job):
+    def cancel(self, job):
+        """Cancels the job: queued runs never start, running runs stop; finished runs stay."""
         return self._json("DELETE", "/jobs/" + self._id(job))
 
+    dismiss = cancel
+
+    def retry(self, job):
+        """Puts the job's failed runs back in the queue."""
+        return self._json("POST", "/jobs/" + self._id(job) + "/retry", {})
+
+    # -- tables ------------------------------------------------------------------------------------
+
+    def summary(self, job, aggregate=None):
+        """The job's summary as a DataFrame: one row per run (swept values and summary scalars), or
+        with aggregate="replicates" one row per sweep point (mean, sd, 95 % interval, n of each
+        scalar). Units in .attrs["units"], human labels in .attrs["labels"]."""
+        return self._table("/jobs/" + self._id(job) + "/summary", aggregate)
+
+    def summary_document(self, job, aggregate=None):
+        """The summary as the server sends it (columns, units, rows, rate_dependence, ...)."""
+        query = "?aggregate=" + aggregate if aggregate else ""
+        return self._json("GET", "/jobs/" + self._id(job) + "/summary" + query)
+
+    def compare(self, jobs, aggregate=None):
+        """The rows of several jobs in one DataFrame, with a leading "job" column."""
+        ids = ",".join(self._id(j) for j in jobs)
+        return self._table("/summary?jobs=" + urllib.parse.quote(ids, safe=","), aggregate)
+
+    def _table(self, path, aggregate):
+        if aggregate:
+            path += ("&" if "?" in path else "?") + "aggregate=" + urllib.parse.quote(aggregate)
+        doc = self._json("GET", path)
+        rows = [_flatten(row) for row in doc.get("rows", [])]
+        columns = []
+        for c in doc.get("columns", []):
+            name = c["name"] if isinstance(c, dict) else c
+            members = c.get("members") if isinstance(c, dict) else None
+            columns += [f"{name}.{m}" for m in members] if members else [name]
+        lead = [c for c in ("job", "run", "status") if any(c in row for row in rows) and c not in columns]
+        units, labels = {}, {}
+        for c in (c for c in doc.get("columns", []) if isinstance(c, dict)):
+            for member in c.get("members") or [None]:
+                key = f"{c['name']}.{member}" if member else c["name"]
+                units[key] = "1" if member == "n" else c.get("unit", "")
+                if "label" in c:
+                    labels[key] = c["label"] + (f" ({member})" if member else "")
+        units.update(doc.get("units") or {})
+        labels.update(doc.get("labels") or {})
+        return _frame(rows, lead + columns, units, labels)
+
+    def series(self, job, run, names=None):
+        """One run's time series as a DataFrame (one column per series, SI units in .attrs["units"])."""
+        path = f"/jobs/{self._id(job)}/runs/{int(run)}/series"
+        if names:
+            path += "?names=" + urllib.parse.quote(",".join(names), safe=",")
+        doc = self._json("GET", path)
+        frame = pandas.DataFrame({name: doc["series"][name] for name in doc["names"]}, columns=doc["names"])
+        frame.attrs["units"] = doc.get("units", {})
+        frame.attrs["labels"] = doc.get("labels", {})
+        return frame
+
+    # -- files -------------------------------------------------------------------------------------
+
+    def files(self, job):
+        """The job's downloadable files as a DataFrame: one row per finished run with the URLs of its
+        HDF5 file, ParaView sidecar and bundle (download them with download(job, path, run=k))."""
+        doc = self.status(job)
+        rows = []
+        for r in doc.get("runs", []):
+            if r.get("status") != "successful":
+                continue
+            prefix = f"{self.base}/jobs/{doc['jobID']}/runs/{r['index']}"
+            rows.append({"run": r["index"], "results": prefix + "/results", "xdmf": prefix + "/results.xdmf",
+                         "bundle": prefix + "/bundle", "series": prefix + "/series"})
+        return _frame(rows, ["run", "results", "xdmf", "bundle", "series"], {})
+
+    def download(self, job, path, run=None):
+        """Saves the job's merged HDF5 file (or one run's file with run=k) at path; returns path."""
+        where = "/jobs/" + self._id(job) + ("/results" if run is None else f"/runs/{int(run)}/results")
+        return self._save(where, path, "application/x-hdf5")
+
+    def plot(self, job, path, x=None, y=None, format=None, **options):
+        """Saves the server's plot of the job (SVG or PNG, after path's extension or format=),
+        e.g. plot(job, "peak.png", x="loading.strain_rate", y="peak_stress", title="...")."""
+        fmt = format or os.path.splitext(str(path))[1].lstrip(".").lower() or "svg"
+        query = {k: v for k, v in dict(options, x=x, y=y, format=fmt).items() if v is not None}
+        types = {"svg": "image/svg+xml", "png": "image/png", "pdf": "application/pdf"}
+        return self._save("/jobs/" + self._id(job) + "/summary.svg?" + urllib.parse.urlencode(query), path,
+                          types.get(fmt, "*/*"))
+
     def open_results(self, job, path):
-        """Downloads the merged file and opens it with h5py (which must be installed)."""
+        """Downloads the merged file and opens it with h5py (pip extra "hdf5", Debian python3-h5py)."""
         import h5py
         return h5py.File(self.download(job, path), "r")
