@@ -15,6 +15,7 @@ int schemaCommand(const Args& args);
 int calibrateCommand(const Args& args);
 int benchCommand(const Args& args);
 int xdmfCommand(const Args& args);
+int plotCommand(const Args& args);
 
 /// Exit code 2 with a message on stderr.
 int usageError(const std::string& message);

@@ -17,6 +17,13 @@ commands:
                                           (rupture run --help says more)
   xdmf RESULT.h5 [-o OUT.xdmf2]           write a ParaView sidecar for a run file, or one per run
                                           for a job's merged file (RESULT.run-<k>.xdmf2)
+  plot RESULT.h5 -o OUT.png|svg|pdf [--field F] [--snapshot K|--time T] [--view xy|xz|yz]
+       [--body all|fluid|N] [--slice D] [--bonds broken|all|none] [--min V] [--max V]
+       [--width W] [--height H] [--run K] [--force]
+                                          a picture of a run's field at a snapshot (damage, stress,
+                                          speed, pressure; broken bonds in red)
+  plot RESULT.h5 --series Y[,Y...] [--x X] -o OUT.png|svg|pdf
+                                          a run's time series (rupture plot --help says more)
   validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
   validate REQUEST.json [--scenario NAME] check a server request file (the body of
                                           POST /processes/NAME/execution): its inputs against NAME
@@ -57,7 +64,7 @@ int main(int argc, char** argv) {
   const bool wantsHelp = std::find_if(rest.begin(), rest.end(), [](const std::string& a) {
                            return a == "--help" || a == "-h";
                          }) != rest.end();
-  if (wantsHelp && command != "run") {  // run has its own, longer help
+  if (wantsHelp && command != "run" && command != "plot") {  // run and plot have their own, longer help
     std::cout << kUsage;
     return 0;
   }
@@ -69,6 +76,7 @@ int main(int argc, char** argv) {
     if (command == "calibrate") return calibrateCommand(rest);
     if (command == "bench") return benchCommand(rest);
     if (command == "xdmf") return xdmfCommand(rest);
+    if (command == "plot") return plotCommand(rest);
   } catch (const std::exception& e) {
     std::cerr << "rupture " << command << ": " << e.what() << "\n";
     return 1;

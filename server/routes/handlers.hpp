@@ -31,6 +31,10 @@ void getRunResults(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunSeries(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunXdmf(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunBundle(ServerContext&, const httplib::Request&, httplib::Response&);
+// picture_handlers.cpp
+void getRunField(ServerContext&, const httplib::Request&, httplib::Response&);
+/// GET .../series with format=svg|png|pdf (getRunSeries hands it over).
+void getRunSeriesPlot(ServerContext&, const httplib::Request&, httplib::Response&);
 // summary_handlers.cpp
 void getJobSummary(ServerContext&, const httplib::Request&, httplib::Response&);
 void getJobSummaryPlot(ServerContext&, const httplib::Request&, httplib::Response&);

@@ -5,6 +5,8 @@
 #include <httplib.h>
 
 #include "common/log.hpp"
+#include "io/hdf5_file.hpp"
+#include "render/snapshot_field.hpp"
 #include "common/public_message.hpp"
 #include "routes/answers.hpp"
 #include "routes/documents.hpp"
@@ -13,6 +15,7 @@
 #include "rupture/run.hpp"
 #include "studies/summary.hpp"
 #include "views/html_views.hpp"
+#include "views/run_page.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
@@ -92,6 +95,29 @@ void getJobs(ServerContext& ctx, const Request& req, Response& res) {
   sendJson(res, doc);
 }
 
+namespace {
+
+/// Marks "picture": true on the status document's runs whose file holds snapshots, so the job page
+/// shows a thumbnail of each (the first kMaxThumbnails: a page of a thousand runs stays light).
+void markRunsWithPictures(ServerContext& ctx, const std::vector<RunRecord>& runs, Json& status) {
+  constexpr int kMaxThumbnails = 60;
+  int marked = 0;
+  for (const RunRecord& run : runs) {
+    if (run.status != Status::Successful || marked >= kMaxThumbnails) continue;
+    try {
+      const io::Hdf5File file = io::Hdf5File::openReadOnly((ctx.resultsDir / run.resultPath).string());
+      if (render::listSnapshots(file, "").empty()) continue;
+    } catch (const std::exception&) {
+      continue;  // no picture for a file that cannot be read; its download says why
+    }
+    for (auto& r : status["runs"])
+      if (r.value("index", -1) == run.key.index) r["picture"] = true;
+    ++marked;
+  }
+}
+
+}  // namespace
+
 void getJob(ServerContext& ctx, const Request& req, Response& res) {
   const JobRecord job = loadJob(ctx, req);
   auto runs = ctx.store->runs(job.id);
@@ -107,7 +133,9 @@ void getJob(ServerContext& ctx, const Request& req, Response& res) {
                "&y=" + httplib::detail::encode_query_param(y);
       }
     }
-    return sendHtml(res, jobHtml(statusInfo(job, &runs), summary, plot));
+    Json status = statusInfo(job, &runs);
+    markRunsWithPictures(ctx, runs, status);
+    return sendHtml(res, jobHtml(status, summary, plot));
   }
   sendJson(res, statusInfo(job, &runs));
 }
@@ -143,6 +171,56 @@ void postRetry(ServerContext& ctx, const Request& req, Response& res) {
   sendJson(res, doc);
 }
 
+namespace {
+
+/// What the run page shows: the run, its declared summary fields, the pictures its file can give,
+/// and the picture the query chose (each choice checked: a 400 names a bad one).
+Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, const RunRecord& run, Json doc) {
+  Json data;
+  data["job"] = {{"jobID", std::to_string(job.id)}, {"processID", job.processId}};
+  if (!job.name.empty()) data["job"]["name"] = job.name;
+  const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
+  Json fields = Json::array();
+  if (scenario) {
+    const int dimension = rupture::specDimension(rupture::scenarioSchema(scenario->name), run.spec);
+    for (const rupture::ResultField& f : scenario->summary)
+      fields.push_back({{"name", f.name}, {"label", f.label}, {"unit", f.unitFor(dimension)}});
+  }
+  data["summary_fields"] = fields;
+  Json swept = Json::object();  // label and unit of each swept path, from the schema
+  if (scenario)
+    for (const auto& path : job.sweptPaths) {
+      const Json schema = rupture::scenarioSchema(scenario->name);
+      swept[path.get<std::string>()] = {{"label", rupture::specFieldLabel(schema, path.get<std::string>())},
+                                        {"unit", rupture::specFieldUnit(schema, path.get<std::string>())}};
+    }
+  data["swept_fields"] = swept;
+  Json chosen = Json::object();
+  if (run.status == Status::Successful) {
+    data["pictures"] = runPictures(ctx.resultsDir / run.resultPath, scenario);
+    const Json& available = data["pictures"]["fields"];
+    if (req.has_param("field")) {
+      const std::string field = req.get_param_value("field");
+      if (std::find(available.begin(), available.end(), field) == available.end())
+        throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                       "field '" + field.substr(0, 64) + "' is not recorded in this run; allowed: " + available.dump(),
+                       "field", Json{{"in", "query"}});
+      chosen["field"] = field;
+    }
+    if (req.has_param("snapshot")) {
+      const std::int64_t count = static_cast<std::int64_t>(data["pictures"]["snapshots"].size());
+      chosen["snapshot"] = intParam(req, "snapshot", 0, 0, std::max<std::int64_t>(count - 1, 0));
+    }
+    if (auto view = choiceParam(req, "view", {"", "xy", "xz", "yz"})) chosen["view"] = *view;
+    if (auto bonds = choiceParam(req, "bonds", {"broken", "all", "none"})) chosen["bonds"] = *bonds;
+  }
+  data["chosen"] = chosen;
+  data["run"] = std::move(doc);
+  return data;
+}
+
+}  // namespace
+
 void getRuns(ServerContext& ctx, const Request& req, Response& res) {
   const JobRecord job = loadJob(ctx, req);
   Json list = Json::array();
@@ -155,6 +233,7 @@ void getRun(ServerContext& ctx, const Request& req, Response& res) {
   const RunRecord run = loadRun(ctx, req, job);
   Json doc = runDocument(job, run);
   doc["spec"] = run.spec;
+  if (wantsHtml(req)) return sendHtml(res, runHtml(runPageData(ctx, req, job, run, std::move(doc))));
   sendJson(res, doc);
 }
 

@@ -108,6 +108,8 @@ void getRunBundle(ServerContext& ctx, const Request& req, Response& res) {
 }
 
 void getRunSeries(ServerContext& ctx, const Request& req, Response& res) {
+  const std::string format = choiceParam(req, "format", {"json", "csv", "svg", "png", "pdf"}).value_or("json");
+  if (format == "svg" || format == "png" || format == "pdf") return getRunSeriesPlot(ctx, req, res);
   const JobRecord job = loadJob(ctx, req);
   const RunRecord run = finishedRun(ctx, req, job);
   const bool csv = wantsCsv(req);

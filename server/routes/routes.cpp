@@ -48,6 +48,7 @@ const std::vector<Route>& routeTable() {
       {"GET", "/jobs/" + kId + "/runs/" + kId, getRun},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/results", getRunResults},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/series", getRunSeries},
+      {"GET", "/jobs/" + kId + "/runs/" + kId + "/field", getRunField},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/results\\.xdmf", getRunXdmf},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/bundle", getRunBundle},
       {"GET", "/jobs/" + kId + "/summary", getJobSummary},

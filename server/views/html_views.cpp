@@ -1,8 +1,9 @@
 #include "views/html_views.hpp"
 
+#include "views/html_page.hpp"
+
 #include <algorithm>
 #include <map>
-#include <random>
 
 #include "io/xml_escape.hpp"
 #include "rupture/quantity_text.hpp"
@@ -11,55 +12,7 @@ namespace rupture::server {
 namespace {
 
 using rupture::io::xmlEscape;
-
-std::string esc(const Json& v) {
-  if (v.is_string()) return xmlEscape(v.get<std::string>());
-  if (v.is_null()) return "";
-  return xmlEscape(v.dump());
-}
-
-std::string newNonce() {
-  static thread_local std::mt19937_64 engine{std::random_device{}()};
-  static const char* digits = "0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
-  std::string out;
-  for (int i = 0; i < 22; ++i) out += digits[engine() % 62];
-  return out;
-}
-
-std::string href(const std::string& path) { return xmlEscape(path); }
-
-/// The page frame: one inline style, navigation, the content, and an optional inline script.
-HtmlPage page(const std::string& title, const std::string& content, const std::string& script = {}) {
-  HtmlPage p;
-  p.nonce = newNonce();
-  p.body = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-           "<title>" + xmlEscape(title) + " - Rupture</title>"
-           "<style nonce=\"" + p.nonce + "\">"
-           "body{font-family:system-ui,sans-serif;margin:1.5em auto;max-width:72em;padding:0 1em;color:#222}"
-           "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left}"
-           "th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}"
-           "nav a{margin-right:1em}progress{width:16em}.unit{color:#666;font-weight:normal}"
-           "img{max-width:100%;border:1px solid #ddd}.error{color:#a40000}</style></head><body>"
-           "<nav><a href=\"/?f=html\">Rupture</a><a href=\"/processes?f=html\">Scenarios</a>"
-           "<a href=\"/jobs?f=html\">Jobs</a><a href=\"/openapi.yaml\">API</a></nav>\n<h1>" +
-           xmlEscape(title) + "</h1>\n" + content;
-  if (!script.empty()) p.body += "<script nonce=\"" + p.nonce + "\">" + script + "</script>";
-  p.body += "</body></html>\n";
-  return p;
-}
-
-std::string cell(const Json& v) {
-  const bool number = v.is_number();
-  return std::string(number ? "<td class=\"num\">" : "<td>") + esc(v) + "</td>";
-}
-
-/// A table cell for a value in `unit`: a number as people read it (rupture::formatQuantity), its
-/// full precision in the title; anything else as cell() writes it.
-std::string quantityCell(const Json& v, const std::string& unit) {
-  if (!v.is_number()) return cell(v);
-  return "<td class=\"num\" title=\"" + esc(v) + "\">" + xmlEscape(rupture::formatQuantity(v.get<double>(), unit)) + "</td>";
-}
+using namespace html;
 
 std::string unitOfSchema(const Json& node) {
   for (const char* key : {"x-unit", "unit"})
@@ -85,11 +38,6 @@ void inputRows(const Json& schema, const std::string& prefix, std::string& out, 
 }
 
 }  // namespace
-
-std::string HtmlPage::csp() const {
-  return "default-src 'none'; img-src 'self'; connect-src 'self'; style-src 'nonce-" + nonce +
-         "'; script-src 'nonce-" + nonce + "'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'";
-}
 
 HtmlPage landingHtml(const Json& landing) {
   std::string c = "<p>" + esc(landing.value("description", Json(""))) + "</p><ul>";
@@ -181,10 +129,11 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     for (const auto& col : summary.value("columns", Json::array()))
       if (col.is_object()) sweptUnit[col.value("name", "")] = col.value("unit", "");
   for (const auto& p : swept) c += "<th>" + esc(p) + "</th>";
-  c += "<th>Status</th><th>Progress</th><th>Stage</th><th>Files</th></tr>\n";
+  c += "<th>Status</th><th>Progress</th><th>Stage</th><th>Files</th><th>Picture</th></tr>\n";
   for (const auto& r : status.value("runs", Json::array())) {
     const std::string k = std::to_string(r.value("index", 0));
-    c += "<tr id=\"run-" + k + "\"><td>" + k + "</td>";
+    const std::string runPage = base + "/runs/" + k + "?f=html";
+    c += "<tr id=\"run-" + k + "\"><td><a href=\"" + href(runPage) + "\">" + k + "</a></td>";
     for (const auto& p : swept) {
       const std::string path = p.get<std::string>();
       c += quantityCell(r["swept"].value(path, Json()), sweptUnit[path]);
@@ -198,6 +147,10 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     } else if (r.contains("error")) {  // a failed run's files do not exist: its reason instead
       c += "<span class=\"error\">" + esc(r["error"]) + "</span>";
     }
+    c += "</td><td>";
+    if (r.value("picture", false))  // the run's field at its last snapshot, linking to its page
+      c += "<a href=\"" + href(runPage) + "\"><img class=\"thumb\" alt=\"run " + k + "\" width=\"160\" height=\"120\" src=\"" +
+           href(base + "/runs/" + k + "/field?thumbnail=1&width=160&height=120") + "\"></a>";
     c += "</td></tr>\n";
   }
   c += "</table>\n";

@@ -5,15 +5,9 @@
 #include <string>
 
 #include "common/problem.hpp"
+#include "views/html_page.hpp"
 
 namespace rupture::server {
-
-/// A page and the nonce its CSP header must carry.
-struct HtmlPage {
-  std::string body;
-  std::string nonce;
-  std::string csp() const;
-};
 
 HtmlPage landingHtml(const Json& landing);
 /// The scenarios, each with its inputs (name, unit from "x-unit" when the schema has it, description).

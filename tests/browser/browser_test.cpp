@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "server_test_support.hpp"
+#include "support/png_probe.hpp"
 
 namespace rupture::server {
 namespace {
@@ -47,6 +48,31 @@ TEST(Browser, HeadlessChromiumShowsTheJobRows) {
     EXPECT_NE(text.find("id=\"summary\""), std::string::npos);
     EXPECT_NE(text.find("<b id=\"status\">successful</b>"), std::string::npos);
   }
+}
+
+TEST(Browser, ARunPageShowsItsFieldPicture) {
+  // The run page as the browser draws it: its screenshot holds the damage picture's colours
+  // (viridis' dark end for the intact elements, the red of the broken bonds), so the <img> loaded.
+  const std::string chromium = findChromium();
+  if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (deploy/setup.sh installs it)";
+  ASSERT_TRUE(test::scenarioAvailable());
+  test::LiveServer live;
+  auto client = live.client();
+  Json inputs = test::smallInputs();
+  const std::int64_t jobId = test::submit(*client, Json{{"inputs", inputs}, {"name", "run page"}});
+  ASSERT_GT(jobId, 0);
+  ASSERT_EQ(test::waitForJob(*client, jobId, {"successful", "failed"}, 180)["status"], "successful");
+  test::TempDir profile;
+  const fs::path shot = profile.path() / "run.png";
+  const std::string url = "http://127.0.0.1:" + std::to_string(live.port()) + "/jobs/" + std::to_string(jobId) +
+                          "/runs/0?f=html";
+  const std::string cmd = "timeout 120 " + chromium + " --headless --no-sandbox --disable-gpu --user-data-dir=" +
+                          profile.path().string() + " --virtual-time-budget=5000 --window-size=1280,1000 --screenshot=" +
+                          shot.string() + " '" + url + "' > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const auto png = rupture::testing::probePng(test::readText(shot));
+  ASSERT_EQ(png.width, 1280);
+  EXPECT_GT(png.near(68, 1, 84, 16), 5000u) << "the damage picture's intact elements are on screen";
 }
 
 }  // namespace

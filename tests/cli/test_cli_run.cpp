@@ -186,13 +186,13 @@ TEST(CliRun, PrintsOneTableAndNeverReplacesAFileUnasked) {
 }
 
 TEST(CliHelp, ListsEveryOptionTheCommandsAccept) {
-  // Every "--option" the CLI's sources compare an argument with is in `rupture --help`, and every
-  // option of `run` in `rupture run --help`.
+  // Every "--option" string in the CLI's sources (an argument compared with it, or a table of
+  // accepted options) is in `rupture --help`, and every option of `run` in `rupture run --help`.
   const auto help = runCli("--help");
   ASSERT_EQ(help.exitCode, 0);
   const auto runHelp = runCli("run --help");
   ASSERT_EQ(runHelp.exitCode, 0);
-  const std::regex option(R"re(== "(--[a-z][a-z-]*)")re");
+  const std::regex option(R"re("(--[a-z][a-z-]*)")re");
   std::set<std::string> seen;
   for (const auto& entry : fs::directory_iterator(fs::path(RUPTURE_SOURCE_DIR) / "engine" / "cli")) {
     const std::string text = readWhole(entry.path());
@@ -205,11 +205,13 @@ TEST(CliHelp, ListsEveryOptionTheCommandsAccept) {
       }
     }
   }
-  for (const char* name : {"--progress-file", "--json", "--force", "--scenario", "--target-tensile-strength"})
+  for (const char* name : {"--progress-file", "--json", "--force", "--scenario", "--target-tensile-strength", "--series",
+                           "--slice"})
     EXPECT_TRUE(seen.count(name)) << name << " is accepted but the scan did not find it";
   // A subcommand's --help is help, not an error.
   EXPECT_EQ(runCli("calibrate --help").exitCode, 0);
   EXPECT_EQ(runCli("validate -h").exitCode, 0);
+  EXPECT_NE(runCli("plot --help").out.find("--bonds"), std::string::npos);
 }
 
 TEST(CliValidate, RecognisesAServerRequestFile) {

@@ -1,0 +1,54 @@
+#pragma once
+// The picture of a run's field at one snapshot: every particle a disc coloured by the field with
+// viridis and a labelled colour bar, and where the run has bonds its broken bonds drawn as red
+// lines, so the crack network of the seeds' figures shows (Longchamp et al. 2024, Fig. 4; Ha &
+// Bobaru 2010, Fig. 5). Drawn with cairo as PNG, SVG or PDF: the server's run pages and
+// `rupture plot` show the same image.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "io/hdf5_file.hpp"
+#include "render/canvas.hpp"
+#include "render/snapshot_field.hpp"
+
+namespace rupture::render {
+
+/// Every member is optional; what is left empty is chosen from the run (see each member).
+struct FieldImageRequest {
+  std::string root;                   ///< the run's group in a job's merged file; "" for a run file
+  std::string field;                  ///< a FieldDeclaration name; "": the first the run recorded
+  std::optional<long> snapshot;       ///< index, negative from the end (−1 the last, the default)
+  std::optional<double> time;         ///< s: the snapshot nearest this time (instead of `snapshot`)
+  std::string view;                   ///< "xy", "xz" or "yz"; "": the section or plane that shows most
+  std::string body;                   ///< "all", "fluid" or a body index; "": the plate for a tank's
+                                      ///< damage, the fluid for other SPH fields, else all
+  std::optional<double> slice;        ///< m: draw only points within this distance of the middle of
+                                      ///< the depth axis (0: all); default: one particle spacing for a
+                                      ///< 3D fluid, 0 otherwise
+  std::string bonds = "broken";       ///< "broken", "all" or "none"
+  std::optional<double> min, max;     ///< colour range in the field's unit; default: the data's
+                                      ///< (0..1 for damage)
+  int width = 800, height = 600;      ///< px (pt for PDF)
+  bool thumbnail = false;             ///< no title, no colour bar: the job page's small images
+  ImageFormat format = ImageFormat::Png;
+};
+
+inline constexpr int kMinImageSide = 48, kMaxImageSide = 4000;
+
+struct FieldImage {
+  std::string bytes;
+  std::string mediaType;                   ///< image/png, image/svg+xml or application/pdf
+  std::string field, label, unit;          ///< what was drawn
+  std::size_t snapshot = 0, snapshots = 0; ///< the index drawn, of how many
+  double time = 0;                         ///< s
+  double min = 0, max = 0;                 ///< the colour range used
+  std::size_t drawn = 0;                   ///< particles drawn
+};
+
+/// Renders the picture. Throws FieldImageError naming the member at fault (an unknown field, a
+/// snapshot out of range, a run without snapshots: "snapshot"), std::runtime_error when the file
+/// cannot be read.
+FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& request);
+
+}  // namespace rupture::render

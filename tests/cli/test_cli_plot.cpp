@@ -1,0 +1,66 @@
+// `rupture plot` on a real run file: the damage picture (a PNG of the asked size with the field's
+// colours, not one colour), the series plot, the formats by extension, and bad options exiting 2
+// naming the option; an existing picture is not replaced without --force.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli_runner.hpp"
+#include "support/png_probe.hpp"
+#include "support/test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rupture::testing::readWhole;
+using rupture::testing::runCli;
+using rupture::testing::ScratchDir;
+using rupture::testing::writeSpec;
+
+TEST(CliPlot, DrawsTheFieldAndTheSeriesOfARun) {
+  ScratchDir dir;
+  nlohmann::json spec =
+      nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+  spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
+  const fs::path run = dir.path() / "run.h5";
+  ASSERT_EQ(runCli("run " + writeSpec(spec, "cli-plot.json") + " -o " + run.string() + " --threads 1").exitCode, 0);
+
+  const fs::path picture = dir.path() / "damage.png";
+  const auto r = runCli("plot " + run.string() + " -o " + picture.string() + " --width 640 --height 480");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("damage at t = "), std::string::npos) << r.err;
+  const auto png = rupture::testing::probePng(readWhole(picture));
+  EXPECT_EQ(png.width, 640);
+  EXPECT_EQ(png.height, 480);
+  EXPECT_GT(png.colours, 50u) << "a field picture, not one colour";
+  EXPECT_GT(png.near(68, 1, 84), 10000u) << "undamaged elements in viridis' first colour";
+  EXPECT_GT(png.near(214, 38, 41, 30), 50u) << "the broken bonds of a run that broke, in red";
+
+  const auto again = runCli("plot " + run.string() + " -o " + picture.string());
+  EXPECT_EQ(again.exitCode, 2);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  EXPECT_EQ(runCli("plot " + run.string() + " -o " + picture.string() + " --force --field von_mises --snapshot 0").exitCode, 0);
+
+  const fs::path series = dir.path() / "stress.svg";
+  const auto s = runCli("plot " + run.string() + " --series stress_mean -o " + series.string());
+  ASSERT_EQ(s.exitCode, 0) << s.err;
+  EXPECT_NE(readWhole(series).find("<svg"), std::string::npos);
+  const fs::path pdf = dir.path() / "damage.pdf";
+  ASSERT_EQ(runCli("plot " + run.string() + " -o " + pdf.string()).exitCode, 0);
+  EXPECT_EQ(readWhole(pdf).rfind("%PDF", 0), 0u);
+
+  const auto badField = runCli("plot " + run.string() + " --field pressure -o " + (dir.path() / "p.png").string());
+  EXPECT_EQ(badField.exitCode, 2);
+  EXPECT_NE(badField.err.find("--field"), std::string::npos) << badField.err;
+  EXPECT_NE(badField.err.find("damage"), std::string::npos) << "the allowed fields are listed: " << badField.err;
+  const auto badSnapshot = runCli("plot " + run.string() + " --snapshot 99 -o " + (dir.path() / "q.png").string());
+  EXPECT_EQ(badSnapshot.exitCode, 2);
+  EXPECT_NE(badSnapshot.err.find("--snapshot"), std::string::npos) << badSnapshot.err;
+  const auto badFormat = runCli("plot " + run.string() + " -o " + (dir.path() / "d.jpg").string());
+  EXPECT_EQ(badFormat.exitCode, 2);
+  EXPECT_NE(badFormat.err.find(".png"), std::string::npos) << badFormat.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "p.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "d.jpg"));
+}
+
+}  // namespace

@@ -1,0 +1,145 @@
+// A run's pictures and page over HTTP: GET /jobs/{id}/runs/{k}/field (PNG of the asked size with
+// the field's colours, SVG, PDF, thumbnails, a 304 for a picture the client holds), the series as
+// a plot, the run page with its picture, strip, series and summary, the job page's thumbnails, and
+// every bad parameter refused with a 400 naming it.
+#include <gtest/gtest.h>
+
+#include "server_test_support.hpp"
+#include "support/png_probe.hpp"
+
+namespace rupture::server {
+namespace {
+
+using rupture::testing::probePng;
+
+class RunPictures : public ::testing::Test {
+protected:
+  static void SetUpTestSuite() {
+    live = std::make_unique<test::LiveServer>();
+    auto client = live->client();
+    jobId = test::submit(*client, Json{{"inputs", test::smallInputs()}, {"name", "pictures"},
+                                       {"sweep", {{"loading.strain_rate", test::twoStrainRates()}}}});
+    ASSERT_EQ(test::waitForJob(*client, jobId, {"successful", "failed"}, 180)["status"], "successful");
+  }
+  static void TearDownTestSuite() { live.reset(); }
+  static std::string run(int k) { return "/jobs/" + std::to_string(jobId) + "/runs/" + std::to_string(k); }
+  static void expectRefused(httplib::Client& client, const std::string& path, const std::string& field) {
+    auto res = client.Get(path.c_str());
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->status, 400) << path << ": " << res->body;
+    EXPECT_EQ(Json::parse(res->body).value("field", ""), field) << path << ": " << res->body;
+  }
+  static inline std::unique_ptr<test::LiveServer> live;
+  static inline std::int64_t jobId = 0;
+};
+
+TEST_F(RunPictures, TheFieldAsPngSvgPdfAndThumbnail) {
+  auto client = live->client();
+  auto png = client->Get((run(0) + "/field").c_str());
+  ASSERT_TRUE(png);
+  ASSERT_EQ(png->status, 200) << png->body;
+  EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+  EXPECT_EQ(png->get_header_value("X-Field"), "damage");
+  const auto picture = probePng(png->body);
+  EXPECT_EQ(picture.width, 800);
+  EXPECT_EQ(picture.height, 600);
+  EXPECT_GT(picture.colours, 50u) << "a field, not one colour";
+  EXPECT_GT(picture.near(68, 1, 84), 10000u) << "undamaged elements in viridis' first colour";
+
+  // The same picture again costs a 304 when the client holds it.
+  const std::string tag = png->get_header_value("ETag");
+  ASSERT_FALSE(tag.empty());
+  auto again = client->Get((run(0) + "/field").c_str(), httplib::Headers{{"If-None-Match", tag}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+  auto other = client->Get((run(0) + "/field?snapshot=0").c_str(), httplib::Headers{{"If-None-Match", tag}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 200) << "another query is another picture";
+
+  auto svg = client->Get((run(1) + "/field?field=von_mises&format=svg").c_str());
+  ASSERT_TRUE(svg);
+  EXPECT_EQ(svg->status, 200);
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  auto pdf = client->Get((run(1) + "/field?format=pdf").c_str());
+  ASSERT_TRUE(pdf);
+  EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
+  EXPECT_EQ(pdf->body.rfind("%PDF", 0), 0u);
+  auto thumbnail = client->Get((run(1) + "/field?thumbnail=1").c_str());
+  ASSERT_TRUE(thumbnail);
+  const auto small = probePng(thumbnail->body);
+  EXPECT_EQ(small.width, 200);
+  EXPECT_EQ(small.height, 150);
+}
+
+TEST_F(RunPictures, TheSeriesAsAPlot) {
+  auto client = live->client();
+  auto plot = client->Get((run(0) + "/series?format=png&y=stress_mean&width=600&height=400").c_str());
+  ASSERT_TRUE(plot);
+  ASSERT_EQ(plot->status, 200) << plot->body;
+  const auto png = probePng(plot->body);
+  EXPECT_EQ(png.width, 600);
+  EXPECT_EQ(png.height, 400);
+  auto svg = client->Get((run(0) + "/series?format=svg").c_str());
+  ASSERT_TRUE(svg);
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  // The data formats are unchanged.
+  auto csv = client->Get((run(0) + "/series?format=csv").c_str());
+  ASSERT_TRUE(csv);
+  EXPECT_EQ(csv->get_header_value("Content-Type").rfind("text/csv", 0), 0u);
+  EXPECT_NE(csv->body.substr(0, csv->body.find('\n')).find("time [s]"), std::string::npos) << csv->body.substr(0, 100);
+}
+
+TEST_F(RunPictures, BadParametersAreRefusedNamingThem) {
+  auto client = live->client();
+  expectRefused(*client, run(0) + "/field?fontsize=12", "fontsize");
+  expectRefused(*client, run(0) + "/field?field=pressure", "field");  // not recorded by a bonded run
+  expectRefused(*client, run(0) + "/field?snapshot=abc", "snapshot");
+  expectRefused(*client, run(0) + "/field?snapshot=99", "snapshot");
+  expectRefused(*client, run(0) + "/field?view=zz", "view");
+  expectRefused(*client, run(0) + "/field?bonds=some", "bonds");
+  expectRefused(*client, run(0) + "/field?width=10", "width");
+  expectRefused(*client, run(0) + "/field?min=2&max=1", "max");
+  expectRefused(*client, run(0) + "/field?format=gif", "format");
+  expectRefused(*client, run(0) + "/series?format=png&y=no_such_series", "y");
+  expectRefused(*client, run(0) + "/series?format=webp", "format");
+  expectRefused(*client, run(0) + "?f=html&field=pressure", "field");
+  expectRefused(*client, run(0) + "?f=html&snapshot=99", "snapshot");
+}
+
+TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
+  auto client = live->client();
+  auto page = client->Get((run(1) + "?f=html").c_str());
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200);
+  EXPECT_NE(page->get_header_value("Content-Type").find("text/html"), std::string::npos);
+  const std::string& html = page->body;
+  EXPECT_NE(html.find("<img id=\"field\""), std::string::npos) << html.substr(0, 2000);
+  EXPECT_NE(html.find(run(1) + "/field?field=damage"), std::string::npos);
+  EXPECT_NE(html.find("id=\"strip\""), std::string::npos);
+  EXPECT_NE(html.find(run(1) + "/series?format=svg"), std::string::npos);
+  EXPECT_NE(html.find("Peak stress"), std::string::npos);
+  EXPECT_NE(html.find(" MPa</td>"), std::string::npos) << "engineering units in the summary";
+  EXPECT_NE(html.find("1e7 /s"), std::string::npos) << "the swept strain rate as people read it";
+  EXPECT_NE(html.find("id=\"spec\""), std::string::npos);
+  // Every picture the page names answers 200.
+  for (const std::string& needle : {std::string("src=\"") + run(1) + "/field?", std::string("src=\"") + run(1) + "/series?"}) {
+    const std::size_t at = html.find(needle);
+    ASSERT_NE(at, std::string::npos) << needle;
+    std::string src = html.substr(at + 5, html.find('"', at + 5) - at - 5);
+    for (std::size_t amp; (amp = src.find("&amp;")) != std::string::npos;) src.replace(amp, 5, "&");
+    auto image = client->Get(src.c_str());
+    ASSERT_TRUE(image) << src;
+    EXPECT_EQ(image->status, 200) << src << ": " << image->body.substr(0, 300);
+  }
+  // The job page shows a thumbnail of every run, linking to its page.
+  auto jobPage = client->Get(("/jobs/" + std::to_string(jobId) + "?f=html").c_str());
+  ASSERT_TRUE(jobPage);
+  for (int k : {0, 1}) {
+    EXPECT_NE(jobPage->body.find(run(k) + "/field?thumbnail=1"), std::string::npos) << k;
+    EXPECT_NE(jobPage->body.find("href=\"" + run(k) + "?f=html\""), std::string::npos) << k;
+  }
+}
+
+}  // namespace
+}  // namespace rupture::server
