@@ -5,11 +5,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
-# The test-only packages too: chromium for the browser tests (label "browser"); pandas, venv, pip,
+# The test-only packages too: chromium and python3-websocket (to drive it) for the browser tests
+# (label "browser"); pandas, venv, pip,
 # setuptools and wheel for the Python package's test (label "python": it installs the client into
 # a venv offline). ParaView (label "paraview") is left out: too heavy; its test skips without it
 # (docs/paraview.md).
-bash deploy/setup.sh chromium python3-pandas python3-venv python3-pip python3-setuptools python3-wheel
+bash deploy/setup.sh chromium python3-websocket python3-pandas python3-venv python3-pip python3-setuptools python3-wheel
 bash deploy/build.sh
 slurm_dir="$PWD/build/slurm-test-cluster"
 if bash "$root/deploy/slurm/test-cluster.sh" start "$slurm_dir"; then

@@ -13,6 +13,7 @@
 #include "routes/handlers.hpp"
 #include "routes/request_params.hpp"
 #include "rupture/run.hpp"
+#include "studies/replicate_statistics.hpp"
 #include "studies/summary.hpp"
 #include "views/html_views.hpp"
 #include "views/run_page.hpp"
@@ -122,11 +123,12 @@ void getJob(ServerContext& ctx, const Request& req, Response& res) {
   const JobRecord job = loadJob(ctx, req);
   auto runs = ctx.store->runs(job.id);
   if (wantsHtml(req)) {
-    Json summary;  // once every run has ended
+    Json summary, points;  // once every run has ended
     std::string plot;
     if (job.runsAccepted + job.runsRunning == 0 && job.runsSuccessful > 0) {
       const SummaryTable table = buildSummary(job, runs);
       summary = summaryJson(table);
+      if (table.replicated) points = aggregateJson(table, aggregateReplicates(table));
       if (const std::string y = table.headlineQuantity(); !table.sweptPaths.empty() && !y.empty()) {
         plot = "/jobs/" + std::to_string(job.id) + "/summary.svg?x=" +
                httplib::detail::encode_query_param(table.sweptPaths.front()) +
@@ -135,7 +137,7 @@ void getJob(ServerContext& ctx, const Request& req, Response& res) {
     }
     Json status = statusInfo(job, &runs);
     markRunsWithPictures(ctx, runs, status);
-    return sendHtml(res, jobHtml(status, summary, plot));
+    return sendHtml(res, jobHtml(status, summary, plot, points));
   }
   sendJson(res, statusInfo(job, &runs));
 }

@@ -18,6 +18,7 @@
 #include "rupture/run.hpp"
 #include "studies/refinement.hpp"
 #include "views/html_views.hpp"
+#include "views/submit_form.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
@@ -277,7 +278,21 @@ void getProcess(ServerContext& ctx, const Request& req, Response& res) {
       {"max_runs", ctx.config.maxRuns},
       {"max_replicates", kMaxReplicates},
   };
-  if (wantsHtml(req)) return sendHtml(res, processHtml(doc));
+  if (wantsHtml(req)) {
+    // ?from=JOB: the form starts from that job's inputs as posted, to submit a variant of it.
+    Json start = Json::object();
+    if (req.has_param("from")) {
+      const auto id = parseIndex(req.get_param_value("from"));
+      const auto job = id ? ctx.store->job(*id) : std::nullopt;
+      if (!job) throw noSuchJob(req.get_param_value("from").substr(0, 40));
+      if (job->processId != name)
+        throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                       "job " + std::to_string(*id) + " runs " + job->processId + ", not " + name, "from",
+                       Json{{"in", "query"}});
+      if (job->inputs.is_object()) start = job->inputs;
+    }
+    return sendHtml(res, processHtml(doc, start));
+  }
   sendJson(res, doc);
 }
 

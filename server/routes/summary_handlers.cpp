@@ -9,6 +9,7 @@
 #include "studies/rate_dependence.hpp"
 #include "studies/replicate_statistics.hpp"
 #include "studies/summary.hpp"
+#include "views/html_views.hpp"
 #include "views/plot_png.hpp"
 #include "views/render_gate.hpp"
 #include "views/svg_plot.hpp"
@@ -153,6 +154,17 @@ void getJobSummary(ServerContext& ctx, const Request& req, Response& res) {
 void getComparedSummary(ServerContext& ctx, const Request& req, Response& res) {
   const std::vector<ComparedJob> jobs = loadComparedJobs(ctx, req);
   const bool aggregate = aggregateParam(req);
+  if (wantsHtml(req)) {
+    std::string ids;
+    for (const ComparedJob& j : jobs) {
+      if (!ids.empty()) ids += ',';
+      ids += std::to_string(j.job.id);
+    }
+    // The plot needs a swept x; jobs that sweep nothing get the table alone.
+    const SummaryTable plotTable = comparisonPlotTable(jobs);
+    const std::string plot = plotTable.sweptPaths.size() > 1 ? "/plot?jobs=" + ids : "";
+    return sendHtml(res, comparisonHtml(comparisonJson(jobs, aggregate), plot));
+  }
   if (wantsCsv(req)) {
     res.set_content(comparisonCsv(jobs, aggregate), kCsvType);
     return;

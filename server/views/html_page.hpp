@@ -29,5 +29,18 @@ std::string cell(const Json& v);
 /// full precision in the title; anything else as cell() writes it.
 std::string quantityCell(const Json& v, const std::string& unit);
 
+/// A summary document (`summaryJson`, `comparisonJson`; columns with name, unit, label, kind) as
+/// a table a laptop shows: the declared labels as headers (the key on hover), values with their unit
+/// and three significant digits (the full value on hover), the leading job/run/status/replicate
+/// columns the rows have, the swept inputs and the first `shownResults` results; when there are more,
+/// every column one click away in a second table (id + "-all").
+std::string summaryTable(const Json& summary, const std::string& id, std::size_t shownResults = 8);
+
+/// A schema node's SI unit (keyword "x-unit"), "" when it has none.
+std::string schemaUnit(const Json& node);
+/// Table rows (field, type, unit, description) of a schema's inputs, dotted paths for nested
+/// objects, appended to `out`.
+void inputRows(const Json& schema, const std::string& prefix, std::string& out, int depth = 0);
+
 }  // namespace html
 }  // namespace rupture::server

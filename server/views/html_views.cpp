@@ -14,29 +14,6 @@ namespace {
 using rupture::io::xmlEscape;
 using namespace html;
 
-std::string unitOfSchema(const Json& node) {
-  for (const char* key : {"x-unit", "unit"})
-    if (node.contains(key) && node[key].is_string()) return node[key].get<std::string>();
-  return "";
-}
-
-/// Rows of one schema's inputs, dotted paths for nested objects.
-void inputRows(const Json& schema, const std::string& prefix, std::string& out, int depth = 0) {
-  if (!schema.is_object() || !schema.contains("properties") || depth > 4) return;
-  for (const auto& [key, sub] : schema["properties"].items()) {
-    if (key == "scenario") continue;
-    const std::string path = prefix.empty() ? key : prefix + "." + key;
-    std::string type = sub.contains("type") ? esc(sub["type"]) : (sub.contains("enum") ? "one of" : "");
-    if (sub.contains("enum")) type += " " + esc(sub["enum"]);
-    const bool required = schema.contains("required") && schema["required"].is_array() &&
-                          std::find(schema["required"].begin(), schema["required"].end(), key) != schema["required"].end();
-    out += "<tr><td><code>" + xmlEscape(path) + "</code>" + (required ? " *" : "") + "</td><td>" + type +
-           "</td><td>" + xmlEscape(unitOfSchema(sub)) + "</td><td>" + esc(sub.value("description", Json(""))) +
-           "</td></tr>\n";
-    inputRows(sub, path, out, depth + 1);
-  }
-}
-
 }  // namespace
 
 HtmlPage landingHtml(const Json& landing) {
@@ -66,17 +43,6 @@ HtmlPage processesHtml(const Json& processes, const Json& schemasByProcess) {
   return page("Scenarios", c);
 }
 
-HtmlPage processHtml(const Json& process) {
-  std::string rows;
-  inputRows(process.value("inputsSchema", Json::object()), "", rows);
-  std::string c = "<p>" + esc(process.value("description", Json(""))) + "</p>"
-                  "<p>Submit with <code>POST /processes/" + esc(process.value("id", Json(""))) +
-                  "/execution</code> and <code>{\"inputs\": {...}, \"sweep\": {\"dotted.path\": [values]}}</code>.</p>"
-                  "<table><tr><th>Field (* required)</th><th>Type</th><th>Unit</th><th>Description</th></tr>" +
-                  rows + "</table>";
-  return page(process.value("id", "") + ": " + process.value("title", ""), c);
-}
-
 HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios) {
   std::string c = "<form method=\"get\" action=\"/jobs\"><input type=\"hidden\" name=\"f\" value=\"html\">"
                   "Name <input name=\"name\" value=\"" + esc(query.value("name", Json(""))) + "\"> Status <select name=\"status\">"
@@ -89,15 +55,18 @@ HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios)
     c += "<option" + std::string(query.value("processID", "") == s.get<std::string>() ? " selected" : "") + ">" + esc(s) + "</option>";
   }
   c += "</select> <button>Filter</button></form>\n<p>" + esc(jobList.value("numberMatched", Json(0))) +
-       " job(s), newest first.</p><table id=\"jobs\"><tr><th>Job</th><th>Name</th><th>Scenario</th><th>Status</th>"
-       "<th>Progress</th><th>Runs</th><th>Created</th></tr>\n";
+       " job(s), newest first.</p><form method=\"get\" action=\"/summary\" id=\"compare-form\">"
+       "<input type=\"hidden\" name=\"f\" value=\"html\"><table id=\"jobs\"><tr><th>Compare</th><th>Job</th><th>Name</th>"
+       "<th>Scenario</th><th>Status</th><th>Progress</th><th>Runs</th><th>Created</th></tr>\n";
   for (const auto& j : jobList.value("jobs", Json::array())) {
     const std::string id = j.value("jobID", "");
-    c += "<tr><td><a href=\"" + href("/jobs/" + id + "?f=html") + "\">" + xmlEscape(id) + "</a></td>" +
+    c += "<tr><td><input type=\"checkbox\" name=\"jobs\" value=\"" + xmlEscape(id) + "\" aria-label=\"compare job " +
+         xmlEscape(id) + "\"></td><td><a href=\"" + href("/jobs/" + id + "?f=html") + "\">" + xmlEscape(id) + "</a></td>" +
          cell(j.value("name", Json(""))) + cell(j["processID"]) + cell(j["status"]) + cell(j["progress"]) +
          cell(j["runs_total"]) + cell(j["created"]) + "</tr>\n";
   }
-  c += "</table>";
+  c += "</table><p><button id=\"compare\">Compare the chosen jobs</button> <a href=\"/processes?f=html\">Submit a job</a>"
+       "</p></form>";
   for (const auto& l : jobList.value("links", Json::array())) {
     const std::string rel = l.value("rel", "");
     if (rel == "next" || rel == "prev") c += "<a href=\"" + href(l.value("href", "") + "&f=html") + "\">" + xmlEscape(rel) + "</a> ";
@@ -105,7 +74,56 @@ HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios)
   return page("Jobs", c);
 }
 
-HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plotPath) {
+namespace {
+
+/// The replicate table: per sweep point its swept values, n, and mean ± 95 % half-width of the
+/// first results, in their units.
+std::string replicateTable(const Json& points) {
+  std::vector<Json> swept, scalars;
+  for (const auto& col : points.value("columns", Json::array())) {
+    if (!col.is_object()) continue;
+    if (col.value("kind", "") == "swept") swept.push_back(col);
+    else if (col.contains("members") && scalars.size() < 6) scalars.push_back(col);
+  }
+  std::string h = "<table id=\"replicates\"><tr>";
+  for (const auto& col : swept) h += "<th title=\"" + esc(col["name"]) + "\">" + esc(col.value("label", col["name"])) + "</th>";
+  h += "<th>n</th>";
+  for (const auto& col : scalars)
+    h += "<th title=\"" + esc(col["name"]) + "\">" + esc(col.value("label", col["name"])) + " (mean ± 95 %)</th>";
+  h += "</tr>\n";
+  for (const auto& row : points.value("rows", Json::array())) {
+    h += "<tr>";
+    for (const auto& col : swept) h += quantityCell(row.value(col.value("name", ""), Json()), col.value("unit", ""));
+    h += cell(row.value("n_successful", Json()));
+    for (const auto& col : scalars) {
+      const Json stats = row.value(col.value("name", ""), Json::object());
+      const std::string unit = col.value("unit", "");
+      const Json mean = stats.value("mean", Json()), half = stats.value("ci95_half_width", Json());
+      std::string text = mean.is_number() ? rupture::formatQuantity(mean.get<double>(), unit) : "n/a";
+      if (half.is_number()) text += " ± " + rupture::formatQuantity(half.get<double>(), unit);
+      h += "<td class=\"num\" title=\"" + esc(stats.dump()) + "\">" + xmlEscape(text) + "</td>";
+    }
+    h += "</tr>\n";
+  }
+  return h + "</table>";
+}
+
+// Cancel and retry: the token (when the server has one) is kept in the browser session, sent as a
+// header, never put in a URL.
+constexpr const char* kActionScript =
+    "const tokenBox=document.getElementById('token');if(tokenBox)tokenBox.value=sessionStorage.getItem('rupture-token')||'';"
+    "for(const b of document.querySelectorAll('button[data-method]'))b.addEventListener('click',async()=>{"
+    "const t=tokenBox?tokenBox.value.trim():'';if(t)sessionStorage.setItem('rupture-token',t);"
+    "const h={Accept:'application/json'};if(t)h.Authorization='Bearer '+t;"
+    "const o={method:b.dataset.method,headers:h};if(b.dataset.method==='POST'){h['Content-Type']='application/json';o.body='{}';}"
+    "const out=document.getElementById('action-error');out.textContent='';"
+    "try{const r=await fetch(b.dataset.url,o);if(r.ok){location.reload();return;}"
+    "const d=await r.json().catch(()=>({}));out.textContent=d.detail||('HTTP '+r.status);}"
+    "catch(e){out.textContent='no answer from the server: '+e;}});";
+
+}  // namespace
+
+HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plotPath, const Json& points) {
   const std::string id = status.value("jobID", "");
   const std::string base = "/jobs/" + id;
   std::string c = "<p>Scenario <a href=\"" + href("/processes/" + status.value("processID", "") + "?f=html") + "\">" +
@@ -120,8 +138,27 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
                   "</span></p>\n";
   // A job that did not succeed says why (the same message as its JSON), before anything else.
   const std::string jobStatus = status.value("status", "");
-  if ((jobStatus == "failed" || jobStatus == "dismissed") && !status.value("message", "").empty())
-    c += "<p class=\"error\" id=\"reason\">Why: " + esc(status["message"]) + "</p>\n";
+  if ((jobStatus == "failed" || jobStatus == "dismissed") && !status.value("message", "").empty()) {
+    // The job's message counts the failures; the first runs' own reasons say what went wrong.
+    std::string reasons;
+    int listed = 0;
+    for (const auto& r : status.value("runs", Json::array()))
+      if (r.value("status", "") == "failed" && r.contains("error") && listed++ < 3)
+        reasons += "<br>run " + esc(r["index"]) + ": " + esc(r["error"]);
+    c += "<p class=\"error\" id=\"reason\">Why: " + esc(status["message"]) + reasons + "</p>\n";
+  }
+  // Actions: cancel while it runs, retry when a run failed, a variant through the form.
+  const bool active = jobStatus == "accepted" || jobStatus == "running";
+  const bool anyFailed = status.contains("runs_by_status") && status["runs_by_status"].value("failed", 0) > 0;
+  c += "<p id=\"actions\">";
+  if (active) c += "<button id=\"cancel\" data-method=\"DELETE\" data-url=\"" + href(base) + "\">Cancel</button>";
+  if (anyFailed && !active)
+    c += "<button id=\"retry\" data-method=\"POST\" data-url=\"" + href(base + "/retry") + "\">Retry failed runs</button>";
+  c += "<a href=\"" + href("/processes/" + status.value("processID", "") + "?f=html&from=" + id) + "\">Submit a variant</a>";
+  if (active || anyFailed)
+    c += " Token <input id=\"token\" type=\"password\" autocomplete=\"off\" size=\"16\"> <span class=\"hint\">(only if "
+         "the server has one)</span>";
+  c += " <span class=\"error\" id=\"action-error\" role=\"alert\"></span></p>\n";
   c += "<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
   const Json swept = status.value("swept", Json::array());
   std::map<std::string, std::string> sweptUnit;  // from the summary's columns, once it has them
@@ -154,47 +191,8 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     c += "</td></tr>\n";
   }
   c += "</table>\n";
-  if (summary.is_object()) {
-    // Declared labels as headers (the key on hover), values with their unit and three significant
-    // digits (the full value on hover; the JSON and CSV keep full precision). The table that fits a
-    // laptop shows the swept inputs and the first kShownResults declared results (the declarations
-    // put the headline results first); every column is one click away.
-    constexpr std::size_t kShownResults = 8;
-    struct Column { std::string name, unit, label; bool swept; };
-    std::vector<Column> columns;
-    for (const auto& col : summary.value("columns", Json::array())) {
-      Column k;
-      k.name = col.is_object() ? col.value("name", "") : col.get<std::string>();
-      k.unit = col.is_object() ? col.value("unit", "") : "";
-      if (summary.contains("units") && summary["units"].contains(k.name)) k.unit = summary["units"][k.name].get<std::string>();
-      k.label = col.is_object() ? col.value("label", "") : "";
-      if (k.label.empty()) k.label = k.name;
-      k.swept = col.is_object() && col.value("kind", "") == "swept";
-      columns.push_back(std::move(k));
-    }
-    auto table = [&](const std::string& id, const std::vector<const Column*>& shown) {
-      std::string h = "<table id=\"" + id + "\"><tr><th>Run</th><th>Status</th>";
-      for (const Column* k : shown) h += "<th title=\"" + xmlEscape(k->name) + "\">" + xmlEscape(k->label) + "</th>";
-      h += "</tr>\n";
-      for (const auto& row : summary.value("rows", Json::array())) {
-        h += "<tr>" + cell(row.value("run", Json())) + cell(row.value("status", Json()));
-        for (const Column* k : shown) h += quantityCell(row.value(k->name, Json()), k->unit);
-        h += "</tr>\n";
-      }
-      return h + "</table>";
-    };
-    std::vector<const Column*> all, headline;
-    std::size_t results = 0;
-    for (const Column& k : columns) {
-      all.push_back(&k);
-      if (k.swept || results++ < kShownResults) headline.push_back(&k);
-    }
-    c += "<h2>Summary</h2>" + table("summary", headline);
-    if (headline.size() < all.size()) {
-      c += "<details><summary>All " + std::to_string(all.size()) + " columns</summary>" + table("summary-all", all) +
-           "</details>";
-    }
-  }
+  if (points.is_object()) c += "<h2>Replicates</h2>" + replicateTable(points);
+  if (summary.is_object()) c += "<h2>Summary</h2>" + summaryTable(summary, "summary");
   if (!plotPath.empty()) c += "<h2>Plot</h2><p><img alt=\"summary plot\" src=\"" + href(plotPath) + "\"></p>";
   // The merged file exists only once a run has succeeded: no link that would answer 404.
   const bool anySuccessful =
@@ -217,7 +215,24 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
       "tr.querySelector('.sg').textContent=run.stage||'';}"
       "if(final.includes(d.status)){location.reload();return;}seen=d.status;}catch(e){}"
       "setTimeout(poll,2000);}setTimeout(poll,2000);";
-  return page("Job " + id + (status.contains("name") ? ": " + status["name"].get<std::string>() : ""), c, script);
+  return page("Job " + id + (status.contains("name") ? ": " + status["name"].get<std::string>() : ""), c,
+              kActionScript + script);
+}
+
+HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
+  std::string ids, c = "<p>";
+  for (const auto& j : comparison.value("jobs", Json::array())) {
+    const std::string id = j.value("jobID", "");
+    ids += (ids.empty() ? "" : ",") + id;
+    c += "<a href=\"" + href("/jobs/" + id + "?f=html") + "\">Job " + xmlEscape(id) + "</a> (" + esc(j["processID"]) +
+         (j.value("name", "").empty() ? "" : ", " + esc(j["name"])) + ", " + esc(j["status"]) + ") ";
+  }
+  c += "</p>";
+  if (!plotPath.empty()) c += "<p><img id=\"compare-plot\" alt=\"comparison plot\" src=\"" + href(plotPath) + "\"></p>";
+  c += "<h2>Rows</h2>" + summaryTable(comparison, "compare") + "<p><a href=\"" +
+       href("/summary?jobs=" + ids + "&format=csv") + "\">CSV</a> <a href=\"" + href("/summary?jobs=" + ids) +
+       "\">JSON</a></p>";
+  return page("Compare jobs " + ids, c);
 }
 
 }  // namespace rupture::server

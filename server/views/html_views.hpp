@@ -12,11 +12,16 @@ namespace rupture::server {
 HtmlPage landingHtml(const Json& landing);
 /// The scenarios, each with its inputs (name, unit from "x-unit" when the schema has it, description).
 HtmlPage processesHtml(const Json& processes, const Json& schemasByProcess);
-HtmlPage processHtml(const Json& process);
 /// The job list with its filter form (name, status, scenario); `query` are the current values.
 HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios);
-/// A job: status with live progress (a few lines of inline script poll the JSON), its runs, the
-/// summary table with units (null until every run has ended), the plot and the download links.
-HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plotPath);
+/// A job: status with live progress (a few lines of inline script poll the JSON), cancel and retry
+/// buttons (the token, when the server has one, entered once per browser session), its runs with a
+/// thumbnail each, the summary table with units (null until every run has ended), for a replicated
+/// job the mean ± 95 % interval per sweep point (`points`: aggregateJson, or null), the plot and
+/// the download links.
+HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plotPath, const Json& points = Json());
+/// Several jobs side by side (GET /summary?jobs=...&f=html): their rows in one table with a job
+/// column and the comparison plot.
+HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath);
 
 }  // namespace rupture::server
