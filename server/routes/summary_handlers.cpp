@@ -67,10 +67,10 @@ std::string columnLabel(const SummaryTable& table, const std::string& column) {
 /// The plot query options shared by summary.svg and /plot: xscale, yscale, width, height, ymin,
 /// ymax and yerror (a column of `table` holding each point's error half-width).
 void readPlotOptions(const Request& req, const SummaryTable& table, PlotRequest& plot) {
-  // Every option is honoured or refused: a parameter a plot does not know (fontsize, a typo) is a
+  // Every option is honoured or refused: a parameter a plot does not know (a typo) is a
   // 400 naming it, never silently ignored.
-  static const std::vector<std::string> known = {"x",     "y",    "xscale", "yscale", "width", "height", "ymin",
-                                                 "ymax",  "yerror", "title", "format", "scale", "jobs"};
+  static const std::vector<std::string> known = {"x",     "y",      "xscale", "yscale", "width",    "height", "ymin",
+                                                 "ymax",  "yerror", "title",  "format", "scale",    "jobs",   "fontsize"};
   for (const auto& [name, value] : req.params) {
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;
     std::string allowed;
@@ -91,6 +91,7 @@ void readPlotOptions(const Request& req, const SummaryTable& table, PlotRequest&
   plot.yScale = scaleParam(req, "yscale");
   plot.width = static_cast<int>(intParam(req, "width", 800, kMinWidth, kMaxWidth));
   plot.height = static_cast<int>(intParam(req, "height", 500, kMinHeight, kMaxHeight));
+  plot.fontSize = static_cast<int>(intParam(req, "fontsize", 12, kMinFontSize, kMaxFontSize));
   plot.yMin = numberParam(req, "ymin");
   plot.yMax = numberParam(req, "ymax");
   if (req.has_param("yerror")) plot.yError = req.get_param_value("yerror");
@@ -115,16 +116,19 @@ void requireRenderable(const PlotRequest& plot, int scale, long long maxPixels) 
                  field, Json{{"in", "query"}, {"pixels", pixels}, {"max_pixels", maxPixels}});
 }
 
-/// The plot as SVG, or with ?format=png&scale=1..4 as PNG.
+/// The plot as SVG, with ?format=png&scale=1..4 as PNG, or with ?format=pdf as a vector PDF.
 void sendPlot(const Request& req, Response& res, const SummaryTable& table, const PlotRequest& plot,
                      RenderGate& gate) {
-  const std::string format = choiceParam(req, "format", {"svg", "png"}).value_or("svg");
+  const std::string format = choiceParam(req, "format", {"svg", "png", "pdf"}).value_or("svg");
   const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
   if (format == "png") requireRenderable(plot, scale, gate.maxPixels());
   const std::string svg = rupture::server::summarySvg(table, plot);
   if (format == "png") {
     const RenderGate::Slot slot = gate.acquire();
     res.set_content(renderPng(svg, plot.width * scale, plot.height * scale), "image/png");
+  } else if (format == "pdf") {
+    const RenderGate::Slot slot = gate.acquire();
+    res.set_content(renderPdf(svg, plot.width, plot.height), "application/pdf");
   } else {
     res.set_content(svg, "image/svg+xml");
   }

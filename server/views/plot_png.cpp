@@ -1,5 +1,6 @@
 #include "views/plot_png.hpp"
 
+#include <cairo-pdf.h>
 #include <cairo.h>
 #include <librsvg/rsvg.h>
 
@@ -23,27 +24,48 @@ std::string takeMessage(GError* error) {
 
 }  // namespace
 
-std::string renderPng(const std::string& svg, int widthPx, int heightPx) {
-  // Font lookup (fontconfig through pango) is shared process state: one rendering at a time.
+namespace {
+
+/// Draws the SVG onto a cairo surface filling width x height (one drawing at a time: font lookup
+/// through fontconfig and pango is shared process state).
+void drawSvg(const std::string& svg, cairo_surface_t* surface, int width, int height) {
   static std::mutex mutex;
   std::lock_guard lock(mutex);
   GError* error = nullptr;
   std::unique_ptr<RsvgHandle, decltype(&g_object_unref)> handle(
       rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg.data()), svg.size(), &error), &g_object_unref);
   if (!handle) throw std::runtime_error("cannot read the plot's SVG: " + takeMessage(error));
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, widthPx, heightPx), &cairo_surface_destroy);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), &cairo_destroy);
-  const RsvgRectangle viewport{0, 0, static_cast<double>(widthPx), static_cast<double>(heightPx)};
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface), &cairo_destroy);
+  const RsvgRectangle viewport{0, 0, static_cast<double>(width), static_cast<double>(height)};
   if (!rsvg_handle_render_document(handle.get(), cr.get(), &viewport, &error)) {
     throw std::runtime_error("cannot render the plot: " + takeMessage(error));
   }
+}
+
+}  // namespace
+
+std::string renderPng(const std::string& svg, int widthPx, int heightPx) {
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, widthPx, heightPx), &cairo_surface_destroy);
+  drawSvg(svg, surface.get(), widthPx, heightPx);
   cairo_surface_flush(surface.get());
   std::string png;
   if (cairo_surface_write_to_png_stream(surface.get(), &appendToString, &png) != CAIRO_STATUS_SUCCESS) {
     throw std::runtime_error("cannot encode the plot as PNG");
   }
   return png;
+}
+
+std::string renderPdf(const std::string& svg, int widthPt, int heightPt) {
+  std::string pdf;
+  {
+    std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+        cairo_pdf_surface_create_for_stream(&appendToString, &pdf, widthPt, heightPt), &cairo_surface_destroy);
+    drawSvg(svg, surface.get(), widthPt, heightPt);
+    cairo_surface_finish(surface.get());  // writes the document into pdf
+  }
+  if (pdf.rfind("%PDF", 0) != 0) throw std::runtime_error("cannot write the plot as PDF");
+  return pdf;
 }
 
 }  // namespace rupture::server

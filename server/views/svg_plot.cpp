@@ -66,12 +66,13 @@ std::string shortNumber(double v) {
 
 std::string valueText(const Json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
-/// A marker's hover text as people read it: "run 2: Strain rate 1e7 /s, Peak stress 51.1 MPa
-/// ± 2.3 MPa" (declared labels, engineering units, rupture::formatQuantity).
-std::string pointTitle(int run, const ColumnInfo& x, const Json& xValue, const ColumnInfo& y, double yValue,
-                       double error) {
+/// A marker's hover text as people read it: "run 2: Strain rate 1e7 /s, Peak stress 51.1 MPa", or
+/// for a mean "mean of 3 runs: ... 51.1 MPa ± 2.3 MPa" (declared labels, engineering units,
+/// rupture::formatQuantity).
+std::string pointTitle(const std::string& who, const ColumnInfo& x, const Json& xValue, const ColumnInfo& y,
+                       double yValue, double error) {
   const std::string xText = xValue.is_number() ? formatQuantity(xValue.get<double>(), x.unit) : valueText(xValue);
-  return "run " + std::to_string(run) + ": " + x.label + " " + xText + ", " + y.label + " " +
+  return who + ": " + x.label + " " + xText + ", " + y.label + " " +
          formatQuantity(yValue, y.unit) + (error > 0 ? " ± " + formatQuantity(error, y.unit) : std::string());
 }
 
@@ -202,6 +203,28 @@ std::vector<std::string> wrapTitle(const std::string& title, std::size_t maxChar
   return {title.substr(0, cut), shortenText(title.substr(cut + 1), maxChars)};
 }
 
+/// Every line of `text` broken at spaces to at most maxChars characters (a longer word stays whole
+/// on its own line): a legend entry is wrapped, never cut.
+std::vector<std::string> wrapWords(const std::string& text, std::size_t maxChars) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t space = text.find(' ', start);
+    const std::string word = text.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    if (!line.empty() && utf8Length(line) + 1 + utf8Length(word) > maxChars) {
+      lines.push_back(line);
+      line.clear();
+    }
+    if (!line.empty()) line += ' ';
+    line += word;
+    if (space == std::string::npos) break;
+    start = space + 1;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace
 
 DisplayUnit displayUnit(const std::string& siUnit, double maxAbs) {
@@ -282,7 +305,7 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
   for (const auto& p : table.sweptPaths) {
     if (p != request.x && p != request.y) others.push_back(p);
   }
-  struct Point { double x; Json xRaw; double y; int run; double err; };
+  struct Point { double x; Json xRaw; double y; int run; double err; int n; };
   std::vector<std::string> seriesOrder;
   std::map<std::string, std::vector<Point>> series;
   bool categorical = false;
@@ -320,8 +343,11 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
       const Json ev = table.value(row, request.yError);
       if (ev.is_number() && std::isfinite(ev.get<double>())) err = std::abs(ev.get<double>());
     }
+    // A table of means (replicates, comparisons) counts each point's runs in "<y>.n".
+    const Json count = table.value(row, request.y + ".n");
+    const int n = count.is_number_integer() ? count.get<int>() : 0;
     if (!series.count(key)) seriesOrder.push_back(key);
-    series[key].push_back({x, xv, yv.get<double>(), row.run, err});
+    series[key].push_back({x, xv, yv.get<double>(), row.run, err, n});
     xs.push_back(x);
     ys.push_back(yv.get<double>());
     if (err > 0) {  // the bars must fit in the y range (the lower end only where a log axis allows)
@@ -330,33 +356,36 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
     }
   }
 
+  // Every size follows the font: fontsize=24 doubles text, margins and the legend's width.
+  const double f = request.fontSize / 12.0;
+  const double left = kLeft * f, bottom = kBottom * f;
   const bool legend = !others.empty() && !seriesOrder.empty();
-  const double right = legend ? 215 : 30;
+  const double right = legend ? 215 * f : 30;
   const std::string title = request.title.empty() ? table.columnInfo(request.y).label + " vs " +
                                                         table.columnInfo(request.x).label
                                                   : request.title;
   // Bold 15 px DejaVu Sans averages about 9.5 px per character.
-  const std::vector<std::string> titleLines = wrapTitle(title, static_cast<std::size_t>((width - 20) / 9.5));
-  const double top = kTop + (titleLines.size() - 1) * 18;
-  const double plotW = width - kLeft - right, plotH = height - top - kBottom;
+  const std::vector<std::string> titleLines = wrapTitle(title, static_cast<std::size_t>((width - 20) / (9.5 * f)));
+  const double top = kTop * f + (titleLines.size() - 1) * 18 * f;
+  const double plotW = width - left - right, plotH = height - top - bottom;
 
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << ' ' << height
-      << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n"
+      << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"" << num(12 * f) << "\">\n"
       << "<title>" << io::xmlEscape(title) << "</title>\n"
       << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height << "\" fill=\"white\"/>\n";
   for (std::size_t i = 0; i < titleLines.size(); ++i) {
-    svg << "<text class=\"title\" x=\"" << num(width / 2) << "\" y=\"" << num(28 + 18.0 * i)
-        << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" << io::xmlEscape(titleLines[i])
+    svg << "<text class=\"title\" x=\"" << num(width / 2) << "\" y=\"" << num((28 + 18.0 * i) * f)
+        << "\" text-anchor=\"middle\" font-size=\"" << num(15 * f) << "\" font-weight=\"bold\">" << io::xmlEscape(titleLines[i])
         << "</text>\n";
   }
 
   if (xs.empty()) {
-    svg << "<rect x=\"" << kLeft << "\" y=\"" << top << "\" width=\"" << num(plotW) << "\" height=\""
+    svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << num(plotW) << "\" height=\""
         << num(plotH) << "\" fill=\"none\" stroke=\"#333\"/>\n"
-        << "<text x=\"" << num(kLeft + plotW / 2) << "\" y=\"" << num(top + plotH / 2)
+        << "<text x=\"" << num(left + plotW / 2) << "\" y=\"" << num(top + plotH / 2)
         << "\" text-anchor=\"middle\" fill=\"#666\">no finished runs with " << io::xmlEscape(request.y)
         << " yet</text>\n</svg>\n";
     return svg.str();
@@ -378,46 +407,46 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
     xAxis = numericAxis(xs, request.xScale, table.columnInfo(request.x).unit, "xscale", std::nullopt, std::nullopt,
                         std::max(3, static_cast<int>(plotW / 110)));
   }
-  auto px = [&](double x) { return kLeft + (xAxis.categorical ? xAxis.fracOfAxis(x) : xAxis.frac(x)) * plotW; };
+  auto px = [&](double x) { return left + (xAxis.categorical ? xAxis.fracOfAxis(x) : xAxis.frac(x)) * plotW; };
   auto py = [&](double y) { return top + plotH - yAxis.frac(y) * plotH; };
 
   // Grid and ticks.
-  svg << "<defs><clipPath id=\"plot-area\"><rect x=\"" << kLeft << "\" y=\"" << num(top) << "\" width=\""
+  svg << "<defs><clipPath id=\"plot-area\"><rect x=\"" << left << "\" y=\"" << num(top) << "\" width=\""
       << num(plotW) << "\" height=\"" << num(plotH) << "\"/></clipPath></defs>\n";
   svg << "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
   for (const auto& [t, label] : xAxis.ticks) {
-    const double x = kLeft + xAxis.fracOfAxis(t) * plotW;
+    const double x = left + xAxis.fracOfAxis(t) * plotW;
     svg << "<line x1=\"" << num(x) << "\" y1=\"" << num(top) << "\" x2=\"" << num(x) << "\" y2=\"" << num(top + plotH)
         << "\"/>\n";
   }
   for (const auto& [t, label] : yAxis.ticks) {
     const double y = top + plotH - yAxis.fracOfAxis(t) * plotH;
-    svg << "<line x1=\"" << kLeft << "\" y1=\"" << num(y) << "\" x2=\"" << num(kLeft + plotW) << "\" y2=\""
+    svg << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + plotW) << "\" y2=\""
         << num(y) << "\"/>\n";
   }
-  svg << "</g>\n<rect x=\"" << kLeft << "\" y=\"" << num(top) << "\" width=\"" << num(plotW) << "\" height=\""
+  svg << "</g>\n<rect x=\"" << left << "\" y=\"" << num(top) << "\" width=\"" << num(plotW) << "\" height=\""
       << num(plotH) << "\" fill=\"none\" stroke=\"#333\"/>\n";
   svg << "<g class=\"x-ticks\" text-anchor=\"middle\">\n";
   for (const auto& [t, label] : xAxis.ticks) {
-    const double x = kLeft + xAxis.fracOfAxis(t) * plotW;
+    const double x = left + xAxis.fracOfAxis(t) * plotW;
     svg << "<line x1=\"" << num(x) << "\" y1=\"" << num(top + plotH) << "\" x2=\"" << num(x) << "\" y2=\""
-        << num(top + plotH + 5) << "\" stroke=\"#333\"/><text x=\"" << num(x) << "\" y=\"" << num(top + plotH + 20)
+        << num(top + plotH + 5) << "\" stroke=\"#333\"/><text x=\"" << num(x) << "\" y=\"" << num(top + plotH + 8 + 12 * f)
         << "\">" << io::xmlEscape(label) << "</text>\n";
   }
   svg << "</g>\n<g class=\"y-ticks\" text-anchor=\"end\">\n";
   for (const auto& [t, label] : yAxis.ticks) {
     const double y = top + plotH - yAxis.fracOfAxis(t) * plotH;
-    svg << "<line x1=\"" << num(kLeft - 5) << "\" y1=\"" << num(y) << "\" x2=\"" << kLeft << "\" y2=\"" << num(y)
-        << "\" stroke=\"#333\"/><text x=\"" << num(kLeft - 8) << "\" y=\"" << num(y + 4) << "\">"
+    svg << "<line x1=\"" << num(left - 5) << "\" y1=\"" << num(y) << "\" x2=\"" << left << "\" y2=\"" << num(y)
+        << "\" stroke=\"#333\"/><text x=\"" << num(left - 8) << "\" y=\"" << num(y + 4 * f) << "\">"
         << io::xmlEscape(label) << "</text>\n";
   }
   svg << "</g>\n";
   // Axis titles: human label and displayed unit.
-  svg << "<text class=\"x-label\" x=\"" << num(kLeft + plotW / 2) << "\" y=\"" << num(height - 22)
-      << "\" text-anchor=\"middle\" font-size=\"13\">"
+  svg << "<text class=\"x-label\" x=\"" << num(left + plotW / 2) << "\" y=\"" << num(height - 22 * f)
+      << "\" text-anchor=\"middle\" font-size=\"" << num(13 * f) << "\">"
       << io::xmlEscape(axisTitle(table.columnInfo(request.x).label, xAxis.unit)) << "</text>\n";
-  svg << "<text class=\"y-label\" transform=\"translate(22," << num(top + plotH / 2)
-      << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">"
+  svg << "<text class=\"y-label\" transform=\"translate(" << num(22 * f) << "," << num(top + plotH / 2)
+      << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"" << num(13 * f) << "\">"
       << io::xmlEscape(axisTitle(table.columnInfo(request.y).label, yAxis.unit)) << "</text>\n";
 
   // Series, clipped to the plot area (a y range may cut points off). Categories are not joined by
@@ -446,30 +475,41 @@ std::string summarySvg(const SummaryTable& table, const PlotRequest& request) {
             << 'M' << num(x - 4) << ',' << num(lo) << 'H' << num(x + 4) << "\"/>\n";
       }
       svg << "<circle cx=\"" << num(x) << "\" cy=\"" << num(py(p.y)) << "\" r=\"4\" fill=\"" << colour
-          << "\"><title>" << io::xmlEscape(pointTitle(p.run, xInfo, p.xRaw, yInfo, p.y, p.err)) << "</title></circle>\n";
+          << "\"><title>" << io::xmlEscape(pointTitle(p.n > 1 ? "mean of " + std::to_string(p.n) + " runs" : "run " + std::to_string(p.run),
+                                              xInfo, p.xRaw, yInfo, p.y, p.err)) << "</title></circle>\n";
     }
     svg << "</g>\n";
   }
   svg << "</g>\n";
 
-  // Legend.
+  // Legend: each entry wrapped to the legend's width (about 26 characters), never cut.
   if (legend) {
-    const double lx = kLeft + plotW + 20;
-    double ly = top + 6;
+    const double lx = left + plotW + 20 * f, line = 16 * f;
+    double ly = top + 6 * f;
     std::string heading;
     for (const auto& p : others) heading += (heading.empty() ? "" : ", ") + table.columnInfo(p).label;
-    svg << "<g class=\"legend\">\n<text x=\"" << num(lx) << "\" y=\"" << num(ly) << "\" font-weight=\"bold\">"
-        << io::xmlEscape(shortenText(others.size() > 1 ? std::string("Series") : heading, 26)) << "</text>\n";
+    svg << "<g class=\"legend\">\n";
+    for (const std::string& text : wrapWords(others.size() > 1 ? std::string("Series") : heading, 26)) {
+      svg << "<text x=\"" << num(lx) << "\" y=\"" << num(ly) << "\" font-weight=\"bold\">" << io::xmlEscape(text)
+          << "</text>\n";
+      ly += line;
+    }
+    ly += 4 * f;
     for (std::size_t s = 0; s < seriesOrder.size(); ++s) {
-      ly += 20;
       const std::string colour = kPalette[s % std::size(kPalette)];
       if (!categorical) {
-        svg << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 22) << "\" y2=\""
-            << num(ly - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2\"/>";
+        svg << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4 * f) << "\" x2=\"" << num(lx + 22 * f) << "\" y2=\""
+            << num(ly - 4 * f) << "\" stroke=\"" << colour << "\" stroke-width=\"2\"/>";
       }
-      svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(ly - 4) << "\" r=\"4\" fill=\"" << colour
-          << "\"/><text x=\"" << num(lx + 30) << "\" y=\"" << num(ly) << "\">"
-          << io::xmlEscape(shortenText(seriesOrder[s], 24)) << "</text>\n";
+      svg << "<circle cx=\"" << num(lx + 11 * f) << "\" cy=\"" << num(ly - 4 * f) << "\" r=\"4\" fill=\"" << colour
+          << "\"/>";
+      for (const std::string& text : wrapWords(seriesOrder[s], 22)) {
+        svg << "<text class=\"entry\" x=\"" << num(lx + 30 * f) << "\" y=\"" << num(ly) << "\">" << io::xmlEscape(text)
+            << "</text>";
+        ly += line;
+      }
+      svg << "\n";
+      ly += 4 * f;
     }
     svg << "</g>\n";
   }

@@ -28,10 +28,13 @@ struct PlotRequest {
   std::string yError;
   int width = 800;   ///< picture size in px (kMinWidth..kMaxWidth)
   int height = 500;  ///< (kMinHeight..kMaxHeight)
+  int fontSize = 12; ///< px of the tick labels and legend (kMinFontSize..kMaxFontSize); the title,
+                     ///< axis titles and margins scale with it
   std::optional<double> yMin, yMax;  ///< y range in y's SI unit; unset = from the data
 };
 
 constexpr int kMinWidth = 320, kMaxWidth = 4000, kMinHeight = 240, kMaxHeight = 3000;
+constexpr int kMinFontSize = 6, kMaxFontSize = 32;
 
 /// Auto scale rule: log when every value is > 0 and they span at least a decade, unless they are
 /// spaced more evenly on a linear axis than on a log one (1, 2, ..., 10 stays linear).

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
+#include "studies/replicate_statistics.hpp"
 #include "studies/summary.hpp"
 #include "views/plot_png.hpp"
 #include "views/svg_plot.hpp"
@@ -250,6 +251,44 @@ TEST(SvgPlot, EmptyJobStillGivesAValidPlot) {
   std::string error;
   EXPECT_TRUE(test::wellFormedXml(svg, error)) << error;
   EXPECT_NE(svg.find("no finished runs"), std::string::npos);
+}
+
+TEST(SvgPlot, LongLegendEntriesWrapAndAMeanSaysHowManyRuns) {
+  // A second swept path with long text values: the legend wraps each entry, never cuts it.
+  auto [job, runs] = gridJob();
+  const std::string longer = "heterogeneous field from a cached preliminary run at 1e5 per second";
+  for (auto& r : runs) r.swept[1] = r.swept[1].get<std::string>() + " " + longer;
+  const std::string svg = summarySvg(buildSummary(job, runs), plot("loading.strain_rate", "peak_stress"));
+  const std::size_t legend = svg.find("class=\"legend\"");
+  ASSERT_NE(legend, std::string::npos);
+  const std::string part = svg.substr(legend);
+  EXPECT_EQ(part.find("…"), std::string::npos) << "a legend entry was cut";
+  for (const char* word : {"V0", "VL", "heterogeneous", "preliminary", "second"}) EXPECT_NE(part.find(word), std::string::npos) << word;
+
+  // Three replicates per point: the hover text of a mean says so.
+  JobRecord rj;
+  rj.id = 9;
+  rj.processId = "dynamic-tension";
+  rj.sweptPaths = Json::array({"loading.strain_rate"});
+  rj.study = Json{{"replicates", {{"count", 3}, {"vary", "sample.seed"}}}};
+  std::vector<RunRecord> replicated;
+  for (int k = 0; k < 6; ++k) {
+    RunRecord r;
+    r.key = {9, k};
+    r.swept = Json::array({k < 3 ? 1e6 : 1e7});
+    r.replicate = k % 3;
+    r.status = Status::Successful;
+    r.summary = Json{{"peak_stress", 5e7 + 1e6 * k}};
+    replicated.push_back(r);
+  }
+  const SummaryTable table = buildSummary(rj, replicated);
+  const SummaryTable means = meansTable(table, aggregateReplicates(table));
+  PlotRequest p = plot("loading.strain_rate", "peak_stress");
+  p.yError = ciHalfWidthColumn("peak_stress");
+  const std::string meanSvg = summarySvg(means, p);
+  EXPECT_NE(meanSvg.find("<title>mean of 3 runs: Strain rate 1e6 /s, Peak stress 51 MPa ± "), std::string::npos)
+      << meanSvg;
+  EXPECT_EQ(meanSvg.find("<title>run "), std::string::npos);
 }
 
 }  // namespace

@@ -152,7 +152,19 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?width=10").c_str()), 400, "width");
   expectProblem(client->Get(("/jobs/" + id + "/summary.svg?ymin=abc").c_str()), 400, "ymin");
   // Every plot option is honoured or refused, never ignored.
-  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?fontsize=14").c_str()), 400, "fontsize");
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?colour=red").c_str()), 400, "colour");
+  expectProblem(client->Get(("/jobs/" + id + "/summary.svg?fontsize=100").c_str()), 400, "fontsize");
+  auto large = client->Get(("/jobs/" + id + "/summary.svg?fontsize=24").c_str());  // twice the default 12 px
+  ASSERT_TRUE(large);
+  EXPECT_EQ(large->status, 200);
+  EXPECT_NE(large->body.find("font-size=\"24.00\""), std::string::npos) << large->body.substr(0, 400);
+  EXPECT_NE(large->body.find("font-size=\"30.00\" font-weight=\"bold\""), std::string::npos) << "the title scales too";
+  auto pdf = client->Get(("/jobs/" + id + "/summary.svg?format=pdf").c_str());
+  ASSERT_TRUE(pdf);
+  EXPECT_EQ(pdf->status, 200);
+  EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
+  EXPECT_EQ(pdf->body.rfind("%PDF", 0), 0u);
+  EXPECT_EQ(pdf->body.find("/Subtype /Image"), std::string::npos) << "vector: the PDF embeds no raster image";
   auto titled = client->Get(("/jobs/" + id + "/summary.svg?title=Figure%203%20of%20the%20seed").c_str());
   ASSERT_TRUE(titled);
   EXPECT_EQ(titled->status, 200);
