@@ -105,7 +105,8 @@ public:
     if (m_path.empty()) return;
     std::lock_guard lock(m_mutex);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    const double eta = estimateRemainingSeconds(elapsed, fraction);
+    m_remaining.observe(elapsed, fraction);
+    const double eta = finished ? 0.0 : m_remaining.at(elapsed);
     const nlohmann::json doc = {{"progress", fraction}, {"stage", m_stage}, {"elapsed_s", elapsed},
                                 {"eta_s", eta >= 0 ? nlohmann::json(eta) : nlohmann::json()}, {"finished", finished}};
     const std::string temporary = m_path + ".tmp";
@@ -123,6 +124,7 @@ private:
   std::chrono::steady_clock::time_point m_start;
   std::mutex m_mutex;
   std::string m_stage;
+  RemainingTime m_remaining;
 };
 
 std::string sidecarPath(const std::string& h5Path) {

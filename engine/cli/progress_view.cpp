@@ -8,6 +8,7 @@
 namespace rupture::cli {
 
 std::string clockText(double seconds) {
+  if (seconds < 0) return "unknown";
   if (!(seconds >= 0) || seconds > 1e7) return "--";
   const long s = static_cast<long>(seconds + 0.5);
   char buffer[32];
@@ -29,7 +30,8 @@ void ProgressView::message(const std::string& text) {
 void ProgressView::update(double fraction, bool force, const std::string& label, bool withEta) {
   std::lock_guard lock(m_mutex);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-  const double eta = estimateRemainingSeconds(elapsed, fraction);
+  m_remaining.observe(elapsed, fraction);
+  const double eta = m_remaining.at(elapsed);
   const std::string what = label.empty() ? "" : label + " ";
   const std::string etaText = withEta ? "ETA " + clockText(eta) : "";
   char line[240];

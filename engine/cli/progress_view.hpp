@@ -6,9 +6,11 @@
 #include <mutex>
 #include <string>
 
+#include "rupture/progress.hpp"
+
 namespace rupture::cli {
 
-/// h:mm:ss or m:ss; "--" for an unknown or absurd duration.
+/// h:mm:ss or m:ss; "unknown" for a negative (unknown) duration, "--" for an absurd one.
 std::string clockText(double seconds);
 
 class ProgressView {
@@ -32,6 +34,7 @@ private:
   std::mutex m_mutex;
   bool m_barShown = false;
   double m_lastLine = 0;
+  RemainingTime m_remaining;
 };
 
 }  // namespace rupture::cli

@@ -132,7 +132,7 @@ constexpr const char* kJobColumns =
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts, replicate, stage, spec_is_patch";
+    "attempts, replicate, stage, spec_is_patch, rate_from, rate_from_progress";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -175,6 +175,8 @@ RunRecord readRun(const Stmt& q) {
   r.attempts = static_cast<int>(q.i64(12));
   r.replicate = static_cast<int>(q.i64(13));
   r.stage = q.text(14);
+  r.rateFrom = q.text(16);
+  r.rateFromProgress = q.dbl(17);
   return r;
 }
 
@@ -245,6 +247,9 @@ void JobStore::migrate() {
   // 1: runs.spec holds a JSON Patch against the job's base spec (the inputs are stored once per job).
   if (!hasColumn("runs", "spec_is_patch"))
     exec("ALTER TABLE runs ADD COLUMN spec_is_patch INTEGER NOT NULL DEFAULT 0");
+  // The run's rate anchor (its first progress above 0, and when), for an ETA from its own rate.
+  if (!hasColumn("runs", "rate_from")) exec("ALTER TABLE runs ADD COLUMN rate_from TEXT");
+  if (!hasColumn("runs", "rate_from_progress")) exec("ALTER TABLE runs ADD COLUMN rate_from_progress REAL");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
@@ -523,7 +528,7 @@ int JobStore::requeueInterrupted() {
     while (q.step()) jobs.push_back(q.i64(0));
   }
   Stmt u(m_db,
-         "UPDATE runs SET progress = 0, started = NULL, updated = ?, status = CASE WHEN "
+         "UPDATE runs SET progress = 0, rate_from = NULL, started = NULL, updated = ?, status = CASE WHEN "
          "(SELECT status FROM jobs WHERE id = runs.job_id) = 'dismissed' THEN 'dismissed' ELSE 'accepted' END "
          "WHERE status = 'running'");
   u.bind(1, now).run();
@@ -538,7 +543,7 @@ bool JobStore::startRun(RunKey key) {
   const std::string now = utcNow();
   Transaction tx(m_db);
   Stmt u(m_db,
-         "UPDATE runs SET status = 'running', progress = 0, started = ?, updated = ?, attempts = attempts + 1 "
+         "UPDATE runs SET status = 'running', progress = 0, rate_from = NULL, started = ?, updated = ?, attempts = attempts + 1 "
          "WHERE job_id = ? AND idx = ? AND status = 'accepted' "
          "AND (SELECT status FROM jobs WHERE id = ?) != 'dismissed'");
   u.bind(1, now).bind(2, now).bind(3, key.job).bind(4, key.index).bind(5, key.job).run();
@@ -557,12 +562,15 @@ void JobStore::setProgress(const std::vector<RunProgress>& progress) {
   Transaction tx(m_db);
   for (const RunProgress& p : progress) {
     // `updated` moves only when something did, so a client can tell a stalled run from a live one.
+    // The first progress above 0 anchors the run's rate (SET reads the row as it was before).
     Stmt u(m_db,
-           "UPDATE runs SET progress = ?, stage = CASE WHEN ? = '' THEN stage ELSE ? END, updated = ? "
+           "UPDATE runs SET progress = ?, stage = CASE WHEN ? = '' THEN stage ELSE ? END, updated = ?, "
+           "rate_from = CASE WHEN rate_from IS NULL AND ? > 0 THEN ? ELSE rate_from END, "
+           "rate_from_progress = CASE WHEN rate_from IS NULL AND ? > 0 THEN ? ELSE rate_from_progress END "
            "WHERE job_id = ? AND idx = ? AND status = 'running' AND (progress != ? OR (? != '' AND stage != ?))");
     const double value = std::clamp(p.fraction, 0.0, 1.0);
-    u.bind(1, value).bind(2, p.stage).bind(3, p.stage).bind(4, now).bind(5, p.key.job).bind(6, p.key.index);
-    u.bind(7, value).bind(8, p.stage).bind(9, p.stage).run();
+    u.bind(1, value).bind(2, p.stage).bind(3, p.stage).bind(4, now).bind(5, value).bind(6, now).bind(7, value);
+    u.bind(8, value).bind(9, p.key.job).bind(10, p.key.index).bind(11, value).bind(12, p.stage).bind(13, p.stage).run();
   }
   tx.commit();
 }
@@ -611,7 +619,7 @@ std::vector<int> JobStore::retryFailedRuns(std::int64_t jobId) {
   }
   if (indices.empty()) return indices;
   Stmt u(m_db,
-         "UPDATE runs SET status = 'accepted', progress = 0, error = NULL, started = NULL, finished = NULL, "
+         "UPDATE runs SET status = 'accepted', progress = 0, rate_from = NULL, error = NULL, started = NULL, finished = NULL, "
          "updated = ? WHERE job_id = ? AND status = 'failed'");
   u.bind(1, now).bind(2, jobId).run();
   updateJobStatus(jobId, now);
@@ -624,7 +632,7 @@ void JobStore::requeueRun(RunKey key) {
   const std::string now = utcNow();
   Transaction tx(m_db);
   Stmt u(m_db,
-         "UPDATE runs SET progress = 0, started = NULL, updated = ?, status = CASE WHEN "
+         "UPDATE runs SET progress = 0, rate_from = NULL, started = NULL, updated = ?, status = CASE WHEN "
          "(SELECT status FROM jobs WHERE id = runs.job_id) = 'dismissed' THEN 'dismissed' ELSE 'accepted' END "
          "WHERE job_id = ? AND idx = ? AND status = 'running'");
   u.bind(1, now).bind(2, key.job).bind(3, key.index).run();

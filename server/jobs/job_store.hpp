@@ -46,6 +46,10 @@ struct RunRecord {
   std::string stage;    ///< the run's last stage message ("sample: 1625 elements, ..."), "" before any
   int attempts = 0;     ///< times the run was started (> 1 after a crash or restart)
   int replicate = 0;    ///< replicate index within its sweep point (0 without replicates)
+  /// The rate anchor: when the run first reported progress above 0, and that progress ("" and 0
+  /// before); its ETA is the rate since then (rupture::remainingSeconds).
+  std::string rateFrom;
+  double rateFromProgress = 0;
 };
 
 struct JobRecord {

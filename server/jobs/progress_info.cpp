@@ -41,19 +41,56 @@ struct Timing {
   double elapsed = -1, eta = -1;
 };
 
-Timing timingOf(Status status, const std::string& started, const std::string& finished, double progress,
-                const std::string& now) {
+double elapsedOf(Status status, const std::string& started, const std::string& finished, const std::string& now) {
+  if (started.empty()) return -1;
+  return secondsBetween(started, isTerminal(status) && !finished.empty() ? finished : now);
+}
+
+/// A run's: its ETA from its own rate since its first progress (unknown before it has one).
+Timing runTiming(const RunRecord& run, const std::string& now) {
   Timing t;
-  if (!started.empty()) t.elapsed = secondsBetween(started, isTerminal(status) && !finished.empty() ? finished : now);
-  if (status == Status::Running) t.eta = estimateRemainingSeconds(t.elapsed, runningFraction(progress));
-  if (status == Status::Successful) t.eta = 0;
+  t.elapsed = elapsedOf(run.status, run.started, run.finished, now);
+  if (run.status == Status::Successful) t.eta = 0;
+  if (run.status == Status::Running && !run.rateFrom.empty())
+    t.eta = remainingSeconds(epochSeconds(run.rateFrom), run.rateFromProgress, epochSeconds(run.updated),
+                             runningFraction(run.progress), epochSeconds(now));
+  return t;
+}
+
+/// A job's: the longest ETA of its running runs, plus its queued runs in rounds as wide as the
+/// runs running now, each as long as its finished runs took on average (before any has finished:
+/// as long as the running ones will have taken). Unknown while a running run's ETA is.
+Timing jobTiming(const JobRecord& job, const std::vector<RunRecord>* runs, const std::string& now) {
+  Timing t;
+  t.elapsed = elapsedOf(job.status, job.started, job.finished, now);
+  if (job.status == Status::Successful) t.eta = 0;
+  if (job.status != Status::Running || !runs) return t;
+  double longest = 0, finishedTime = 0, projectedTime = 0;
+  int running = 0, queued = 0, finished = 0;
+  for (const RunRecord& r : *runs) {
+    if (r.status == Status::Accepted) ++queued;
+    if (r.status == Status::Successful && !r.started.empty() && !r.finished.empty()) {
+      finishedTime += secondsBetween(r.started, r.finished);
+      ++finished;
+    }
+    if (r.status != Status::Running) continue;
+    const Timing rt = runTiming(r, now);
+    if (rt.eta < 0) return t;  // not known yet
+    longest = std::max(longest, rt.eta);
+    projectedTime += std::max(rt.elapsed, 0.0) + rt.eta;
+    ++running;
+  }
+  if (running == 0) return t;  // between runs: nothing measures the rate
+  const double perRun = finished > 0 ? finishedTime / finished : projectedTime / running;
+  const int rounds = (queued + running - 1) / running;
+  t.eta = longest + rounds * perRun;
   return t;
 }
 
 }  // namespace
 
 void addRunProgress(Json& doc, const RunRecord& run, const std::string& now) {
-  const Timing timing = timingOf(run.status, run.started, run.finished, run.progress, now);
+  const Timing timing = runTiming(run, now);
   std::string stage = run.status == Status::Accepted ? "queued" : toString(run.status);
   if (run.status == Status::Running) stage = run.stage.empty() ? "starting" : run.stage;
   if (run.status == Status::Dismissed && !run.started.empty() && !run.stage.empty()) stage = "dismissed during: " + run.stage;
@@ -64,7 +101,7 @@ void addRunProgress(Json& doc, const RunRecord& run, const std::string& now) {
 }
 
 void addJobProgress(Json& doc, const JobRecord& job, const std::vector<RunRecord>* runs, const std::string& now) {
-  const Timing timing = timingOf(job.status, job.started, job.finished, job.progress, now);
+  const Timing timing = jobTiming(job, runs, now);
   std::string stage = job.status == Status::Accepted ? "queued" : toString(job.status);
   if (job.status == Status::Running) {
     const int finished = job.runsSuccessful + job.runsFailed + job.runsDismissed;

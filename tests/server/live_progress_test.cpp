@@ -18,9 +18,22 @@ Json slowThenQuick() {
 }
 
 TEST(LiveProgress, EstimatorAndTimestamps) {
-  EXPECT_DOUBLE_EQ(estimateRemainingSeconds(30.0, 0.25), 90.0);
-  EXPECT_DOUBLE_EQ(estimateRemainingSeconds(30.0, 1.0), 0.0);
-  EXPECT_LT(estimateRemainingSeconds(30.0, 0.001), 0.0) << "too early to tell";
+  // A run that built its sample for 60 s (no progress), then went from 10 % at 60 s to 30 % at 70 s:
+  // 2 %/s, so 70 % more takes 35 s, 5 s of which have passed since the last report. The set-up
+  // minute does not count as slow progress (the old elapsed · (1 − f) / f said 163 s).
+  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 75.0), 30.0);
+  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 1.0, 75.0), 0.0);
+  EXPECT_LT(remainingSeconds(60.0, 0.1, 61.0, 0.3, 61.0), 0.0) << "a second of progress says too little";
+  EXPECT_LT(remainingSeconds(60.0, 0.3, 70.0, 0.3, 70.0), 0.0) << "no gain, no rate";
+  EXPECT_LT(remainingSeconds(-1.0, 0.0, 70.0, 0.3, 70.0), 0.0) << "no anchor yet";
+  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 200.0), 0.0) << "overdue is 0, not negative";
+  RemainingTime watch;
+  watch.observe(0.0, 0.0);
+  watch.observe(30.0, 0.0);  // set-up
+  EXPECT_LT(watch.at(30.0), 0.0);
+  watch.observe(31.0, 0.05);
+  watch.observe(41.0, 0.25);
+  EXPECT_DOUBLE_EQ(watch.at(41.0), 37.5);  // 2 %/s from the anchor at 31 s: 75 % in 37.5 s
   EXPECT_DOUBLE_EQ(secondsBetween("2026-01-02T03:04:05.500Z", "2026-01-02T03:05:07.000Z"), 61.5);
   EXPECT_DOUBLE_EQ(secondsBetween("2025-12-31T23:59:59.000Z", "2026-01-01T00:00:01.000Z"), 2.0);
   EXPECT_LT(secondsBetween("yesterday", "2026-01-01T00:00:01.000Z"), 0.0);
@@ -36,7 +49,7 @@ TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {
   Json first;
   ASSERT_TRUE(test::waitFor([&] {
     first = getJson(*client, path);
-    // The job's ETA needs 1 % of the whole job (run 0's 2 % of its half).
+    // A run's ETA needs 2 s of its own progress; the job's needs its running run's.
     return !first["runs"][0]["eta_s"].is_null() && !first["eta_s"].is_null();
   }, 120)) << first.dump(2);
   const Json& run = first["runs"][0];
@@ -49,7 +62,8 @@ TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {
   EXPECT_TRUE(first["runs"][1]["elapsed_s"].is_null());
   EXPECT_TRUE(first["stage"].get<std::string>().find("0 of 2 runs finished, 1 running") == 0) << first["stage"];
   EXPECT_GT(first["elapsed_s"].get<double>(), 0.0);
-  EXPECT_FALSE(first["eta_s"].is_null());
+  // The queued run comes after the running one: the job needs longer than its running run.
+  EXPECT_GT(first["eta_s"].get<double>(), run["eta_s"].get<double>());
 
   // While the progress rises, both `updated` stamps move and elapsed grows.
   Json later;
