@@ -111,6 +111,48 @@ TEST(CrackTracking, TipAndBranchesOfHandBuiltDamageFields) {
   EXPECT_EQ(countCrackBranches(p, std::vector<double>(p.size(), 0.0), 0.25, {0, 0, 0}, h), 0);
 }
 
+TEST(CrackTracking, AZoneJoiningAheadIsAJumpNotASpeed) {
+  // A crack runs along x at one spacing per 1 µs (1 km/s) from the origin; a zone 20 to 30
+  // spacings ahead cracks on its own from the start (a reflected wave), and at 8 µs the ligament
+  // between them breaks at once: the tip moves from 7 to 30 spacings in one row. With a bound of
+  // 5 km/s that is a jump, not a 23 km/s crack.
+  const double h = 1e-3, dt = 1e-6;
+  ParticleStore p;
+  p.dimension = 2;
+  for (int k = 0; k <= 40; ++k) p.add(k * h, 0, 0, 0.4 * h);
+  CrackTracker tracker({0, 0, 0}, 0.25, h, 1, 5000.0);
+  CrackTracker unbounded({0, 0, 0}, 0.25, h, 1);
+  double fastest = 0, fastestUnbounded = 0;
+  int jumpRow = -1;
+  for (int row = 0; row <= 12; ++row) {
+    std::vector<double> damage(p.size(), 0.0);
+    for (int k = 0; k <= 40; ++k) {
+      const bool crack = k <= row || (row >= 8 && k <= 30);
+      const bool ahead = k >= 20 && k <= 30;
+      damage[static_cast<std::size_t>(k)] = crack || ahead ? 0.5 : 0.0;
+    }
+    fastest = std::max(fastest, tracker.observe(row * dt, p, damage));
+    fastestUnbounded = std::max(fastestUnbounded, unbounded.observe(row * dt, p, damage));
+    if (tracker.jump() > 0) jumpRow = row;
+  }
+  EXPECT_EQ(jumpRow, 8);
+  EXPECT_EQ(tracker.jumps(), 1);
+  EXPECT_NEAR(tracker.jumpedLength(), 23 * h, 1e-12);
+  EXPECT_NEAR(tracker.tip().distance, 30 * h, 1e-12) << "the crack is as long as it is";
+  EXPECT_NEAR(fastest, 1000.0, 1e-6) << "the speed is the crack's own";
+  EXPECT_GT(fastestUnbounded, 20000.0) << "without the bound the joining reads as a 23 km/s crack";
+
+  // A crack that is merely fast (3 spacings per µs, 3 km/s) is no jump.
+  CrackTracker fast({0, 0, 0}, 0.25, h, 1, 5000.0);
+  for (int row = 0; row <= 12; ++row) {
+    std::vector<double> damage(p.size(), 0.0);
+    for (int k = 0; k <= std::min(40, 3 * row); ++k) damage[static_cast<std::size_t>(k)] = 0.5;
+    fast.observe(row * dt, p, damage);
+  }
+  EXPECT_EQ(fast.jumps(), 0);
+  EXPECT_NEAR(fast.maxSpeed(), 3000.0, 1e-6);
+}
+
 class ImpactEveryModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ImpactEveryModel, ANotchedPlateCracksFromItsNotchTip) {

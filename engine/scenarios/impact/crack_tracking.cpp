@@ -42,8 +42,20 @@ double CrackTracker::observe(double t, const ParticleStore& p, const std::vector
           }
         }
   }
+  // A gain no crack could make in the time since the last row is a jump: two zones joined.
+  m_jump = 0;
+  if (m_lastFound && !m_times.empty()) {
+    const double gained = m_tip.distance - m_lastDistance, elapsed = t - m_times.back();
+    if (gained > m_jumpSpeed * elapsed + 2 * m_spacing) {
+      m_jump = gained;
+      m_jumped += gained;
+      ++m_jumps;
+    }
+  }
+  m_lastFound = m_tip.found;
+  m_lastDistance = m_tip.distance;
   m_times.push_back(t);
-  m_distances.push_back(m_tip.distance);
+  m_distances.push_back(m_tip.distance - m_jumped);
   const std::size_t n = m_times.size();
   if (n <= m_window) return 0.0;
   const double speed = (m_distances[n - 1] - m_distances[n - 1 - m_window]) / (m_times[n - 1] - m_times[n - 1 - m_window]);

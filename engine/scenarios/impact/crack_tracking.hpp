@@ -6,13 +6,20 @@
 //        origin through cracked particles (linked when closer than 2.5 spacings, starting from
 //        those within 3 spacings of the origin), so that cracks nucleating elsewhere (edges,
 //        reflected waves) do not make the tip jump; its distance is kept as a running maximum.
-//   speed: the tip distance's slope over the last `window` output rows (a smoothing window).
+//   speed: the slope of the propagated length over the last `window` output rows (a smoothing
+//        window). The propagated length is the tip distance less its jumps: when a zone that
+//        cracked apart from the crack (ahead of it, from a reflected wave) joins it, the tip moves
+//        at once by that zone's extent, faster than any crack can run (`maxSpeed`, the material's
+//        bar wave speed sqrt(E/rho) twice over, plus two spacings per output row); such a gain is a
+//        jump, reported as an event (jump()) and kept out of the speed, so that crack_speed_max is
+//        the speed of a crack and never that of two zones joining.
 //   branches: cracked particles are cut into annuli (shells in 3D) around the origin, 4 spacings
 //        wide; in each annulus past 6 spacings the cracked particles are clustered (linked when
 //        closer than 2.5 spacings, clusters of at least 3); the branch count is the largest number
 //        of clusters in one annulus: 1 for a single crack, 2 once it has branched.
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "core/particle_store.hpp"
@@ -27,22 +34,33 @@ struct CrackTip {
 
 class CrackTracker {
 public:
-  CrackTracker(std::array<double, 3> origin, double threshold, double spacing, std::size_t window = 5)
-      : m_origin(origin), m_threshold(threshold), m_spacing(spacing), m_window(window) {}
+  CrackTracker(std::array<double, 3> origin, double threshold, double spacing, std::size_t window = 5,
+               double maxSpeed = std::numeric_limits<double>::infinity())
+      : m_origin(origin), m_threshold(threshold), m_spacing(spacing), m_window(window), m_jumpSpeed(maxSpeed) {}
 
   /// Updates the tip from the current damage and positions at time t; returns the smoothed speed (m/s).
   double observe(double t, const ParticleStore& p, const std::vector<double>& damage);
   const CrackTip& tip() const { return m_tip; }
   double maxSpeed() const { return m_maxSpeed; }
+  /// The length the tip gained at once at the last observation by joining a zone that cracked
+  /// apart from it (m; 0 when it did not jump).
+  double jump() const { return m_jump; }
+  /// How many times the tip jumped, and by how much in all (m).
+  int jumps() const { return m_jumps; }
+  double jumpedLength() const { return m_jumped; }
 
 private:
   std::array<double, 3> m_origin;
   double m_threshold;
   double m_spacing;
   std::size_t m_window;
+  double m_jumpSpeed;
   CrackTip m_tip;
-  std::vector<double> m_times, m_distances;
+  std::vector<double> m_times, m_distances;  ///< the propagated length (jumps taken off)
   double m_maxSpeed = 0;
+  double m_jump = 0, m_jumped = 0, m_lastDistance = 0;
+  bool m_lastFound = false;
+  int m_jumps = 0;
 };
 
 /// Number of crack branches (see above); `spacing` is the particle spacing (m).

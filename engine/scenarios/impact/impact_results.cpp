@@ -6,8 +6,12 @@ namespace rupture {
 
 const ResultFields& impactSummaryFields() {
   static const ResultFields fields = {
-      {"crack_speed_max", "m/s", "Max crack speed", "Largest crack-tip speed over the run"},
+      {"crack_speed_max", "m/s", "Max crack speed",
+       "Largest speed of the crack connected to its origin over the run, jumps (zones that cracked apart joining it) excluded"},
       {"crack_length", "m", "Crack length", "Distance of the farthest damaged point from the impact point"},
+      {"crack_jumps", "1", "Crack jumps",
+       "Times the crack tip jumped ahead by joining a zone that cracked apart from it (faster than twice sqrt(E/rho))"},
+      {"crack_jumped_length", "m", "Jumped length", "Crack length gained by those jumps, not by propagation"},
       {"branches", "1", "Crack branches", "Crack branches counted on a ring around the impact point"},
       {"fragments", "1", "Fragments", "Connected groups of elements through intact bonds at the end"},
       {"broken_bonds", "1", "Broken bonds", "Bonds broken at the end of the run"},
@@ -35,7 +39,8 @@ const ResultFields& impactSeriesFields() {
       {"crack_tip_y", "m", "Crack tip y", "y of the crack tip"},
       {"crack_tip_z", "m", "Crack tip z", "z of the crack tip"},
       {"crack_length", "m", "Crack length", "Distance of the crack tip from the impact point"},
-      {"crack_speed", "m/s", "Crack speed", "Crack-tip speed"},
+      {"crack_speed", "m/s", "Crack speed", "Crack-tip speed, jumps excluded (smoothed over 5 rows)"},
+      {"crack_jump", "m", "Crack jump", "Length the tip gained at once at this row by joining a zone that cracked apart (0 otherwise)"},
       {"kinetic_energy", "J", "Kinetic energy", "Kinetic energy of the sample"},
       {"elastic_energy", "J", "Elastic energy", "Elastic energy in intact bonds"},
       {"projectile_kinetic_energy", "J", "Projectile kinetic energy", "Kinetic energy of the projectile"},
