@@ -89,6 +89,34 @@ Timing jobTiming(const JobRecord& job, const std::vector<RunRecord>* runs, const
 
 }  // namespace
 
+double jobProgress(const std::vector<RunRecord>& runs, const std::string& now) {
+  std::vector<double> weight(runs.size(), -1), fraction(runs.size(), 0);
+  double known = 0;
+  int counted = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunRecord& r = runs[i];
+    fraction[i] = r.status == Status::Successful || r.status == Status::Failed ? 1.0 : std::clamp(r.progress, 0.0, 1.0);
+    if (r.status == Status::Dismissed && r.started.empty()) weight[i] = 0;  // never ran, never will
+    if (isTerminal(r.status) && !r.started.empty() && !r.finished.empty()) weight[i] = secondsBetween(r.started, r.finished);
+    if (r.status == Status::Running) {
+      const Timing t = runTiming(r, now);
+      if (t.eta >= 0 && t.elapsed >= 0) weight[i] = t.elapsed + t.eta;
+    }
+    if (weight[i] > 0) {
+      known += weight[i];
+      ++counted;
+    }
+  }
+  const double typical = counted ? known / counted : 1.0;
+  double total = 0, done = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const double w = weight[i] < 0 ? typical : weight[i];
+    total += w;
+    done += w * fraction[i];
+  }
+  return total > 0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
+}
+
 void addRunProgress(Json& doc, const RunRecord& run, const std::string& now) {
   const Timing timing = runTiming(run, now);
   std::string stage = run.status == Status::Accepted ? "queued" : toString(run.status);
@@ -120,6 +148,9 @@ void addJobProgress(Json& doc, const JobRecord& job, const std::vector<RunRecord
   doc["elapsed_s"] = secondsOrNull(timing.elapsed);
   doc["eta_s"] = secondsOrNull(timing.eta);
   doc["updated"] = std::max(job.updated, job.runsUpdated);
+  // A running job's percentage weighs its runs by cost (at most 99 while it runs).
+  if (job.status == Status::Running && runs && !runs->empty())
+    doc["progress"] = static_cast<int>(std::floor(100 * runningFraction(jobProgress(*runs, now)) + 1e-9));
 }
 
 }  // namespace rupture::server

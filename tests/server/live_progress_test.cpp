@@ -39,6 +39,31 @@ TEST(LiveProgress, EstimatorAndTimestamps) {
   EXPECT_LT(secondsBetween("yesterday", "2026-01-01T00:00:01.000Z"), 0.0);
 }
 
+TEST(LiveProgress, AJobsProgressWeighsItsRunsByCost) {
+  // Run 0 took 100 s; run 1 has run 10 s and is half done at 5 %/s (10 s left: 20 s in all); run 2
+  // waits (weighed as the mean, 60 s). Equal weights would say (1 + 0.5 + 0) / 3 = 50 %; by cost it
+  // is (100 + 10 + 0) / 180.
+  std::vector<RunRecord> runs(3);
+  runs[0].status = Status::Successful;
+  runs[0].started = "2026-01-01T00:00:00.000Z";
+  runs[0].finished = "2026-01-01T00:01:40.000Z";
+  runs[1].status = Status::Running;
+  runs[1].started = "2026-01-01T00:01:40.000Z";
+  runs[1].rateFrom = "2026-01-01T00:01:41.000Z";  // 5 % after 1 s, 50 % after 10 s: 5 %/s
+  runs[1].rateFromProgress = 0.05;
+  runs[1].progress = 0.5;
+  runs[1].updated = "2026-01-01T00:01:50.000Z";
+  runs[2].status = Status::Accepted;
+  const std::string now = "2026-01-01T00:01:50.000Z";
+  EXPECT_NEAR(jobProgress(runs, now), 110.0 / 180.0, 1e-12);
+  // Before any run has a known cost, every run weighs the same.
+  runs[0].status = Status::Running;
+  runs[0].progress = 0.2;
+  runs[0].finished.clear();
+  runs[1].rateFrom.clear();
+  EXPECT_NEAR(jobProgress(runs, now), (0.2 + 0.5 + 0) / 3, 1e-12);
+}
+
 TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {
   ASSERT_TRUE(test::scenarioAvailable());
   LiveServer live([](ServerConfig& c) { c.workers = 1; });
