@@ -120,7 +120,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   if (request.height < kMinImageSide || request.height > kMaxImageSide)
     throw FieldImageError("height", "height " + std::to_string(request.height) + "; allowed: " +
                                         std::to_string(kMinImageSide) + " to " + std::to_string(kMaxImageSide));
-  if (request.bonds != "broken" && request.bonds != "all" && request.bonds != "none")
+  if (!request.bonds.empty() && request.bonds != "broken" && request.bonds != "all" && request.bonds != "none")
     throw FieldImageError("bonds", "bonds '" + request.bonds + "'; allowed: broken, all, none");
   if (request.slice && !(*request.slice >= 0 && std::isfinite(*request.slice)))
     throw FieldImageError("slice", "slice must be a distance >= 0 (m); 0 draws every particle");
@@ -147,6 +147,12 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   const FieldDeclaration& declaration = *findFieldDeclaration(field);
   const SnapshotField s = readSnapshotField(file, request.root, snapshot, field);
 
+  // Bonds drawn: as asked, else the broken ones where a particle has a few bonds; a peridynamic
+  // family (tens per particle) would paint a crack solid red over the damage that shows it.
+  const double bondsPerParticle =
+      s.position.empty() ? 0 : static_cast<double>(s.brokenBonds.size() + s.intactBonds.size()) / s.position.size();
+  const std::string bonds = !request.bonds.empty() ? request.bonds : bondsPerParticle > 6 ? "none" : "broken";
+
   std::string bodyNote;
   std::vector<std::size_t> drawn = selectParticles(s, field, request.body, bodyNote);
   const bool plateOnly = bodyNote == "plate";
@@ -163,7 +169,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   std::string sliceNote;
   if (slice > 0 && !drawn.empty()) {
     double middle = 0.5 * (lo + hi);
-    if (std::abs(middle) < 1e-9 * (hi - lo)) middle = 0;  // a centred domain's middle is 0, not 1e-14 m
+    if (std::abs(middle) < 1e-3 * (hi - lo)) middle = 0;  // a centred domain's middle reads 0, not 2.5 µm
     std::vector<std::size_t> kept;
     for (std::size_t k : drawn)
       if (std::abs(s.position[k][plane.depth] - middle) <= slice) kept.push_back(k);
@@ -215,27 +221,29 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
     for (std::size_t k : drawn) {
       const Rgb c = viridis((s.value[k] - vmin) / (vmax - vmin));
       cairo_set_source_rgb(cr, c.r, c.g, c.b);
-      const double r = std::max(0.5, scale * s.radius[k]);
-      cairo_arc(cr, px(k), py(k), r, 0, 2 * M_PI);
+      // Discs under two pixels are squares: anti-aliased dots would leave the background between them.
+      const double r = std::max(0.75, scale * s.radius[k]);
+      if (r < 2) cairo_rectangle(cr, px(k) - r, py(k) - r, 2 * r, 2 * r);
+      else cairo_arc(cr, px(k), py(k), r, 0, 2 * M_PI);
       cairo_fill(cr);
     }
     // Bonds between drawn particles only (a slice or body filter hides the others' bonds).
     std::vector<char> shown(s.position.size(), 0);
     for (std::size_t k : drawn) shown[k] = 1;
-    auto strokeBonds = [&](const std::vector<std::array<std::size_t, 2>>& bonds) {
-      for (const auto& [i, j] : bonds) {
+    auto strokeBonds = [&](const std::vector<std::array<std::size_t, 2>>& pairs) {
+      for (const auto& [i, j] : pairs) {
         if (!shown[i] || !shown[j]) continue;
         cairo_move_to(cr, px(i), py(i));
         cairo_line_to(cr, px(j), py(j));
       }
       cairo_stroke(cr);
     };
-    if (request.bonds == "all" && !s.intactBonds.empty()) {
+    if (bonds == "all" && !s.intactBonds.empty()) {
       cairo_set_source_rgba(cr, 0.35, 0.35, 0.35, 0.6);
       cairo_set_line_width(cr, std::max(0.4, 0.15 * scale * meanRadius));
       strokeBonds(s.intactBonds);
     }
-    if (request.bonds != "none" && !s.brokenBonds.empty()) {
+    if (bonds != "none" && !s.brokenBonds.empty()) {
       cairo_set_source_rgb(cr, 0.84, 0.15, 0.16);  // red: visible on every viridis colour
       cairo_set_line_width(cr, std::max(1.0, 0.5 * scale * meanRadius));
       cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
@@ -251,7 +259,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
       std::string detail = "view " + axisName(plane.u) + axisName(plane.v);
       if (!bodyNote.empty()) detail += ", " + bodyNote;
       if (!sliceNote.empty()) detail += ", " + sliceNote;
-      if (!s.brokenBonds.empty() && request.bonds != "none")
+      if (!s.brokenBonds.empty() && bonds != "none")
         detail += ", " + std::to_string(s.brokenBonds.size()) + " broken bonds in red";
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
       cairo_set_font_size(cr, 14);

@@ -26,7 +26,9 @@ struct FieldImageRequest {
   std::optional<double> slice;        ///< m: draw only points within this distance of the middle of
                                       ///< the depth axis (0: all); default: one particle spacing for a
                                       ///< 3D fluid, 0 otherwise
-  std::string bonds = "broken";       ///< "broken", "all" or "none"
+  std::string bonds;                  ///< "broken", "all" or "none"; "": broken where a particle has a
+                                      ///< few bonds (discrete elements, lattices), none for a dense
+                                      ///< peridynamic family (its damage field shows the crack)
   std::optional<double> min, max;     ///< colour range in the field's unit; default: the data's
                                       ///< (0..1 for damage)
   int width = 800, height = 600;      ///< px (pt for PDF)

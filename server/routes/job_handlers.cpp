@@ -214,7 +214,7 @@ Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, c
       chosen["snapshot"] = intParam(req, "snapshot", 0, 0, std::max<std::int64_t>(count - 1, 0));
     }
     if (auto view = choiceParam(req, "view", {"", "xy", "xz", "yz"})) chosen["view"] = *view;
-    if (auto bonds = choiceParam(req, "bonds", {"broken", "all", "none"})) chosen["bonds"] = *bonds;
+    if (auto bonds = choiceParam(req, "bonds", {"", "broken", "all", "none"})) chosen["bonds"] = *bonds;
   }
   data["chosen"] = chosen;
   data["run"] = std::move(doc);

@@ -109,9 +109,9 @@ HtmlPage runHtml(const Json& data) {
       long snapshot = chosen.value("snapshot", -1L);
       if (snapshot < 0) snapshot += count;
       snapshot = std::clamp(snapshot, 0L, count - 1);
-      const std::string view = chosen.value("view", ""), bonds = chosen.value("bonds", "broken");
+      const std::string view = chosen.value("view", ""), bonds = chosen.value("bonds", "");
       const std::vector<std::pair<std::string, std::string>> picture = {
-          {"field", field}, {"snapshot", std::to_string(snapshot)}, {"view", view}, {"bonds", bonds == "broken" ? "" : bonds}};
+          {"field", field}, {"snapshot", std::to_string(snapshot)}, {"view", view}, {"bonds", bonds}};
       c += "<h2>Field</h2><form method=\"get\" action=\"" + href(base) + "\" id=\"picture-form\">"
            "<input type=\"hidden\" name=\"f\" value=\"html\"> Field <select name=\"field\">";
       for (const auto& f : fields) c += option(f.get<std::string>(), f.get<std::string>(), f == field);
@@ -122,7 +122,7 @@ HtmlPage runHtml(const Json& data) {
       }
       c += "</select> View <select name=\"view\">" + option("", "auto", view.empty());
       for (const char* v : {"xy", "xz", "yz"}) c += option(v, v, view == v);
-      c += "</select> Bonds <select name=\"bonds\">";
+      c += "</select> Bonds <select name=\"bonds\">" + option("", "auto", bonds.empty());
       for (const char* b : {"broken", "all", "none"}) c += option(b, b, bonds == b);
       c += "</select> <button>Show</button></form>\n";
       const std::string q = query(picture);
