@@ -98,6 +98,17 @@ void getJobs(ServerContext& ctx, const Request& req, Response& res) {
 
 namespace {
 
+/// The label and unit of each swept path, from the scenario's schema: {path: {label, unit}}.
+Json sweptFields(const JobRecord& job) {
+  Json swept = Json::object();
+  if (!rupture::findScenario(job.processId)) return swept;
+  const Json schema = rupture::scenarioSchema(job.processId);
+  for (const auto& path : job.sweptPaths)
+    swept[path.get<std::string>()] = {{"label", rupture::specFieldLabel(schema, path.get<std::string>())},
+                                      {"unit", rupture::specFieldUnit(schema, path.get<std::string>())}};
+  return swept;
+}
+
 /// Marks "picture": true on the status document's runs whose file holds snapshots, so the job page
 /// shows a thumbnail of each (the first kMaxThumbnails: a page of a thousand runs stays light).
 void markRunsWithPictures(ServerContext& ctx, const std::vector<RunRecord>& runs, Json& status) {
@@ -137,6 +148,7 @@ void getJob(ServerContext& ctx, const Request& req, Response& res) {
     }
     Json status = statusInfo(job, &runs);
     markRunsWithPictures(ctx, runs, status);
+    status["swept_fields"] = sweptFields(job);  // for the page's headers; not in the JSON answer
     return sendHtml(res, jobHtml(status, summary, plot, points));
   }
   sendJson(res, statusInfo(job, &runs));
@@ -189,14 +201,7 @@ Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, c
       fields.push_back({{"name", f.name}, {"label", f.label}, {"unit", f.unitFor(dimension)}});
   }
   data["summary_fields"] = fields;
-  Json swept = Json::object();  // label and unit of each swept path, from the schema
-  if (scenario)
-    for (const auto& path : job.sweptPaths) {
-      const Json schema = rupture::scenarioSchema(scenario->name);
-      swept[path.get<std::string>()] = {{"label", rupture::specFieldLabel(schema, path.get<std::string>())},
-                                        {"unit", rupture::specFieldUnit(schema, path.get<std::string>())}};
-    }
-  data["swept_fields"] = swept;
+  data["swept_fields"] = sweptFields(job);
   Json chosen = Json::object();
   if (run.status == Status::Successful) {
     data["pictures"] = runPictures(ctx.resultsDir / run.resultPath, scenario);

@@ -1,5 +1,6 @@
 #include "views/html_page.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <random>
 #include <vector>
@@ -92,22 +93,31 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
     columns.push_back(std::move(k));
   }
   const Json rows = summary.value("rows", Json::array());
+  // A comparison's job column leads, then the run, its replicate and status.
+  std::stable_partition(columns.begin(), columns.end(), [](const Column& k) { return k.name == "job"; });
   std::vector<std::string> lead;
-  for (const char* name : {"job", "run", "replicate", "status"}) {
+  for (const char* name : {"run", "replicate", "status"}) {
     bool listed = false, held = false;
     for (const Column& k : columns) listed = listed || k.name == name;
     for (const auto& row : rows) held = held || row.contains(name);
     if (held && !listed) lead.push_back(name);
   }
+  // The job column (a comparison's) comes first, then the run columns, then the rest.
+  const bool jobFirst = !columns.empty() && columns.front().name == "job";
   auto table = [&](const std::string& tableId, const std::vector<const Column*>& shown) {
     std::string h = "<table id=\"" + tableId + "\"><tr>";
+    auto header = [&](const Column* k) { h += "<th title=\"" + xmlEscape(k->name) + "\">" + xmlEscape(k->label) + "</th>"; };
+    if (jobFirst) header(&columns.front());
     for (const std::string& name : lead) h += "<th>" + std::string(1, static_cast<char>(std::toupper(name[0]))) + name.substr(1) + "</th>";
-    for (const Column* k : shown) h += "<th title=\"" + xmlEscape(k->name) + "\">" + xmlEscape(k->label) + "</th>";
+    for (const Column* k : shown)
+      if (!(jobFirst && k == &columns.front())) header(k);
     h += "</tr>\n";
     for (const auto& row : rows) {
       h += "<tr>";
+      if (jobFirst) h += cell(row.value("job", Json()));
       for (const std::string& name : lead) h += cell(row.value(name, Json()));
-      for (const Column* k : shown) h += quantityCell(row.value(k->name, Json()), k->unit);
+      for (const Column* k : shown)
+        if (!(jobFirst && k == &columns.front())) h += quantityCell(row.value(k->name, Json()), k->unit);
       h += "</tr>\n";
     }
     return h + "</table>";

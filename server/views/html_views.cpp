@@ -161,11 +161,18 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
   c += " <span class=\"error\" id=\"action-error\" role=\"alert\"></span></p>\n";
   c += "<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
   const Json swept = status.value("swept", Json::array());
-  std::map<std::string, std::string> sweptUnit;  // from the summary's columns, once it has them
-  if (summary.is_object())
-    for (const auto& col : summary.value("columns", Json::array()))
-      if (col.is_object()) sweptUnit[col.value("name", "")] = col.value("unit", "");
-  for (const auto& p : swept) c += "<th>" + esc(p) + "</th>";
+  // Each swept path headed by its label (the path on hover), its values in its unit.
+  std::map<std::string, std::string> sweptUnit, sweptLabel;
+  const Json sweptFields = status.value("swept_fields", Json::object());  // held: items() keeps a reference
+  for (const auto& [path, about] : sweptFields.items()) {
+    sweptUnit[path] = about.value("unit", "");
+    sweptLabel[path] = about.value("label", path);
+  }
+  for (const auto& p : swept) {
+    const std::string path = p.get<std::string>();
+    const std::string label = sweptLabel.count(path) ? sweptLabel[path] : path;
+    c += "<th title=\"" + xmlEscape(path) + "\">" + xmlEscape(label) + "</th>";
+  }
   c += "<th>Status</th><th>Progress</th><th>Stage</th><th>Files</th><th>Picture</th></tr>\n";
   for (const auto& r : status.value("runs", Json::array())) {
     const std::string k = std::to_string(r.value("index", 0));

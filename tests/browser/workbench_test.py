@@ -80,6 +80,13 @@ class Browser:
         self.call("Page.navigate", url=url)
         self.settle()
 
+    def click_and_reload(self, element_id):
+        """Clicks a button whose action reloads the page, and waits for the new page: navigating
+        away before the reload would let the old page's reload win the race."""
+        self.js(f"window.__old = true; document.getElementById('{element_id}').click(), true")
+        wait_until("the page to reload", lambda: self.js("window.__old === undefined"), 60)
+        self.settle()
+
     def settle(self):
         wait_until("the page to load", lambda: self.js("document.readyState") == "complete", 60)
         # every <img> done (loaded or failed)
@@ -163,7 +170,7 @@ def main():
             browser.open(base + f"/jobs/{failed}/runs/0?f=html")
             assert "too small" in browser.js("document.getElementById('reason').textContent")
             browser.open(base + f"/jobs/{failed}?f=html")
-            browser.js("document.getElementById('retry').click(), true")
+            browser.click_and_reload("retry")
             wait_until("the retried run", lambda: http_json(base, f"/jobs/{failed}/runs/0").get("attempts", 1) == 2
                        and http_json(base, "/jobs/" + failed)["status"] == "failed", 60)
 
@@ -179,7 +186,7 @@ def main():
             slow = path.split("/")[2]
             wait_until("the slow job to run", lambda: http_json(base, "/jobs/" + slow)["status"] == "running", 60)
             browser.open(base + f"/jobs/{slow}?f=html")
-            browser.js("document.getElementById('cancel').click(), true")
+            browser.click_and_reload("cancel")
             wait_until("the cancel", lambda: http_json(base, "/jobs/" + slow)["status"] == "dismissed", 30)
 
             # 5. Two jobs compared from the list.

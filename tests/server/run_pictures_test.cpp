@@ -139,6 +139,14 @@ TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
     EXPECT_NE(jobPage->body.find(run(k) + "/field?thumbnail=1"), std::string::npos) << k;
     EXPECT_NE(jobPage->body.find("href=\"" + run(k) + "?f=html\""), std::string::npos) << k;
   }
+  // Swept paths are headed by their labels (the path on hover), before and after the summary.
+  EXPECT_NE(jobPage->body.find("<th title=\"loading.strain_rate\">Strain rate</th>"), std::string::npos);
+  // A comparison's table leads with the job.
+  auto compare = client->Get(("/summary?jobs=" + std::to_string(jobId) + "&f=html").c_str());
+  ASSERT_TRUE(compare);
+  EXPECT_EQ(compare->status, 200);
+  EXPECT_NE(compare->body.find("<table id=\"compare\"><tr><th title=\"job\">Job</th><th>Run</th>"), std::string::npos)
+      << compare->body.substr(0, 3000);
 }
 
 }  // namespace
