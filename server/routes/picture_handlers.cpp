@@ -22,19 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void refuseUnknownParams(const Request& req, std::initializer_list<const char*> known) {
-  for (const auto& [name, value] : req.params) {
-    bool ok = false;
-    for (const char* k : known) ok = ok || name == k;
-    if (!ok) {
-      std::string list;
-      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                     "unknown parameter '" + name + "'; allowed: " + list, name, Json{{"in", "query"}});
-    }
-  }
-}
-
 std::string textParam(const Request& req, const char* name) {
   if (!req.has_param(name)) return "";
   const std::string value = req.get_param_value(name);

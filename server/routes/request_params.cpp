@@ -1,4 +1,5 @@
 #include "routes/request_params.hpp"
+#include <algorithm>
 
 #include <charconv>
 #include <cmath>
@@ -60,6 +61,17 @@ std::optional<std::string> choiceParam(const Request& req, const char* name,
   throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
                  std::string(name) + " must be " + listed + ", got '" + value + "'", name,
                  Json{{"in", "query"}, {"value", value}, {"allowed", names}});
+}
+
+void refuseUnknownParams(const Request& req, const std::vector<std::string>& known) {
+  for (const auto& [name, value] : req.params) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string allowed;
+    for (const std::string& k : known) allowed += (allowed.empty() ? "" : ", ") + k;
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "unknown parameter '" + name + "'; allowed: " + allowed, name,
+                   Json{{"in", "query"}, {"allowed", known}});
+  }
 }
 
 bool wantsCsv(const Request& req) {

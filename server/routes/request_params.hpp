@@ -33,6 +33,10 @@ bool wantsCsv(const httplib::Request& req);
 /// OGC API style: ?f=html, or a browser's Accept (text/html) when ?f is absent; ?f=json is JSON.
 bool wantsHtml(const httplib::Request& req);
 
+/// Every query parameter is one of `known`; else a 400 naming it and listing them (an option is
+/// honoured or refused, never ignored).
+void refuseUnknownParams(const httplib::Request& req, const std::vector<std::string>& known);
+
 std::vector<std::string> splitList(const std::string& text);
 /// Every value of a (possibly repeated) query parameter, comma lists split.
 std::vector<std::string> paramList(const httplib::Request& req, const std::string& name);

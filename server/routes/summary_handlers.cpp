@@ -71,14 +71,7 @@ void readPlotOptions(const Request& req, const SummaryTable& table, PlotRequest&
   // 400 naming it, never silently ignored.
   static const std::vector<std::string> known = {"x",     "y",      "xscale", "yscale", "width",    "height", "ymin",
                                                  "ymax",  "yerror", "title",  "format", "scale",    "jobs",   "fontsize"};
-  for (const auto& [name, value] : req.params) {
-    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-    std::string allowed;
-    for (const std::string& k : known) allowed += (allowed.empty() ? "" : ", ") + k;
-    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
-                   "a plot has no parameter '" + name + "'; allowed: " + allowed, name,
-                   Json{{"in", "query"}, {"allowed", known}});
-  }
+  refuseUnknownParams(req, known);
   if (req.has_param("title")) {
     plot.title = req.get_param_value("title");
     if (plot.title.size() > 300) {
