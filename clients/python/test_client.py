@@ -69,6 +69,8 @@ def checks(server_binary, source, data):
         both = client.compare([job, other])
         assert isinstance(both, pandas.DataFrame) and len(both) == 5, both
         assert sorted(set(both["job"].astype(str))) == sorted({str(job), str(other)}), both
+        listed = client.jobs()
+        assert isinstance(listed, pandas.DataFrame) and set(listed["jobID"].astype(str)) >= {str(job), str(other)}, listed
 
         path = pathlib.Path(data) / "job.h5"
         client.download(job, path)

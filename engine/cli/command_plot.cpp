@@ -54,7 +54,10 @@ bool writeAtomically(const std::string& path, const std::string& bytes) {
   }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);
-  return !ec;
+  if (!ec) return true;
+  std::error_code ignored;
+  std::filesystem::remove(temporary, ignored);  // never a stray temporary beside the picture
+  return false;
 }
 
 std::vector<std::string> splitList(const std::string& text) {
