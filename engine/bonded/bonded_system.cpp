@@ -374,4 +374,28 @@ double BondedSystem::bondEnergy() const {
 
 double BondedSystem::elasticEnergy() const { return bondEnergy() + contact.energy(particles); }
 
+void BondedSystem::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "bonded_system");
+  particles.exchangeState(archive);
+  bonds.exchangeState(archive);
+  contact.exchangeState(archive);
+  m_central.exchangeState(archive);
+  archive.value("time", time);
+  archive.value("steps", steps);
+  archive.value("broken_last_step", brokenLastStep);
+  archive.array("was_intact", m_wasIntact);
+  archive.array("damage", m_damage);
+  archive.array("broken_volume", m_brokenVolume);
+  archive.array("bonded_volume", m_bondedVolume);
+  archive.array("previous_length", m_previousLength);
+  archive.value("step", m_step);
+  archive.array("min_stretch", m_minStretch);
+  archive.array("min_stretch_next", m_minStretchNext);
+  archive.value("load_time", m_loadTime);
+  archive.value("central_current", m_centralCurrent);
+  archive.value("loads_stale", m_loadsStale);
+  archive.array("broken", m_broken);
+  archive.value("planar", m_planar);
+}
+
 }  // namespace rupture

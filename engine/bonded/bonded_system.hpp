@@ -57,6 +57,10 @@ public:
   /// Prepares the per-step arrays and evaluates the loads at t = 0. Call once the sample is built.
   void initialize();
 
+  /// Everything a step changes (docs/checkpoints.md): particles, bonds, contacts, the damage index,
+  /// the central loop's list, the clock. The set-up (sample, model, prescriptions) is rebuilt first.
+  void exchangeState(StateArchive& archive);
+
   /// One velocity-Verlet step of length dt (translation and rotation).
   void step(double dt);
 

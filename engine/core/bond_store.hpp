@@ -66,6 +66,9 @@ struct BondStore {
 
   std::size_t intactCount() const;
 
+  /// What a run changes: the intact flags and the loads of the last evaluation.
+  void exchangeState(StateArchive& archive);
+
   /// Number of intact bonds per particle.
   std::vector<int> coordination(std::size_t particleCount) const;
 

@@ -63,4 +63,15 @@ void ParticleStore::setMassFromDensity(double elementDensity, double thickness2d
   }
 }
 
+void ParticleStore::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "particles");
+  archive.expectCount("particles", size());
+  archive.array("x", x), archive.array("y", y), archive.array("z", z);
+  archive.array("vx", vx), archive.array("vy", vy), archive.array("vz", vz);
+  archive.array("fx", fx), archive.array("fy", fy), archive.array("fz", fz);
+  archive.array("qw", qw), archive.array("qx", qx), archive.array("qy", qy), archive.array("qz", qz);
+  archive.array("wx", wx), archive.array("wy", wy), archive.array("wz", wz);
+  archive.array("tx", tx), archive.array("ty", ty), archive.array("tz", tz);
+}
+
 }  // namespace rupture

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "rupture/state_archive.hpp"
+
 namespace rupture {
 
 /// Degrees of freedom whose velocity is prescribed by a scenario instead of integrated.
@@ -48,6 +50,9 @@ struct ParticleStore {
   /// (sphere 4/3 π R³; in 2D a disk π R² × thickness), and that volume. Inertia: 2/5 m R² (sphere),
   /// 1/2 m R² (disk).
   void setMassFromDensity(double elementDensity, double thickness2d);
+
+  /// The arrays a step changes (kinematics, loads); the constant ones are the set-up's.
+  void exchangeState(StateArchive& archive);
 
 private:
   /// Calls f on every per-particle array (all but dimension): the one list compact and permute share.

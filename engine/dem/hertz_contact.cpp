@@ -242,4 +242,17 @@ double HertzContact::energy(const ParticleStore& p) const {
   return e;
 }
 
+void HertzContact::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "contact");
+  archive.value("list_valid", m_listValid);
+  archive.value("skin", m_skin);
+  archive.array("start", m_start), archive.array("neighbors", m_neighbors);
+  archive.array("reach", m_reach), archive.array("gap0", m_gap0);
+  archive.array("x0", m_x0), archive.array("y0", m_y0), archive.array("z0", m_z0);
+  archive.value("active_level", m_activeLevel);
+  archive.array("active_start", m_activeStart), archive.array("active_neighbors", m_activeNeighbors);
+  archive.array("active_reach", m_activeReach);
+  archive.records("broken_pairs", m_brokenPairs);
+}
+
 }  // namespace rupture

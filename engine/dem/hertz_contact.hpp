@@ -46,6 +46,9 @@ public:
   /// Elastic energy stored in the current contacts (J).
   double energy(const ParticleStore& p) const;
 
+  /// The neighbour list and what decides its next rebuild (the cell grid is rebuilt with it).
+  void exchangeState(StateArchive& archive);
+
 
 private:
   void rebuild(const ParticleStore& p, const BondStore& bonds);

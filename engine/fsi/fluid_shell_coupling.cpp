@@ -53,4 +53,15 @@ void FluidShellCoupling::step(double dt) {
   m_timings.contact += std::chrono::duration<double>(Clock::now() - fluidDone).count();
 }
 
+void FluidShellCoupling::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "coupling");
+  archive.value("pairs", m_last.pairs), archive.value("particles", m_last.particles);
+  archive.records("impulse", m_last.impulse);
+  archive.value("last_dt", m_lastDt);
+  archive.record("plate_force", m_plateForce), archive.record("free_plate_force", m_freePlateForce);
+  archive.value("subcycles", m_subcycles);
+  archive.value("shell_steps", m_shellSteps);
+  archive.record("timings", m_timings);
+}
+
 }  // namespace rupture::fsi

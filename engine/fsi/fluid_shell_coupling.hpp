@@ -32,6 +32,10 @@ public:
   /// The contact alone, at the current state (the coupler's third stage; tests call it directly).
   const ContactOutcome& resolveContact(double dt);
 
+  /// The last contact's impulses, the forces, the step counters and the timings (docs/checkpoints.md);
+  /// the fluid and the shell list their own.
+  void exchangeState(StateArchive& archive);
+
   ContactMethod method() const { return m_method; }
   const ContactGeometry& geometry() const { return m_geometry; }
   /// The fluid's force on the plate over the last step, Σ_n I_n / dt (N), clamped nodes included.

@@ -245,7 +245,7 @@ template <class T>
 void writeTypedDataset(hid_t file, const std::string& fileName, const std::string& path,
                        const std::vector<T>& data, const std::vector<std::size_t>& dims,
                        const std::string& unit, hid_t fileType, hid_t memType,
-                       const std::function<void()>& betweenParts) {
+                       const std::function<void()>& betweenParts, bool compress) {
   if (dims.empty()) fail(fileName, path, "dataset needs at least one dimension");
   if (product(dims) != data.size()) {
     fail(fileName, path,
@@ -280,7 +280,7 @@ void writeTypedDataset(hid_t file, const std::string& fileName, const std::strin
   const std::vector<hsize_t> chunk = chunkShape(shape, sizeof(T));
   checkRc(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), fileName, path,
           "cannot set chunking");
-  if (!empty) {
+  if (!empty && compress) {
     // Filter order matters: shuffle groups bytes of equal significance, then deflate squeezes.
     checkRc(H5Pset_shuffle(dcpl.get()), fileName, path, "cannot enable shuffle");
     checkRc(H5Pset_deflate(dcpl.get(), 4), fileName, path, "cannot enable deflate");
@@ -374,7 +374,7 @@ Hdf5File Hdf5File::openReadWrite(const std::string& path) {
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : m_id(std::exchange(other.m_id, -1)), m_path(std::move(other.m_path)),
-      m_betweenParts(std::move(other.m_betweenParts)) {}
+      m_betweenParts(std::move(other.m_betweenParts)), m_compress(other.m_compress) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   if (this != &other) {
@@ -385,6 +385,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
     m_id = std::exchange(other.m_id, -1);
     m_path = std::move(other.m_path);
     m_betweenParts = std::move(other.m_betweenParts);
+    m_compress = other.m_compress;
   }
   return *this;
 }
@@ -423,6 +424,12 @@ void Hdf5File::close() {
 void Hdf5File::flush() {
   requireOpen();
   checkRc(H5Fflush(m_id, H5F_SCOPE_LOCAL), m_path, "", "cannot flush file");
+}
+
+void Hdf5File::reopenReadWrite() {
+  close();
+  Hdf5File again = openReadWrite(m_path);
+  m_id = std::exchange(again.m_id, -1);
 }
 
 const std::string& Hdf5File::path() const { return m_path; }
@@ -612,19 +619,31 @@ std::vector<std::string> Hdf5File::listAttributes(const std::string& objPath) co
 void Hdf5File::writeDataset(const std::string& path, const std::vector<double>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, m_betweenParts);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, m_betweenParts, m_compress);
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::int32_t>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I32LE, H5T_NATIVE_INT32, m_betweenParts);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I32LE, H5T_NATIVE_INT32, m_betweenParts, m_compress);
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
                             const std::vector<std::size_t>& dims, const std::string& unit) {
   requireOpen();
-  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8, m_betweenParts);
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_U8LE, H5T_NATIVE_UINT8, m_betweenParts, m_compress);
+}
+
+void Hdf5File::writeDataset(const std::string& path, const std::vector<std::int64_t>& data,
+                            const std::vector<std::size_t>& dims, const std::string& unit) {
+  requireOpen();
+  writeTypedDataset(m_id, m_path, path, data, dims, unit, H5T_STD_I64LE, H5T_NATIVE_INT64, m_betweenParts, m_compress);
+}
+
+void Hdf5File::remove(const std::string& objPath) {
+  requireOpen();
+  if (H5Lexists(m_id, objPath.c_str(), H5P_DEFAULT) <= 0) return;
+  checkRc(H5Ldelete(m_id, objPath.c_str(), H5P_DEFAULT), m_path, objPath, "cannot remove");
 }
 
 void Hdf5File::writeDataset(const std::string& path, const std::vector<std::string>& data, const std::string& unit) {

@@ -41,6 +41,10 @@ public:
   /// Idempotent. Every other call on a closed file throws Hdf5Error.
   void close();
   void flush();
+  /// Opens the same path again for writing, after close() (the file was whole on disk in between:
+  /// it may have been copied) or closing it first; keeps this object's settings (compression, the
+  /// between-parts hook).
+  void reopenReadWrite();
   const std::string& path() const;
 
   /// Creates the group and any missing parents; does nothing if it is already a group.
@@ -77,6 +81,13 @@ public:
                     const std::vector<std::size_t>& dims, const std::string& unit);
   void writeDataset(const std::string& path, const std::vector<std::uint8_t>& data,
                     const std::vector<std::size_t>& dims, const std::string& unit);
+  void writeDataset(const std::string& path, const std::vector<std::int64_t>& data,
+                    const std::vector<std::size_t>& dims, const std::string& unit);
+  /// Off: numeric datasets written from now on are stored as they are (no shuffle, no deflate), for
+  /// files written often and read once (checkpoints). On by default.
+  void setCompression(bool on) { m_compress = on; }
+  /// Removes the link at objPath (a dataset or a whole group) if it exists; the space stays in the file.
+  void remove(const std::string& objPath);
   /// Called between the slabs (about 4 MiB each) in which numeric datasets are then written, and
   /// before the first: it may throw to abandon a long write (a cancelled run's snapshot), which
   /// leaves that dataset partly written. Empty (the default): each dataset in one write.
@@ -113,6 +124,7 @@ private:
   std::int64_t m_id = -1;  ///< hid_t of the open file, -1 once closed
   std::string m_path;
   std::function<void()> m_betweenParts;
+  bool m_compress = true;
 };
 
 }  // namespace rupture::io

@@ -15,12 +15,20 @@ bool isCallersTemporary(const std::string& path) {
   return path.size() > kPart.size() && path.ends_with(kPart);
 }
 
+Hdf5File openPartial(const std::string& partPath, const std::string& continueFrom) {
+  if (continueFrom.empty()) return Hdf5File::create(partPath);
+  std::filesystem::copy_file(continueFrom, partPath, std::filesystem::copy_options::overwrite_existing);
+  return Hdf5File::openReadWrite(partPath);
+}
+
 }  // namespace
 
-ResultFile::ResultFile(std::string resultPath, const std::string& scenario)
+ResultFile::ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom)
     : m_resultPath(std::move(resultPath)),
       m_partPath(isCallersTemporary(m_resultPath) ? m_resultPath : m_resultPath + ".part"),
-      m_file(Hdf5File::create(m_partPath)) {
+      m_file(openPartial(m_partPath, continueFrom)),
+      m_continued(!continueFrom.empty()) {
+  if (m_continued) return;
   m_file.setAttribute("/", "scenario", scenario);
   m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
   m_file.setAttribute("/", "completed", std::int64_t{0});
@@ -48,6 +56,22 @@ void ResultFile::writeAttributes(const std::string& group, const nlohmann::json&
     else m_file.setAttribute(group, name, v.dump());
     if (auto u = units.find(name); u != units.end()) m_file.setAttribute(group, name + "_unit", u->second);
   }
+}
+
+void ResultFile::recordResume(std::int64_t step) {
+  nlohmann::json steps = nlohmann::json::array();
+  if (m_file.hasAttribute("/", "resumed_from_steps"))
+    steps = nlohmann::json::parse(m_file.readAttributeString("/", "resumed_from_steps"), nullptr, false);
+  if (!steps.is_array()) steps = nlohmann::json::array();
+  steps.push_back(step);
+  m_file.setAttribute("/", "resumed_from_steps", steps.dump());
+  m_file.setAttribute("/", "checkpoint_resumes", static_cast<std::int64_t>(steps.size()));
+}
+
+void ResultFile::copyTo(const std::string& path) {
+  m_file.close();  // whole on disk
+  std::filesystem::copy_file(m_partPath, path, std::filesystem::copy_options::overwrite_existing);
+  m_file.reopenReadWrite();
 }
 
 void ResultFile::finish(bool completed) {

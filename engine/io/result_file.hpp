@@ -20,7 +20,9 @@ namespace rupture::io {
 
 class ResultFile {
 public:
-  ResultFile(std::string resultPath, const std::string& scenario);
+  /// continueFrom: a checkpoint (io/checkpoint_file.hpp) whose copy of the partial result this run
+  /// continues: copied onto RESULT.part and opened, nothing written; "" starts a new file.
+  ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom = "");
   ~ResultFile();
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
@@ -32,6 +34,14 @@ public:
   void writeAttributes(const std::string& group, const nlohmann::json& values,
                        const std::map<std::string, std::string>& units);
 
+  /// True when the file continues a checkpoint's partial result.
+  bool continued() const { return m_continued; }
+  /// Records on "/" that the run continued from `step` (checkpoint_resumes, resumed_from_steps: the
+  /// steps of every resume so far, a JSON list).
+  void recordResume(std::int64_t step);
+  /// Makes the partial file whole on disk, copies it to `path` and opens it again (checkpoints).
+  void copyTo(const std::string& path);
+
   /// Marks "/" completed (1/0), closes, and renames the partial file onto the result (unless the
   /// result path is itself a ".part" the caller renames).
   void finish(bool completed);
@@ -42,6 +52,7 @@ private:
   std::string m_resultPath, m_partPath;
   Hdf5File m_file;
   bool m_done = false;
+  bool m_continued = false;
 };
 
 }  // namespace rupture::io

@@ -153,7 +153,8 @@ SampleReport packRandomSample(const SampleSpec& s, const MaterialSpec& m, Bonded
 
   // Masses from the dense packing: the dense sample has the bulk density.
   report.thickness = s.dimension == 2 ? s.elementRadius : 0.0;
-  report.elementDensity = m.density * boxVolume / solid;
+  // ρ / packing fraction, the expression the sample cache restores from (bit for bit the same masses).
+  report.elementDensity = m.density / report.packingFraction;
   p.setMassFromDensity(report.elementDensity, report.thickness);
 
   // Pores (samples/pores.hpp): placed at random without overlap, then carved out of the elements.

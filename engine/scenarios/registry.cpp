@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "scenarios/scenario.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/spec_reader.hpp"
 #include "io/unknown_keys.hpp"
 
@@ -110,6 +111,11 @@ RunEstimate estimateRun(const nlohmann::json& spec) { return parseSpec(spec).est
 RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunControl& control, int threads) {
   // OpenMP's thread count is per calling thread: each server worker sets its own.
   omp_set_num_threads(std::max(1, threads));
+  control.threads = std::max(1, threads);
+  if (control.resume) {
+    const std::string checkpoint = io::checkpointPathFor(resultPath);
+    io::checkCheckpointFits(io::readCheckpointHeader(checkpoint), checkpoint, spec.scenarioName(), spec.json());
+  }
   return spec.m_scenario->run(spec.m_value.get(), spec.json(), resultPath, control);
 }
 

@@ -552,4 +552,31 @@ void SphShell::cutLinksOf(std::size_t i) {
   }
 }
 
+void SphShell::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "shell");
+  archive.expectCount("nodes", size());
+  archive.value("pressure", m_pressure), archive.value("time", m_time), archive.value("stable_step", m_stableStep);
+  archive.records("reference", m_reference);
+  archive.array("volume", m_volume), archive.array("area", m_area), archive.array("mass", m_mass);
+  archive.array("inertia", m_inertia);
+  archive.array("clamped", m_clamped), archive.array("fractured", m_fractured);
+  archive.array("has_gradient", m_hasGradient);
+  archive.array("fracture_time", m_fractureTime), archive.array("fracture_order", m_fractureOrder);
+  archive.records("position", m_position), archive.records("velocity", m_velocity);
+  archive.records("normal", m_normal), archive.records("spin", m_spin), archive.records("force", m_force);
+  archive.records("director_force", m_directorForce), archive.records("external", m_external);
+  archive.records("grad_x", m_gradX), archive.records("grad_n", m_gradN);
+  archive.records("stress_p", m_stressP), archive.records("stress_r", m_stressR);
+  archive.records("shear_q", m_shearQ);
+  archive.records("plastic_strain_tensor", m_plasticStrainTensor);
+  archive.array("plastic_strain", m_plasticStrain);
+  archive.records("damage", m_damage);
+  archive.array("offset", m_offset), archive.array("neighbour", m_neighbour), archive.array("reverse", m_reverse);
+  archive.array("active", m_active);
+  archive.records("separation", m_separation), archive.records("coeff", m_coeff);
+  archive.records("coeff_back", m_coeffBack), archive.records("shear_coeff", m_shearCoeff);
+  archive.records("shear_back", m_shearBack);
+  archive.array("kernel", m_kernel);
+}
+
 }  // namespace rupture

@@ -36,6 +36,7 @@
 #include "shell/shell_nodes.hpp"
 #include "shell/shell_parameters.hpp"
 #include "shell/through_thickness.hpp"
+#include "rupture/state_archive.hpp"
 
 namespace rupture {
 
@@ -103,6 +104,10 @@ public:
   std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
   /// Kinetic energy of translation and of the director rotation (J).
   double kineticEnergy() const;
+
+  /// Every per-node, per-layer and per-pair array and the clock (docs/checkpoints.md): cracks cut
+  /// pairs and change the corrections, so even the geometric ones are state.
+  void exchangeState(StateArchive& archive);
 
 private:
   void buildNeighbours();

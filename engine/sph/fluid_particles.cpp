@@ -50,4 +50,18 @@ void FluidParticles::inCreationOrder(std::span<const double> field, std::vector<
   for (std::size_t k = 0; k < field.size(); ++k) out[id[k]] = field[k];
 }
 
+void FluidParticles::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "particles");
+  archive.expectCount("particles", size());
+  archive.array("x", x), archive.array("y", y), archive.array("z", z);
+  archive.array("vx", vx), archive.array("vy", vy), archive.array("vz", vz);
+  archive.array("rho", rho);
+  archive.array("vx_est", vxEst), archive.array("vy_est", vyEst), archive.array("vz_est", vzEst);
+  archive.array("rho_est", rhoEst);
+  archive.array("pressure", pressure);
+  archive.array("ax", ax), archive.array("ay", ay), archive.array("az", az), archive.array("drho", drho);
+  archive.array("mass", mass);
+  archive.array("body", body), archive.array("id", id);
+}
+
 }  // namespace rupture::sph

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/staggered_allocator.hpp"
+#include "rupture/state_archive.hpp"
 
 namespace rupture::sph {
 
@@ -42,6 +43,10 @@ struct FluidParticles {
 
   /// Reorders every array so that new position k holds old particle order[k].
   void permute(const std::vector<std::int32_t>& order);
+
+  /// Every array: the particles are re-sorted as the run goes, so even the constant ones (mass,
+  /// body, id) are in the order of the moment.
+  void exchangeState(StateArchive& archive);
   /// The same with the caller's scratch (kept between calls, the reorder allocates nothing).
   void permute(const std::vector<std::int32_t>& order, ParticleArray<double>& scratch,
                ParticleArray<std::int32_t>& indexScratch);

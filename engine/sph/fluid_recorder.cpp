@@ -9,10 +9,27 @@ namespace rupture::io {
 
 FluidRecorder::FluidRecorder(std::string resultPath, const std::string& scenario,
                              std::vector<std::pair<std::string, std::string>> columns,
-                             std::vector<std::string> probePositions)
-    : m_result(std::move(resultPath), scenario), m_columns(std::move(columns)), m_probes(probePositions.size()),
-      m_probePositions(std::move(probePositions)) {
-  m_result.file().createGroup("/snapshots");
+                             std::vector<std::string> probePositions, const std::string& continueFrom)
+    : m_result(std::move(resultPath), scenario, continueFrom), m_columns(std::move(columns)),
+      m_probes(probePositions.size()), m_probePositions(std::move(probePositions)) {
+  if (!m_result.continued()) m_result.file().createGroup("/snapshots");
+}
+
+void FluidRecorder::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "recorder");
+  // Rows as one table (row-major): every row has one value per column.
+  std::vector<double> table;
+  for (const auto& row : m_rows) table.insert(table.end(), row.begin(), row.end());
+  archive.array("rows", table);
+  if (archive.loading()) {
+    const std::size_t width = m_columns.size();
+    if (width == 0 || table.size() % width != 0)
+      throw CheckpointError("the checkpoint's series rows do not have " + std::to_string(width) + " columns");
+    m_rows.clear();
+    for (std::size_t r = 0; r < table.size(); r += width) m_rows.emplace_back(table.begin() + r, table.begin() + r + width);
+  }
+  archive.array("probe_rows", m_probeRows);
+  archive.value("snapshots", m_snapshots);
 }
 
 void FluidRecorder::appendRow(const std::vector<double>& values, const std::vector<double>& probePressures) {

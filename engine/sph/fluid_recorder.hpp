@@ -33,8 +33,13 @@ class FluidRecorder {
 public:
   /// columns: series names and units, in the order of appendRow's values; probePositions: each
   /// probe's point as JSON text.
+  /// continueFrom: a checkpoint whose partial result this run continues (ResultFile).
   FluidRecorder(std::string resultPath, const std::string& scenario,
-                std::vector<std::pair<std::string, std::string>> columns, std::vector<std::string> probePositions);
+                std::vector<std::pair<std::string, std::string>> columns, std::vector<std::string> probePositions,
+                const std::string& continueFrom = "");
+  ResultFile& result() { return m_result; }
+  /// The rows so far and the snapshot count (docs/checkpoints.md).
+  void exchangeState(StateArchive& archive);
 
   void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) { m_result.writeSpec(resolved, input); }
   void writeAttributes(const std::string& group, const nlohmann::json& values,

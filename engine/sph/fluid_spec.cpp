@@ -72,6 +72,8 @@ FluidRunSpec parseFluidRun(const SpecReader& root, double defaultEndTime) {
     if (run->has("output_interval")) r.outputInterval = run->number("output_interval", Range::positive(), "s");
     if (run->has("snapshot_times")) r.snapshotTimes = run->numbers("snapshot_times", 0, 1000, Range::nonNegative(), "s");
     r.maxSteps = run->integer("max_steps", 1, std::int64_t{1} << 40, r.maxSteps);
+    r.checkpointInterval =
+        run->number("checkpoint_interval_s", Range::closed(0.0, 1e7), "s", r.checkpointInterval);
     run->finish();
   }
   if (!run || !run->has("snapshot_times")) r.snapshotTimes = {0.0, r.endTime};
@@ -122,7 +124,8 @@ nlohmann::json toJson(const FluidRunSpec& r) {
                       {"cfl", r.cfl},
                       {"output_interval", r.outputIntervalOrDefault()},
                       {"snapshot_times", r.snapshotTimes},
-                      {"max_steps", r.maxSteps}};
+                      {"max_steps", r.maxSteps},
+                      {"checkpoint_interval_s", r.checkpointInterval}};
   if (r.timeStep) j["time_step"] = *r.timeStep;
   return j;
 }

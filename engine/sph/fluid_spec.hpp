@@ -42,6 +42,7 @@ struct FluidRunSpec {
   std::optional<double> outputInterval; ///< s between series rows; absent: end_time/500
   std::vector<double> snapshotTimes;    ///< s; absent: {0, end_time}
   std::int64_t maxSteps = 50'000'000;
+  double checkpointInterval = 300;      ///< wall time between checkpoints (s; 0: none)
 
   double outputIntervalOrDefault() const { return outputInterval ? *outputInterval : endTime / 500.0; }
 };

@@ -258,4 +258,32 @@ double SphSystem::probePressure(double px, double py, double pz) const {
   return weights > 0 ? weighted / weights : 0.0;
 }
 
+void SphSystem::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "sph_system");
+  particles.exchangeState(archive);
+  archive.expectCount("bodies", bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    StateGroup body(archive, "body_" + std::to_string(b));
+    RigidBody& rb = bodies[b];
+    archive.value("speed", rb.speed), archive.value("displacement", rb.displacement);
+    archive.record("force", rb.force), archive.record("impulse", rb.impulse);
+    archive.array("members", rb.members);
+  }
+  archive.value("time", time);
+  archive.value("steps", steps);
+  archive.record("extremes", m_extremes);
+  archive.array("x0", m_x0), archive.array("y0", m_y0), archive.array("z0", m_z0);
+  archive.value("builds", m_builds);
+  archive.value("skin_budget", m_skinBudget);
+  if (!archive.loading()) return;
+  // The list and the displacement bound as the last build made them: at the positions of then.
+  std::swap(particles.x, m_x0), std::swap(particles.y, m_y0), std::swap(particles.z, m_z0);
+  const double cutoff = model.kernel().support() + listSkin();
+  m_list.build(particles, model.dimension, cutoff, cancel);
+  std::vector<char> moves(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) moves[b] = bodies[b].motion != BodyMotion::Fixed;
+  m_relativeMove.reset(particles, model.dimension, cutoff, moves);
+  std::swap(particles.x, m_x0), std::swap(particles.y, m_y0), std::swap(particles.z, m_z0);
+}
+
 }  // namespace rupture::sph

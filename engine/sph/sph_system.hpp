@@ -40,6 +40,11 @@ public:
   /// Advances by dt (s).
   void step(double dt);
 
+  /// Everything a step changes (docs/checkpoints.md): the particles in their current order, the
+  /// bodies' motion, the clock, the rates' extremes and the list's reference positions. Loading
+  /// rebuilds the neighbour list at those positions, as it was built, rather than storing it.
+  void exchangeState(StateArchive& archive);
+
   /// Monaghan & Kos (1999) time step from the last rates (docs/references.md#eq-sph):
   /// dt = C min(min_a √(h/|f_a|), h/(c_max + max_ab |μ_ab|)).
   double stableTimeStep(double courant) const;

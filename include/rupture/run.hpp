@@ -26,6 +26,25 @@ struct RunControl {
   /// Where reusable intermediate results (the VH preliminary run) are cached; empty: the
   /// environment's choice ($RUPTURE_CACHE_DIR, $XDG_CACHE_HOME/rupture, ~/.cache/rupture).
   std::string cacheDirectory;
+
+  // Checkpoints (docs/checkpoints.md). Set by the door before the run:
+  /// Continue from the result's checkpoint (RESULT.checkpoint); runSpec throws CheckpointError
+  /// (include/rupture/state_archive.hpp) when it is missing or belongs to another spec or version.
+  bool resume = false;
+  /// With cancel: write a checkpoint before stopping (SIGTERM, a server shutting down, a Slurm
+  /// time limit's warning), so a resume loses nothing. Without it a cancel writes none.
+  std::atomic<bool> checkpointOnCancel{false};
+  /// Wall time between checkpoints (s): < 0 takes the spec's run.checkpoint_interval_s, 0 writes none.
+  double checkpointInterval = -1;
+  /// For tests and tools: write a checkpoint and stop, as cancelled, once this many steps are done
+  /// (< 0: never).
+  std::int64_t stopAtStep = -1;
+  /// Written by the run: the step it continued from (−1: it started at step 0), the step of its
+  /// last checkpoint (−1: none), and that checkpoint's size (B) and write time (s).
+  std::atomic<std::int64_t> resumedFromStep{-1};
+  std::atomic<std::int64_t> checkpointStep{-1};
+  std::atomic<double> checkpointBytes{0}, checkpointSeconds{0};
+  int threads = 1;  ///< set by runSpec: the OpenMP threads of the run (a checkpoint records them)
 };
 
 /// What a run returns once its HDF5 file is closed.

@@ -18,7 +18,8 @@ namespace {
 
 RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                        RunControl& control) {
-  const auto wallStart = std::chrono::steady_clock::now();
+  auto wallStart = std::chrono::steady_clock::now();
+  RunCheckpoints checkpoints(control, resultPath, "dam-break", json, spec.run.checkpointInterval, wallStart);
   const int dim = spec.dimension;
   sph::SphSystem s;
   RunOutcome cancelled;
@@ -31,9 +32,10 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
                         std::to_string(s.particles.size() - fluidCount) + " wall particles, c0 " +
                         formatNumber(spec.soundSpeed) + " m/s");
 
-  io::FluidRecorder recorder = openFluidRecorder(resultPath, "dam-break", damBreakSeriesFields(), dim, spec.probes);
-  recorder.writeSpec(toJson(spec), json);
-  recorder.writeAttributes("/geometry",
+  io::FluidRecorder recorder = openFluidRecorder(resultPath, "dam-break", damBreakSeriesFields(), dim, spec.probes,
+                                                 checkpoints.continueFrom());
+  if (!checkpoints.resuming()) recorder.writeSpec(toJson(spec), json);
+  if (!checkpoints.resuming()) recorder.writeAttributes("/geometry",
                            {{"column_width", g.a()}, {"column_height", g.H()}, {"tank_length", g.L()},
                             {"tank_height", g.T()}, {"width", dim == 3 ? nlohmann::json(g.W()) : nlohmann::json(nullptr)},
                             {"spacing", g.dx}, {"smoothing_length", s.model.h()}, {"wall_layers", spec.resolution.wallLayers},
@@ -72,7 +74,14 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
                        probes);
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
-  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, [&](double dt) { lastStep = dt; });
+  auto state = [&](StateArchive& a) {
+    recorder.exchangeState(a);
+    StateGroup observed(a, "observed");
+    a.value("peak_pressure", peakPressure), a.value("max_density_error", maxDensityError);
+    a.value("outside_max", outsideMax), a.value("last_step", lastStep);
+  };
+  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row,
+                                             snapshot, [&](double dt) { lastStep = dt; });
   recorder.writeSnapshot(s, "final");
 
   double front = -1e300;
@@ -85,7 +94,7 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
       {"potential_energy_initial", potential0},
       {"potential_energy_final", s.potentialEnergy()}};
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
-                        std::move(summary), damBreakSummaryFields(), dim, control, wallStart);
+                        std::move(summary), damBreakSummaryFields(), dim, control, wallStart, checkpoints);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "scenarios/dynamic_tension/tension_recorder.hpp"
 #include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
+#include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
 
 namespace rupture {
@@ -184,7 +185,8 @@ RunOutcome cancelledDuringBuild(const DynamicTensionSpec& spec, const nlohmann::
 
 RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                              RunControl& control) {
-  const auto wallStart = Clock::now();
+  auto wallStart = Clock::now();
+  RunCheckpoints checkpoints(control, resultPath, "dynamic-tension", json, spec.run.checkpointInterval, wallStart);
 
   // Sample, loaded faces, time step.
   BondedSystem system;
@@ -204,16 +206,20 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
                    " bonds, time step " + formatNumber(dt) + " s");
 
-  TensionRecorder recorder(resultPath);
-  recorder.writeSpec(toJson(spec), json);
-  recorder.writeSample(system, report, geometry);
+  // A resumed run continues the checkpoint's copy of the file, which holds all of this already.
+  TensionRecorder recorder(resultPath, checkpoints.continueFrom());
+  if (!checkpoints.resuming()) {
+    recorder.writeSpec(toJson(spec), json);
+    recorder.writeSample(system, report, geometry);
+  }
 
   // Preliminary run (VH field; the sample's wave speed for a V0 ramp without ramp_time).
   const InitialVelocityField field = spec.loading.initialVelocity;
   const PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control);
   const PreliminaryResult* preliminary = pre.result ? &*pre.result : nullptr;
-  recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),
-                           preliminaryUnits());
+  if (!checkpoints.resuming())
+    recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),
+                             preliminaryUnits());
 
   // Loading (eqs. 3, 6): VL and VH start with the X_max face at V_max (Fig. 1b dashed line).
   const double waveSpeed = spec.loading.waveSpeed ? *spec.loading.waveSpeed : preliminary ? preliminary->waveSpeed : kNaN;
@@ -256,15 +262,37 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
   };
 
+  double nextOutput = outputInterval;
+  // Everything the loop below changes (docs/checkpoints.md).
+  checkpoints.attach(recorder.result(), [&](StateArchive& a) {
+    system.exchangeState(a);
+    observed.exchangeState(a);
+    recorder.exchangeState(a);
+    StateGroup loop(a, "loop");
+    a.value("strain", strain);
+    a.record("stress", stress);
+    a.value("next_output", nextOutput);
+    a.value("next_snapshot", nextSnapshot);
+    a.value("last_row_step", lastRowStep);
+    a.value("broken_at_last_check", brokenAtLastCheck);
+    a.value("last_check_step", lastCheckStep);
+  });
+
   if (!pre.cancelled) {
     logStage(control, "main run: " + toString(field) + " at " + formatNumber(spec.loading.strainRate) + " /s, V_max " +
                      formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s");
-    record();
-    snapshotsDue();
-    double nextOutput = outputInterval;
+    if (checkpoints.resuming()) {
+      checkpoints.restore();
+    } else {
+      record();
+      snapshotsDue();
+    }
     auto lastReport = Clock::now();
     while (true) {
-      if (control.cancel.load(std::memory_order_relaxed)) { stopReason = "cancelled"; break; }
+      if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
+        stopReason = "cancelled";
+        break;
+      }
       if (static_cast<std::int64_t>(system.steps) >= spec.run.maxSteps) { stopReason = "max_steps"; break; }
       system.step(dt);
       strain = loading.strain(system.particles);
@@ -359,7 +387,10 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
                      formatNumber(summary["strain_rate_at_onset"].get<double>()) +
                      " /s: the requested strain rate is above eq. 7's limit for this ramp time");
   summary["wall_time_s"] = seconds(wallStart);
-  return finishRun(recorder, summary, declaredUnits<dynamicTensionSummaryFields>(), completed, stopReason, control);
+  RunOutcome outcome =
+      finishRun(recorder, summary, declaredUnits<dynamicTensionSummaryFields>(), completed, stopReason, control);
+  checkpoints.finished(completed);
+  return outcome;
 }
 
 Scenario dynamicTensionScenario() {

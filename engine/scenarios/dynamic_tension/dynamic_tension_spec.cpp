@@ -48,6 +48,7 @@ TensionRunSpec parseRun(const SpecReader& root) {
   }
   r.timeStepSafety = run->number("time_step_safety", {0.0, 1.0, true, false}, "1", r.timeStepSafety);
   r.maxSteps = run->integer("max_steps", 1, std::int64_t{1} << 40, r.maxSteps);
+  r.checkpointInterval = run->number("checkpoint_interval_s", Range::closed(0.0, 1e7), "s", r.checkpointInterval);
   run->finish();
   return r;
 }
@@ -108,7 +109,8 @@ nlohmann::json toJson(const DynamicTensionSpec& s) {
               {"output_interval", s.outputInterval()},
               {"snapshot_strains", s.run.snapshotStrains},
               {"time_step_safety", s.run.timeStepSafety},
-              {"max_steps", s.run.maxSteps}};
+              {"max_steps", s.run.maxSteps},
+              {"checkpoint_interval_s", s.run.checkpointInterval}};
   if (s.run.stopFraction) j["run"]["stop_fraction"] = *s.run.stopFraction;
   j["output"] = {{"cache_preliminary", s.output.cachePreliminary},
                  {"cache_sample", s.output.cacheSample},

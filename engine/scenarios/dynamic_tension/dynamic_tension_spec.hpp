@@ -42,6 +42,7 @@ struct TensionRunSpec {
   std::vector<double> snapshotStrains;       ///< strains at which snapshots are written (1), sorted
   double timeStepSafety = 0.15;              ///< dt = safety × critical step (1)
   std::int64_t maxSteps = 50'000'000;        ///< guard on the number of steps of one run
+  double checkpointInterval = 300;           ///< wall time between checkpoints (s; 0: none)
 };
 
 struct TensionOutputSpec {

@@ -108,4 +108,25 @@ nlohmann::json TensionObservables::summary() const {
           {"separation_time", nullIfNaN(m_separationTime)}};
 }
 
+void TensionObservables::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "observables");
+  archive.value("broken", m_broken);
+  archive.value("strain", m_strain);
+  archive.record("last", m_last);
+  for (auto [name, v] : {std::pair<const char*, double*>{"peak", &m_peak}, {"strain_at_peak", &m_strainAtPeak},
+                         {"time_at_peak", &m_timeAtPeak}, {"xmin_at_peak", &m_xminAtPeak},
+                         {"xmax_at_peak", &m_xmaxAtPeak}, {"max_xmin", &m_maxXmin}, {"max_xmax", &m_maxXmax},
+                         {"onset_strain", &m_onsetStrain}, {"onset_time", &m_onsetTime},
+                         {"last_break_time", &m_lastBreakTime}, {"separation_strain", &m_separationStrain},
+                         {"separation_time", &m_separationTime}, {"averaging_time", &m_averagingTime},
+                         {"average_mean", &m_averageMean}, {"last_time", &m_lastTime},
+                         {"sum_difference", &m_sumDifference}, {"sum_mean", &m_sumMean},
+                         {"sum_difference_at_peak", &m_sumDifferenceAtPeak}, {"sum_mean_at_peak", &m_sumMeanAtPeak}})
+    archive.value(name, *v);
+  archive.value("separated", m_separated);
+  archive.records("window_marks", m_checkpoints);
+  archive.value("steps", m_steps);
+  archive.value("stride", m_stride);
+}
+
 }  // namespace rupture

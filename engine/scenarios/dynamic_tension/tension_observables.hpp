@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rupture/state_archive.hpp"
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 
 namespace rupture {
@@ -73,6 +74,9 @@ public:
   /// broken_bond_fraction, broken_bonds, separated, separation_{strain,time} (null for values that
   /// do not exist, e.g. no broken bond).
   nlohmann::json summary() const;
+
+  /// Every running value (docs/checkpoints.md).
+  void exchangeState(StateArchive& archive);
 
 private:
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

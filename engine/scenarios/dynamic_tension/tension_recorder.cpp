@@ -25,9 +25,9 @@ const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
   return names;
 }
 
-TensionRecorder::TensionRecorder(std::string resultPath)
-    : m_result(std::move(resultPath), "dynamic-tension"), m_file(m_result.file()) {
-  m_file.createGroup("/snapshots");
+TensionRecorder::TensionRecorder(std::string resultPath, const std::string& continueFrom)
+    : m_result(std::move(resultPath), "dynamic-tension", continueFrom), m_file(m_result.file()) {
+  if (!m_result.continued()) m_file.createGroup("/snapshots");
 }
 
 void TensionRecorder::writeSample(const BondedSystem& system, const SampleReport& report,

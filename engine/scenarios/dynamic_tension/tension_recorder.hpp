@@ -38,7 +38,15 @@ struct SeriesRow {
 
 class TensionRecorder {
 public:
-  explicit TensionRecorder(std::string resultPath);
+  /// continueFrom: a checkpoint whose partial result this run continues (io::ResultFile).
+  explicit TensionRecorder(std::string resultPath, const std::string& continueFrom = "");
+  io::ResultFile& result() { return m_result; }
+  /// The rows so far and the snapshot count (docs/checkpoints.md).
+  void exchangeState(StateArchive& archive) {
+    StateGroup group(archive, "recorder");
+    archive.records("rows", m_rows);
+    archive.value("snapshots", m_snapshots);
+  }
 
   void writeSpec(const nlohmann::json& resolved, const nlohmann::json& input) { m_result.writeSpec(resolved, input); }
   void writeSample(const BondedSystem& system, const SampleReport& report, const TensionGeometry& geometry);

@@ -17,6 +17,7 @@
 #include "io/result_file.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
+#include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
 #include "sph/sph_system.hpp"
 
@@ -27,34 +28,61 @@ struct FluidLoopOutcome {
   double minTimeStep = std::numeric_limits<double>::infinity(), maxTimeStep = 0;  ///< s
 };
 
+/// The checkpoints of a fluid loop: the scenario's own state (`state`: its recorder, observers and
+/// structure; the loop adds the SPH system and its own counters) and the result file they copy.
+struct FluidLoopCheckpoints {
+  RunCheckpoints& checkpoints;
+  io::ResultFile& result;
+  RunCheckpoints::State state;
+};
+
 /// row(): append one series row from the current state; snapshot(trigger): write a snapshot;
 /// afterStep(dt): observe every step (peaks between rows); advance(dt): the step itself (the
-/// fluid's own, or a coupled step that also moves a structure).
+/// fluid's own, or a coupled step that also moves a structure). A resumed run restores the state
+/// from the checkpoint instead of taking the first row.
 template <class Row, class Snapshot, class AfterStep, class Advance>
-FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
-                              Snapshot&& snapshot, AfterStep&& afterStep, Advance&& advance) {
+FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control,
+                              const FluidLoopCheckpoints& saved, Row&& row, Snapshot&& snapshot, AfterStep&& afterStep,
+                              Advance&& advance) {
   using Clock = std::chrono::steady_clock;
   FluidLoopOutcome out;
   const double interval = run.outputIntervalOrDefault();
-  std::size_t nextSnapshot = 0;
+  std::size_t nextSnapshot = 0, lastRowStep = 0;
+  double nextOutput = interval;
+  saved.checkpoints.attach(saved.result, [&](StateArchive& a) {
+    s.exchangeState(a);
+    saved.state(a);
+    StateGroup loop(a, "loop");
+    a.value("next_snapshot", nextSnapshot);
+    a.value("last_row_step", lastRowStep);
+    a.value("next_output", nextOutput);
+    a.value("min_time_step", out.minTimeStep);
+    a.value("max_time_step", out.maxTimeStep);
+  });
   auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested times
     if (nextSnapshot >= run.snapshotTimes.size() || s.time < run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) return;
     snapshot("time " + formatNumber(run.snapshotTimes[nextSnapshot]));
     while (nextSnapshot < run.snapshotTimes.size() && s.time >= run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) ++nextSnapshot;
   };
   s.cancel = &control.cancel;  // list builds and snapshots poll it between their passes
-  row();
-  std::size_t lastRowStep = s.steps;
-  try {
-    snapshotsDue();
-  } catch (const RunCancelled&) {
-    out.stopReason = "cancelled";
-    return out;
+  if (saved.checkpoints.resuming()) {
+    saved.checkpoints.restore();
+  } else {
+    row();
+    lastRowStep = s.steps;
+    try {
+      snapshotsDue();
+    } catch (const RunCancelled&) {
+      out.stopReason = "cancelled";
+      return out;
+    }
   }
-  double nextOutput = interval;
   auto lastReport = Clock::now();
   while (true) {
-    if (control.cancel.load(std::memory_order_relaxed)) { out.stopReason = "cancelled"; break; }
+    if (saved.checkpoints.poll(s.steps, s.time) == RunCheckpoints::Action::Stop) {
+      out.stopReason = "cancelled";
+      break;
+    }
     if (s.time >= run.endTime * (1 - 1e-12)) { out.stopReason = "end_time"; break; }
     if (static_cast<std::int64_t>(s.steps) >= run.maxSteps) { out.stopReason = "max_steps"; break; }
     double dt = run.timeStep ? *run.timeStep : s.stableTimeStep(run.cfl);
@@ -94,9 +122,9 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
 }
 
 template <class Row, class Snapshot, class AfterStep>
-FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control, Row&& row,
-                              Snapshot&& snapshot, AfterStep&& afterStep) {
-  return runFluidLoop(s, run, control, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
+FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, RunControl& control,
+                              const FluidLoopCheckpoints& saved, Row&& row, Snapshot&& snapshot, AfterStep&& afterStep) {
+  return runFluidLoop(s, run, control, saved, row, snapshot, afterStep, [&](double dt) { s.step(dt); });
 }
 
 /// The set-up of an SPH run (progress 0), with the system polling control.cancel: `setup()`
@@ -133,10 +161,11 @@ inline std::size_t fluidParticleCount(const sph::SphSystem& s) {
 /// column per probe point.
 inline io::FluidRecorder openFluidRecorder(const std::string& resultPath, const std::string& scenario,
                                            const ResultFields& series, int dimension,
-                                           const std::vector<std::array<double, 3>>& probes) {
+                                           const std::vector<std::array<double, 3>>& probes,
+                                           const std::string& continueFrom = "") {
   std::vector<std::string> positions;
   for (const auto& point : io::probesJson(probes, dimension)) positions.push_back(point.dump());
-  return io::FluidRecorder(resultPath, scenario, seriesColumns(series, dimension), std::move(positions));
+  return io::FluidRecorder(resultPath, scenario, seriesColumns(series, dimension), std::move(positions), continueFrom);
 }
 
 /// What a fluid run tracked while it ran, for the summary every SPH scenario reports.
@@ -151,11 +180,11 @@ struct FluidRunTotals {
 /// Adds the scalars every SPH run reports (completion, stop reason, mass and density errors,
 /// particles outside, steps and time steps, counts, c0, h, list builds, wall time) to the
 /// scenario's own, writes /summary (units from the scenario's `declared` fields in `dimension`),
-/// finishes the file and tells the watcher.
+/// finishes the file, removes the checkpoint of a completed run and tells the watcher.
 inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSystem& s, const FluidLoopOutcome& loop,
                                  const FluidRunTotals& totals, nlohmann::json summary,
                                  const ResultFields& declared, int dimension, RunControl& control,
-                                 std::chrono::steady_clock::time_point wallStart) {
+                                 std::chrono::steady_clock::time_point wallStart, RunCheckpoints& checkpoints) {
   const bool completed = loop.stopReason != "cancelled";
   auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
   summary.update(nlohmann::json{
@@ -174,7 +203,9 @@ inline RunOutcome finishFluidRun(io::FluidRecorder& recorder, const sph::SphSyst
       {"smoothing_length", s.model.h()},
       {"neighbour_list_builds", static_cast<std::int64_t>(s.listBuilds())},
       {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count()}});
-  return finishRun(recorder, summary, unitMap(declared, dimension), completed, loop.stopReason, control);
+  RunOutcome outcome = finishRun(recorder, summary, unitMap(declared, dimension), completed, loop.stopReason, control);
+  checkpoints.finished(completed);
+  return outcome;
 }
 
 }  // namespace rupture

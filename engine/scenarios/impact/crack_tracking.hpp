@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/particle_store.hpp"
+#include "rupture/state_archive.hpp"
 
 namespace rupture {
 
@@ -48,6 +49,17 @@ public:
   /// How many times the tip jumped, and by how much in all (m).
   int jumps() const { return m_jumps; }
   double jumpedLength() const { return m_jumped; }
+
+  /// The tip and its history (docs/checkpoints.md).
+  void exchangeState(StateArchive& archive) {
+    StateGroup group(archive, "crack_tracker");
+    archive.record("tip", m_tip);
+    archive.array("times", m_times), archive.array("distances", m_distances);
+    archive.value("max_speed", m_maxSpeed);
+    archive.value("jump", m_jump), archive.value("jumped", m_jumped), archive.value("last_distance", m_lastDistance);
+    archive.value("last_found", m_lastFound);
+    archive.value("jumps", m_jumps);
+  }
 
 private:
   std::array<double, 3> m_origin;

@@ -15,6 +15,7 @@
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
 #include "scenarios/bonded/bonded_run.hpp"
+#include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
 #include "rupture/spec_error.hpp"
 #include "scenarios/scenario.hpp"
@@ -83,7 +84,8 @@ struct Projectile {
 
 RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                      RunControl& control) {
-  const auto wallStart = Clock::now();
+  auto wallStart = Clock::now();
+  RunCheckpoints checkpoints(control, resultPath, "impact", json, spec.checkpointInterval, wallStart);
   BondedSystem system;
   const std::optional<SampleReport> built = buildRunSample(spec.sample, spec.material, system, control);
   if (!built) {  // no sample: the file holds the spec and a summary saying so
@@ -166,16 +168,19 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   // in glass.
   CrackTracker tracker(origin, spec.damageThreshold, spacing, 5, 2 * spec.material.dampingWaveSpeed);
 
-  io::ResultFile result(resultPath, "impact");
-  result.writeSpec(toJson(spec), json);
+  // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
+  io::ResultFile result(resultPath, "impact", checkpoints.continueFrom());
   io::Hdf5File& file = result.file();
   const std::size_t n = p.size();
-  file.createGroup("/sample");
-  file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
-  file.writeDataset("/sample/radius", p.radius, {n}, "m");
-  file.writeDataset("/sample/volume", p.volume, {n}, "m^3");
-  writeBondPairs(file, system.bonds);
-  file.createGroup("/snapshots");
+  if (!checkpoints.resuming()) {
+    result.writeSpec(toJson(spec), json);
+    file.createGroup("/sample");
+    file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
+    file.writeDataset("/sample/radius", p.radius, {n}, "m");
+    file.writeDataset("/sample/volume", p.volume, {n}, "m^3");
+    writeBondPairs(file, system.bonds);
+    file.createGroup("/snapshots");
+  }
   std::size_t snapshots = 0;
   auto snapshot = [&](const std::string& trigger, const std::vector<double>& damage) {
     char name[32];
@@ -224,7 +229,32 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   std::string stopReason = "end_time";
   std::size_t nextSnapshot = 0;
   double nextOutput = 0;
+  // Everything the loop below changes (docs/checkpoints.md).
+  checkpoints.attach(result, [&](StateArchive& a) {
+    system.exchangeState(a);
+    tracker.exchangeState(a);
+    StateGroup loop(a, "loop");
+    if (projectile) {
+      std::vector<double> body(projectile->x, projectile->x + 3);
+      body.insert(body.end(), projectile->v, projectile->v + 3);
+      body.insert(body.end(), projectile->f, projectile->f + 3);
+      a.array("projectile", body);
+      if (body.size() != 9) throw CheckpointError("the checkpoint's projectile is not 9 numbers");
+      std::copy(body.begin(), body.begin() + 3, projectile->x);
+      std::copy(body.begin() + 3, body.begin() + 6, projectile->v);
+      std::copy(body.begin() + 6, body.end(), projectile->f);
+    }
+    for (std::size_t c = 0; c < columns.size(); ++c) a.array("series_" + columns[c], series[c]);
+    a.array("damage", damage);
+    a.value("broken", broken);
+    a.value("snapshots", snapshots);
+    a.value("next_snapshot", nextSnapshot);
+    a.value("next_output", nextOutput);
+  });
+  if (checkpoints.resuming()) checkpoints.restore();
   auto lastReport = Clock::now();
+  // A checkpoint is taken after the step's row and snapshot, with next_output and next_snapshot
+  // already past them: a resumed run does not take them again.
   while (true) {
     if (system.time >= nextOutput - 1e-12 * spec.endTime) {
       record();
@@ -235,7 +265,10 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       while (nextSnapshot < spec.snapshotTimes.size() && system.time >= spec.snapshotTimes[nextSnapshot]) ++nextSnapshot;
     }
     if (system.time >= spec.endTime * (1 - 1e-12)) break;
-    if (control.cancel.load(std::memory_order_relaxed)) { stopReason = "cancelled"; break; }
+    if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
+      stopReason = "cancelled";
+      break;
+    }
     if (static_cast<std::int64_t>(system.steps) >= spec.maxSteps) { stopReason = "max_steps"; break; }
     if (projectile) {  // velocity Verlet for the projectile around the system's step
       Projectile& pr = *projectile;
@@ -275,7 +308,9 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   };
   summary.update(bondedRunScalars(system, dt, criticalStep, report));
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
-  return finishRun(result, summary, declaredUnits<impactSummaryFields>(), completed, stopReason, control);
+  RunOutcome outcome = finishRun(result, summary, declaredUnits<impactSummaryFields>(), completed, stopReason, control);
+  checkpoints.finished(completed);
+  return outcome;
 }
 
 Scenario impactScenario() {

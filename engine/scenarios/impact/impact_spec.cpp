@@ -80,6 +80,7 @@ ImpactSpec parseImpactSpec(const nlohmann::json& json) {
     if (!std::is_sorted(s.snapshotTimes.begin(), s.snapshotTimes.end())) run.fail("snapshot_times", "times in increasing order (s)");
   }
   s.maxSteps = run.integer("max_steps", 1, 1'000'000'000, s.maxSteps);
+  s.checkpointInterval = run.number("checkpoint_interval_s", Range::closed(0.0, 1e7), "s", s.checkpointInterval);
   s.damageThreshold = run.number("damage_threshold", {0.0, 1.0, true, false}, "1", s.damageThreshold);
   if (s.endTime / s.interval() > 1e6) run.fail("output_interval", "an interval giving at most 1e6 series rows for end_time (s)");
   run.finish();
@@ -110,7 +111,8 @@ nlohmann::json toJson(const ImpactSpec& s) {
   }
   j["loading"] = loading;
   j["run"] = {{"end_time", s.endTime}, {"time_step_safety", s.timeStepSafety}, {"output_interval", s.interval()},
-              {"snapshot_times", s.snapshotTimes}, {"max_steps", s.maxSteps}, {"damage_threshold", s.damageThreshold}};
+              {"snapshot_times", s.snapshotTimes}, {"max_steps", s.maxSteps}, {"damage_threshold", s.damageThreshold},
+              {"checkpoint_interval_s", s.checkpointInterval}};
   return j;
 }
 

@@ -45,6 +45,7 @@ struct ImpactSpec {
   std::optional<double> outputInterval; ///< s; default end_time / 200
   std::vector<double> snapshotTimes;    ///< s, sorted; the final state is always a snapshot
   std::int64_t maxSteps = 20'000'000;
+  double checkpointInterval = 300;  ///< wall time between checkpoints (s; 0: none)
   double damageThreshold = 0.25;        ///< φ above which a particle counts as cracked (1)
 
   double interval() const { return outputInterval ? *outputInterval : endTime / 200.0; }

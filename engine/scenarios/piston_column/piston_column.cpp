@@ -21,7 +21,8 @@ namespace {
 
 RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                            RunControl& control) {
-  const auto wallStart = std::chrono::steady_clock::now();
+  auto wallStart = std::chrono::steady_clock::now();
+  RunCheckpoints checkpoints(control, resultPath, "piston-column", json, spec.run.checkpointInterval, wallStart);
   const int dim = spec.dimension;
 
   sph::SphSystem s;
@@ -38,9 +39,10 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
                         sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
 
   io::FluidRecorder recorder =
-      openFluidRecorder(resultPath, "piston-column", pistonColumnSeriesFields(), dim, spec.probes);
-  recorder.writeSpec(toJson(spec), json);
-  recorder.writeAttributes("/geometry",
+      openFluidRecorder(resultPath, "piston-column", pistonColumnSeriesFields(), dim, spec.probes,
+                        checkpoints.continueFrom());
+  if (!checkpoints.resuming()) recorder.writeSpec(toJson(spec), json);
+  if (!checkpoints.resuming()) recorder.writeAttributes("/geometry",
                            {{"diameter", 2 * g.R()}, {"column_height", g.H()}, {"section_area", g.area},
                             {"spacing", g.dx}, {"smoothing_length", s.model.h()},
                             {"wall_layers", spec.resolution.wallLayers}, {"piston_mass", piston.mass},
@@ -85,7 +87,15 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
     bottomPeaks.observe(s.time, bottomPressure());
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
-  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep);
+  auto state = [&](StateArchive& a) {
+    recorder.exchangeState(a);
+    StateGroup observed(a, "observed");
+    a.record("bottom_peaks", bottomPeaks);
+    a.value("peak_probe", peakProbe), a.value("max_density_error", maxDensityError);
+    a.value("outside_max", outsideMax), a.value("last_step", lastStep);
+  };
+  const FluidLoopOutcome loop =
+      runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep);
   // A cancelled run ends at once: no final snapshot of millions of particles (seconds to write).
   if (loop.stopReason != "cancelled") recorder.writeSnapshot(s, "final");
 
@@ -105,7 +115,7 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
       {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
       {"section_area", g.area}};
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
-                        std::move(summary), pistonColumnSummaryFields(), dim, control, wallStart);
+                        std::move(summary), pistonColumnSummaryFields(), dim, control, wallStart, checkpoints);
 }
 
 }  // namespace

@@ -79,7 +79,8 @@ io::StructurePoints plateSnapshot(const SphShell& shell, double density) {
 
 RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                          RunControl& control) {
-  const auto wallStart = std::chrono::steady_clock::now();
+  auto wallStart = std::chrono::steady_clock::now();
+  RunCheckpoints checkpoints(control, resultPath, "tank-impact", json, spec.run.checkpointInterval, wallStart);
   const double t = spec.plate.shell.thickness, dx = spec.resolution.spacing;
 
   // Water, cylinder and piston.
@@ -126,9 +127,10 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
                         " contact, carriage " + formatNumber(spec.impactor.mass) + " kg at " +
                         formatNumber(spec.impactor.speed) + " m/s");
 
-  io::FluidRecorder recorder = openFluidRecorder(resultPath, "tank-impact", tankImpactSeriesFields(), 3, spec.probes);
-  recorder.writeSpec(toJson(spec), json);
-  recorder.writeAttributes("/geometry",
+  io::FluidRecorder recorder = openFluidRecorder(resultPath, "tank-impact", tankImpactSeriesFields(), 3, spec.probes,
+                                                 checkpoints.continueFrom());
+  if (!checkpoints.resuming()) recorder.writeSpec(toJson(spec), json);
+  if (!checkpoints.resuming()) recorder.writeAttributes("/geometry",
                            {{"inner_diameter", 2 * g.R()}, {"water_height", g.H()}, {"section_area", g.area},
                             {"spacing", dx}, {"smoothing_length", s.model.h()}, {"wall_layers", spec.resolution.wallLayers},
                             {"plate_thickness", t}, {"plate_spacing", nodeSpacing}, {"plate_nodes", plate.size()},
@@ -196,7 +198,19 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     recorder.writeSnapshot(s, trigger, plateSnapshot(plate, spec.plate.shell.density));
   };
   auto advance = [&](double dt) { coupling.step(dt); };
-  const FluidLoopOutcome loop = runFluidLoop(s, spec.run, control, row, snapshot, afterStep, advance);
+  auto state = [&](StateArchive& a) {
+    plate.exchangeState(a);
+    coupling.exchangeState(a);
+    recorder.exchangeState(a);
+    StateGroup observed(a, "observed");
+    a.record("gauge_peaks", gaugePeaks);
+    a.value("peak_probe", peakProbe), a.value("max_density_error", maxDensityError);
+    a.value("max_jet", maxJet), a.value("last_jet", lastJet), a.value("max_deflection", maxDeflection);
+    a.value("last_step", lastStep), a.value("time_to_fracture", timeToFracture), a.value("any_jet", anyJet);
+    a.value("outside_max", outsideMax), a.value("below_count", belowCount);
+  };
+  const FluidLoopOutcome loop =
+      runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep, advance);
   // A cancelled run ends at once: no final snapshot of millions of particles (seconds to write).
   if (loop.stopReason != "cancelled") snapshot("final");
 
@@ -233,7 +247,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"contact_time_s", coupling.timings().contact},
       {"contact_method", contactMethodName(spec.contact.method)}};
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, g.fluidParticles, spec.soundSpeed},
-                        std::move(summary), tankImpactSummaryFields(), 3, control, wallStart);
+                        std::move(summary), tankImpactSummaryFields(), 3, control, wallStart, checkpoints);
 }
 
 }  // namespace

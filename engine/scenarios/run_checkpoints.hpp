@@ -1,0 +1,61 @@
+#pragma once
+// A run's checkpoints, as every scenario's loop takes them (docs/checkpoints.md): the loop names its
+// state once (a function over a StateArchive), asks poll() at the top of every step, and restores
+// from the checkpoint when the door asked to resume. Written every run.checkpoint_interval_s of
+// wall time, when the run is stopped to be continued (SIGTERM, a server shutting down, a Slurm
+// time limit) and at RunControl::stopAtStep; removed once the run completes.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/result_file.hpp"
+#include "rupture/run.hpp"
+#include "rupture/state_archive.hpp"
+
+namespace rupture {
+
+class RunCheckpoints {
+public:
+  using Clock = std::chrono::steady_clock;
+  using State = std::function<void(StateArchive&)>;
+
+  /// specInterval: the spec's run.checkpoint_interval_s (RunControl::checkpointInterval, when set,
+  /// wins). wallStart: the run's start, moved back on restore by the earlier attempts' wall time.
+  RunCheckpoints(RunControl& control, const std::string& resultPath, std::string scenario,
+                 const nlohmann::json& inputSpec, double specInterval, Clock::time_point& wallStart);
+
+  bool resuming() const { return m_control.resume; }
+  /// The checkpoint the result file continues from (ResultFile's continueFrom), "" for a new run.
+  std::string continueFrom() const { return resuming() ? m_path : std::string(); }
+
+  /// The result file and the function naming the run's state; call before restore() and poll().
+  void attach(io::ResultFile& result, State state);
+  /// Loads the state from the checkpoint (the set-up has rebuilt everything it does not hold) and
+  /// records the resume on the file and on RunControl::resumedFromStep.
+  void restore();
+
+  enum class Action { Continue, Stop };
+  /// At the top of every step: Stop when cancelled (after a checkpoint when RunControl asks for
+  /// one) or at RunControl::stopAtStep (after a checkpoint); a checkpoint when the interval is up.
+  Action poll(std::uint64_t step, double time);
+  /// Writes a checkpoint now.
+  void write(std::uint64_t step, double time);
+  /// The run is over: a completed run's checkpoint is removed (a stopped one is kept to resume).
+  void finished(bool completed);
+
+private:
+  RunControl& m_control;
+  std::string m_path, m_scenario;
+  nlohmann::json m_specIdentity;
+  double m_interval;
+  Clock::time_point& m_wallStart;
+  Clock::time_point m_last;
+  io::ResultFile* m_result = nullptr;
+  State m_state;
+  std::int64_t m_resumes = 0;
+};
+
+}  // namespace rupture
