@@ -1,12 +1,14 @@
-// rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force]
+// rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]
 //
 // Validates the spec (exit 2 naming the field), refuses to replace an existing RUN.h5 unless
 // --force, runs the spec on a worker thread through rupture::runSpec while this thread shows the
 // progress on stderr (a bar with an ETA on a terminal, a plain line at most every 10 s otherwise),
 // writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary once on stdout: a table in
 // engineering units for a reader, or with --json the JSON at full precision for scripts. Ctrl-C (SIGINT) or SIGTERM (what Slurm's scancel sends) asks the run to stop:
-// the file is still written, marked incomplete (/summary completed = 0), the summary is printed and
-// the exit code is 130. A second signal kills the process at once. --progress-file keeps a small
+// a checkpoint of the state is written first (RUN.h5.checkpoint, docs/checkpoints.md), then the file,
+// marked incomplete (/summary completed = 0), the summary is printed and the exit code is 130;
+// --resume continues from the checkpoint, bit for bit, and refuses (exit 2) a missing, damaged or
+// foreign one. A second signal kills the process at once. --progress-file keeps a small
 // JSON file up to date (about once a second), for watchers on other machines (the Slurm executor).
 #include <omp.h>
 #include <signal.h>
@@ -28,6 +30,7 @@
 #include "cli/cli.hpp"
 #include "cli/progress_view.hpp"
 #include "cli/spec_file.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf_writer.hpp"
 #include "rupture/quantity_text.hpp"
@@ -134,12 +137,15 @@ std::string sidecarPath(const std::string& h5Path) {
 }
 
 constexpr const char* kRunUsage =
-    "usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force]\n"
+    "usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]\n"
     "  -o, --output RUN.h5     the result file (HDF5; RUN.xdmf2 is written beside it for ParaView)\n"
     "  --threads N             OpenMP threads (default: all cores)\n"
     "  --progress-file FILE    keep FILE up to date (about once a second) with the progress as JSON\n"
     "  --json                  print the summary as JSON at full precision instead of the table\n"
-    "  --force                 overwrite RUN.h5 if it exists (otherwise: exit 2)\n"
+    "  --force                 overwrite RUN.h5 if it exists (otherwise: exit 2), and start afresh\n"
+    "                          even if RUN.h5.checkpoint exists\n"
+    "  --resume                continue the run from RUN.h5.checkpoint (written every\n"
+    "                          run.checkpoint_interval_s and when Ctrl-C or SIGTERM stops it)\n"
     "  -h, --help              this text\n";
 
 }  // namespace
@@ -147,7 +153,7 @@ constexpr const char* kRunUsage =
 int runCommand(const Args& args) {
   std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
-  bool json = false, force = false;
+  bool json = false, force = false, resume = false;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     if (a == "--help" || a == "-h") {
@@ -168,9 +174,11 @@ int runCommand(const Args& args) {
       json = true;
     } else if (a == "--force") {
       force = true;
+    } else if (a == "--resume") {
+      resume = true;
     } else if (!a.empty() && a[0] == '-') {
       return usageError("run: unknown option '" + a +
-                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --help");
+                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --help");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
@@ -205,13 +213,33 @@ int runCommand(const Args& args) {
       return usageError("run: cannot write '" + output + "': it is a directory; name the HDF5 file, e.g. " +
                         (std::filesystem::path(output) / "run.h5").string());
     }
-    // A finished result may be hours of work: replacing it is asked for, never a side effect.
-    if (!force && std::filesystem::exists(std::filesystem::symlink_status(output, ec))) {
+    if (resume && force) return usageError("run: --resume continues RUN.h5, --force starts it afresh: pass one");
+    // A finished result may be hours of work: replacing it is asked for, never a side effect. So is
+    // a checkpoint of an interrupted one.
+    const std::string checkpoint = io::checkpointPathFor(output);
+    if (resume) {
+      try {
+        const io::CheckpointHeader header = io::readCheckpointHeader(checkpoint);
+        io::checkCheckpointFits(header, checkpoint, parsed.scenarioName(), spec);
+        if (header.threads != threads)
+          std::cerr << "rupture run: the checkpoint was written with " << header.threads << " thread(s), this run has "
+                    << threads << ": the result may differ from an uninterrupted run in the last digits\n";
+      } catch (const CheckpointError& e) {
+        return usageError(std::string("run: cannot resume: ") + e.what() +
+                          "; run without --resume (and with --force) to start afresh");
+      }
+    } else if (std::filesystem::exists(checkpoint, ec)) {
+      if (!force)
+        return usageError("run: '" + checkpoint + "' holds an interrupted run; pass --resume to continue it, or --force to start afresh");
+      std::filesystem::remove(checkpoint, ec);
+    } else if (!force && std::filesystem::exists(std::filesystem::symlink_status(output, ec))) {
       return usageError("run: '" + output + "' exists; pass --force to overwrite it, or name another -o");
     }
   }
 
   RunControl control;
+  control.resume = resume;
+  control.checkpointOnCancel = true;  // Ctrl-C, SIGTERM: keep the work for --resume
   ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1);
   ProgressFile progressFile(progressPath);
   // The interrupt notice comes before anything the run says about stopping: whichever thread sees
@@ -219,7 +247,7 @@ int runCommand(const Args& args) {
   std::atomic<bool> noticed{false};
   auto noticeInterrupt = [&] {
     if (control.cancel.load() && !noticed.exchange(true))
-      view.message("interrupted: stopping and writing an incomplete result file (Ctrl-C again to kill)");
+      view.message("interrupted: writing a checkpoint and an incomplete result file (Ctrl-C again to kill)");
   };
   control.log = [&view, &progressFile, &noticeInterrupt](const std::string& text) {
     noticeInterrupt();
@@ -261,6 +289,8 @@ int runCommand(const Args& args) {
       std::rethrow_exception(failure);
     } catch (const SpecError& e) {
       return reportSpecError(specPath, e);
+    } catch (const CheckpointError& e) {
+      return usageError(std::string("run: cannot resume: ") + e.what());
     } catch (const std::exception& e) {
       std::cerr << "rupture run: failed: " << e.what() << "\n";
       return 1;
@@ -285,6 +315,10 @@ int runCommand(const Args& args) {
   else printReadableSummary(std::cout, spec, outcome.summary);
   std::cerr << "rupture run: " << (outcome.completed ? "done" : "interrupted, result marked incomplete") << ": "
             << output << (sidecar.empty() ? "" : " (+ " + sidecar + ")") << "\n";
+  if (!outcome.completed && control.checkpointStep.load() >= 0)
+    std::cerr << "rupture run: checkpoint at step " << control.checkpointStep.load() << " in "
+              << io::checkpointPathFor(output) << "; continue with: rupture run " << specPath << " -o " << output
+              << " --resume\n";
   return code;
 }
 

@@ -60,18 +60,30 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
                           formatNumber(seconds) + " s");
 }
 
+bool RunCheckpoints::tryWrite(std::uint64_t step, double time) {
+  try {
+    write(step, time);
+    return true;
+  } catch (const std::exception& e) {
+    // A full disk must not end a run that is fine: the previous checkpoint stays as it was.
+    logStage(m_control, std::string("cannot write the checkpoint (the run goes on without it): ") + e.what());
+    m_last = Clock::now();
+    return false;
+  }
+}
+
 RunCheckpoints::Action RunCheckpoints::poll(std::uint64_t step, double time) {
   if (m_control.cancel.load(std::memory_order_relaxed)) {
-    if (m_control.checkpointOnCancel.load()) write(step, time);
+    if (m_control.checkpointOnCancel.load() && m_interval > 0) tryWrite(step, time);
     return Action::Stop;
   }
   if (m_control.stopAtStep >= 0 && static_cast<std::int64_t>(step) >= m_control.stopAtStep) {
-    write(step, time);
+    tryWrite(step, time);
     return Action::Stop;
   }
   // The clock is read every 16 steps: a step is microseconds to seconds, an interval minutes.
   if (m_interval > 0 && (step & 15) == 0 && Clock::now() - m_last >= std::chrono::duration<double>(m_interval))
-    write(step, time);
+    tryWrite(step, time);
   return Action::Continue;
 }
 

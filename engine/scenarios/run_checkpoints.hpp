@@ -39,14 +39,17 @@ public:
 
   enum class Action { Continue, Stop };
   /// At the top of every step: Stop when cancelled (after a checkpoint when RunControl asks for
-  /// one) or at RunControl::stopAtStep (after a checkpoint); a checkpoint when the interval is up.
+  /// one and the interval is not 0) or at RunControl::stopAtStep (after a checkpoint); a checkpoint
+  /// when the interval is up. A checkpoint that cannot be written is logged, not thrown.
   Action poll(std::uint64_t step, double time);
-  /// Writes a checkpoint now.
+  /// Writes a checkpoint now (throws what the file system throws).
   void write(std::uint64_t step, double time);
   /// The run is over: a completed run's checkpoint is removed (a stopped one is kept to resume).
   void finished(bool completed);
 
 private:
+  bool tryWrite(std::uint64_t step, double time);
+
   RunControl& m_control;
   std::string m_path, m_scenario;
   nlohmann::json m_specIdentity;

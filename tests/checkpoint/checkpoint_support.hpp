@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 
 /// What the comparison skips: how a run ran, not what it computed.
 inline const std::set<std::string>& howItRan() {
-  static const std::set<std::string> names = {"wall_time_s", "wall_time_s_unit", "from_cache", "sample_from_cache",
+  static const std::set<std::string> names = {"wall_time_s",   "from_cache",       "sample_from_cache",
+                                              "fluid_time_s",  "shell_time_s",     "contact_time_s",
                                               "checkpoint_resumes", "resumed_from_steps"};
   return names;
 }
