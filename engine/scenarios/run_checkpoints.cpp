@@ -23,6 +23,7 @@ RunCheckpoints::RunCheckpoints(RunControl& control, const std::string& resultPat
 void RunCheckpoints::attach(io::ResultFile& result, State state) {
   m_result = &result;
   m_state = std::move(state);
+  m_last = Clock::now();  // the interval counts from the first step, not from the set-up
 }
 
 void RunCheckpoints::restore() {

@@ -7,6 +7,8 @@
 #include <system_error>
 
 #include "common/files.hpp"
+#include "io/checkpoint_file.hpp"
+#include "rupture/state_archive.hpp"
 #include "common/log.hpp"
 
 namespace rupture::server {
@@ -141,7 +143,10 @@ void Scheduler::requestStop() {
   {
     std::lock_guard lock(m_mutex);
     m_stopping = true;
-    for (auto& [key, control] : m_active) control->cancel = true;
+    for (auto& [key, control] : m_active) {
+      control->checkpointOnCancel = true;  // the next start continues from here (docs/checkpoints.md)
+      control->cancel = true;
+    }
   }
   m_wake.notify_all();
   m_monitorWake.notify_all();
@@ -237,10 +242,20 @@ void Scheduler::workerLoop() {
       logLine(describe(key) + ": cannot start: " + e.what());
     }
     if (started) execute(key, control);
+    bool resumeUnrecorded = false;
     {
       std::lock_guard lock(m_mutex);
       m_active.erase(key);
       m_stages.erase(key);
+      resumeUnrecorded = control->resumedFromStep.load() >= 0 && m_resumeRecorded.count(key) == 0;
+      m_resumeRecorded.erase(key);
+    }
+    if (resumeUnrecorded) {  // a run that ended before the monitor saw it resume
+      try {
+        m_store.recordResume(key, control->resumedFromStep.load());
+      } catch (const std::exception& e) {
+        logLine(describe(key) + ": cannot record its resume: " + e.what());
+      }
     }
   }
 }
@@ -274,7 +289,19 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
       std::lock_guard lock(m_mutex);
       m_stages[key] = msg;
     };
-    rupture::RunOutcome result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
+    // A checkpoint left by a stop, a crash or a kill: the run continues from it, not from step 0.
+    const fs::path checkpoint = rupture::io::checkpointPathFor(partial.string());
+    control->resume = fs::exists(checkpoint);
+    if (control->resume) logLine(describe(key) + " continues from its checkpoint");
+    rupture::RunOutcome result;
+    try {
+      result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
+    } catch (const rupture::CheckpointError& e) {
+      // Never mixed into another run, never kept to fail again: a retry starts afresh.
+      removeQuietly(checkpoint);
+      throw std::runtime_error(std::string("cannot continue from the run's checkpoint (") + e.what() +
+                               "); it was removed: retry the run to start it afresh");
+    }
     if (result.completed) {
       Json summary = result.summary.is_object() ? Json(result.summary) : Json::object();
       writeFileAtomic(summaryFile(file), summary.dump(2) + "\n");
@@ -289,6 +316,7 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
         logLine(describe(key) + " interrupted by shutdown; re-queued");
       } else if (control->cancel) {
         outcome.kind = Outcome::Kind::Dismissed;
+        removeQuietly(rupture::io::checkpointPathFor(partial.string()));  // nothing will continue it
         logLine(describe(key) + " cancelled after " + elapsed() + " s");
       } else {
         outcome.message = "the run ended without completing (nobody cancelled it)";
@@ -351,14 +379,18 @@ void Scheduler::monitorLoop() {
     m_monitorWake.wait_for(lock, std::chrono::seconds(1), [this] { return m_stopping; });
     if (m_stopping) break;
     std::vector<RunProgress> progress;
+    std::vector<std::pair<RunKey, std::int64_t>> resumed;
     for (const auto& [key, control] : m_active) {
       auto stage = m_stages.find(key);
       progress.push_back({key, control->progress.load(), stage == m_stages.end() ? std::string() : stage->second});
+      const std::int64_t from = control->resumedFromStep.load();
+      if (from >= 0 && m_resumeRecorded.insert(key).second) resumed.emplace_back(key, from);
     }
     const bool retry = !m_unrecorded.empty();
     lock.unlock();
     try {
       m_store.setProgress(progress);
+      for (const auto& [key, step] : resumed) m_store.recordResume(key, step);
     } catch (const std::exception& e) {
       logLine(std::string("cannot store progress: ") + e.what());
     }

@@ -25,6 +25,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -113,6 +114,7 @@ private:
   };
   std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
   std::map<RunKey, std::string, RunKeyLess> m_stages;  ///< last stage message of each active run
+  std::set<RunKey, RunKeyLess> m_resumeRecorded;        ///< active runs whose resume the store has
   bool m_stopping = false;
   bool m_started = false;
   std::vector<Outcome> m_unrecorded;  // guarded by m_mutex

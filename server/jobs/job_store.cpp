@@ -132,7 +132,7 @@ constexpr const char* kJobColumns =
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
-    "attempts, replicate, stage, spec_is_patch, rate_from, rate_from_progress";
+    "attempts, replicate, stage, spec_is_patch, rate_from, rate_from_progress, resumes, resumed_from_step";
 
 Status statusFrom(const std::string& text) {
   auto s = parseStatus(text);
@@ -177,6 +177,8 @@ RunRecord readRun(const Stmt& q) {
   r.stage = q.text(14);
   r.rateFrom = q.text(16);
   r.rateFromProgress = q.dbl(17);
+  r.resumes = static_cast<int>(q.i64(18));
+  r.resumedFromStep = q.isNull(19) ? -1 : q.i64(19);
   return r;
 }
 
@@ -250,6 +252,8 @@ void JobStore::migrate() {
   // The run's rate anchor (its first progress above 0, and when), for an ETA from its own rate.
   if (!hasColumn("runs", "rate_from")) exec("ALTER TABLE runs ADD COLUMN rate_from TEXT");
   if (!hasColumn("runs", "rate_from_progress")) exec("ALTER TABLE runs ADD COLUMN rate_from_progress REAL");
+  if (!hasColumn("runs", "resumes")) exec("ALTER TABLE runs ADD COLUMN resumes INTEGER NOT NULL DEFAULT 0");
+  if (!hasColumn("runs", "resumed_from_step")) exec("ALTER TABLE runs ADD COLUMN resumed_from_step INTEGER");
 }
 
 JobStore::~JobStore() { sqlite3_close(m_db); }
@@ -573,6 +577,12 @@ void JobStore::setProgress(const std::vector<RunProgress>& progress) {
     u.bind(8, value).bind(9, p.key.job).bind(10, p.key.index).bind(11, value).bind(12, p.stage).bind(13, p.stage).run();
   }
   tx.commit();
+}
+
+void JobStore::recordResume(RunKey key, std::int64_t step) {
+  std::lock_guard lock(m_mutex);
+  Stmt u(m_db, "UPDATE runs SET resumes = resumes + 1, resumed_from_step = ?, updated = ? WHERE job_id = ? AND idx = ?");
+  u.bind(1, step).bind(2, utcNow()).bind(3, key.job).bind(4, key.index).run();
 }
 
 void JobStore::finishRun(RunKey key, Status status, const Json* summary, const std::string* error,

@@ -50,6 +50,10 @@ struct RunRecord {
   /// before); its ETA is the rate since then (rupture::remainingSeconds).
   std::string rateFrom;
   double rateFromProgress = 0;
+  /// Times the run continued from its checkpoint (docs/checkpoints.md), and the step it last
+  /// continued from (−1: never).
+  int resumes = 0;
+  std::int64_t resumedFromStep = -1;
 };
 
 struct JobRecord {
@@ -162,6 +166,8 @@ public:
   bool startRun(RunKey key);
   /// Stores progress fractions of running runs, in one transaction.
   void setProgress(const std::vector<RunProgress>& progress);
+  /// The running run continued from its checkpoint at `step`: resumes + 1, resumed_from_step.
+  void recordResume(RunKey key, std::int64_t step);
   void finishSuccessful(RunKey key, const Json& summary, const std::string& resultPath);
   void finishFailed(RunKey key, const std::string& message);
   /// A running run stopped by cancellation.

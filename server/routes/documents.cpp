@@ -31,6 +31,10 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   if (!run.started.empty()) doc["started"] = run.started;
   if (!run.finished.empty()) doc["finished"] = run.finished;
   if (run.attempts > 1) doc["attempts"] = run.attempts;
+  if (run.resumes > 0) {  // continued from its checkpoint after a stop, a crash or a time limit
+    doc["resumes"] = run.resumes;
+    doc["resumed_from_step"] = run.resumedFromStep;
+  }
   if (job.study.is_object() && job.study.contains("replicates")) doc["replicate"] = run.replicate;
   if (run.summary.is_object()) doc["summary"] = run.summary;
   if (!run.error.empty()) doc["error"] = publicMessage(run.error);
