@@ -80,6 +80,7 @@ RuptureServer::RuptureServer(ServerConfig config) {
     slurm.partition = m_context.config.slurmPartition;
     slurm.account = m_context.config.slurmAccount;
     slurm.time = m_context.config.slurmTime;
+    slurm.checkpointLead = m_context.config.slurmCheckpointLead;
     slurm.cpusPerRun = m_context.config.slurmCpusPerRun;
     slurm.options = m_context.config.slurmOptions;
     slurm.cli = m_context.config.ruptureCli.empty() ? defaultRuptureCli() : m_context.config.ruptureCli;

@@ -158,6 +158,10 @@ const std::vector<Option>& options() {
        [](ServerConfig& c, const std::string& v) { c.slurmAccount = v; return std::string(); }},
       {"slurm-time", "RUPTURE_SLURM_TIME", "LIMIT", "slurm: sbatch --time per run, e.g. 2:00:00", "(partition default)",
        [](ServerConfig& c, const std::string& v) { c.slurmTime = v; return std::string(); }},
+      {"slurm-checkpoint-lead", "RUPTURE_SLURM_CHECKPOINT_LEAD", "SECONDS",
+       "slurm: a run is told to checkpoint and stop this long before its time limit (sbatch --signal), "
+       "then submitted again to continue; give it the time one checkpoint takes, and Slurm's up to 60 s of slack",
+       "120", intSetter(&ServerConfig::slurmCheckpointLead, 1, 86400)},
       {"slurm-cpus-per-run", "RUPTURE_SLURM_CPUS_PER_RUN", "N",
        "slurm: sbatch --cpus-per-task, and the OpenMP threads of each run", "1",
        intSetter(&ServerConfig::slurmCpusPerRun, 1, 1024)},

@@ -32,6 +32,7 @@ struct ServerConfig {
   std::string executor = "local";         ///< "local" (worker threads) or "slurm"
   std::string sharedDir;                  ///< slurm: holds jobs/ and cache/, visible to the compute nodes
   std::string slurmPartition, slurmAccount, slurmTime;  ///< sbatch --partition/--account/--time when set
+  int slurmCheckpointLead = 120;  ///< s before the time limit at which a run is told to checkpoint and stop
   int slurmCpusPerRun = 1;                ///< sbatch --cpus-per-task, and rupture run --threads
   std::vector<std::string> slurmOptions;  ///< extra "#SBATCH" lines, e.g. "--qos=short"
   std::string ruptureCli;                 ///< the `rupture` binary the batch script runs (default: beside the server)

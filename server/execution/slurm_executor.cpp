@@ -7,6 +7,7 @@
 
 #include "execution/command.hpp"
 #include "common/files.hpp"
+#include "io/checkpoint_file.hpp"
 #include "common/log.hpp"
 
 namespace rupture::server {
@@ -93,7 +94,9 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
   s << "#!/bin/bash\n"
     << "#SBATCH --job-name=rupture-job-" << jobId << "\n"
     << "#SBATCH --cpus-per-task=" << m_settings.cpusPerRun << "\n"
-    << "#SBATCH --output=" << (dir / "slurm" / "%A_%a.out").string() << "\n";
+    << "#SBATCH --output=" << (dir / "slurm" / "%A_%a.out").string() << "\n"
+    // The time limit's warning goes to this script (B:), which passes it on to rupture run.
+    << "#SBATCH --signal=B:TERM@" << m_settings.checkpointLead << "\n";
   if (!m_settings.partition.empty()) s << "#SBATCH --partition=" << m_settings.partition << "\n";
   if (!m_settings.account.empty()) s << "#SBATCH --account=" << m_settings.account << "\n";
   if (!m_settings.time.empty()) s << "#SBATCH --time=" << m_settings.time << "\n";
@@ -104,10 +107,20 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "cd " << shellQuote(dir.string()) << " || exit 1\n"
     << "export RUPTURE_CACHE_DIR=" << shellQuote((m_settings.sharedDir / "cache").string()) << "\n"
     << "rm -f \"run-$k.h5\" \"run-$k.h5.part\" \"run-$k.summary.json\" \"run-$k.status\"\n"
+    << "# A run stopped before (its time limit, a preemption) continues from its checkpoint.\n"
+    << "resume=\"\"\n"
+    << "if [ -f \"run-$k.h5.checkpoint\" ]; then resume=\"--resume\"; fi\n"
     << "# The engine leaves a result named *.part for its caller to rename: this script, once the summary is kept.\n"
     << shellQuote(m_settings.cli) << " run \"run-$k.spec.json\" -o \"run-$k.h5.part\" --threads "
-    << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" --json > \"run-$k.summary.tmp\" 2> \"run-$k.log\"\n"
+    << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" --json $resume > \"run-$k.summary.tmp\" 2> \"run-$k.log\" &\n"
+    << "pid=$!\n"
+    << "# SIGTERM before the time limit (--signal): rupture run writes a checkpoint and exits 130.\n"
+    << "trap 'kill -TERM \"$pid\" 2>/dev/null' TERM\n"
+    << "wait \"$pid\"\n"
     << "code=$?\n"
+    << "while kill -0 \"$pid\" 2>/dev/null; do wait \"$pid\"; code=$?; done\n"
+    << "# A checkpoint refused (exit 2) would be refused again: removed, so that a retry starts afresh.\n"
+    << "if [ \"$code\" -eq 2 ] && grep -q \"cannot resume\" \"run-$k.log\"; then rm -f \"run-$k.h5.checkpoint\"; fi\n"
     << "rm -f \"run-$k.h5.part.xdmf2\"\n"
     << "if [ \"$code\" -eq 0 ]; then\n"
     << "  mv -f \"run-$k.summary.tmp\" \"run-$k.summary.json\" && mv -f \"run-$k.h5.part\" \"run-$k.h5\" || code=74\n"
@@ -241,8 +254,37 @@ std::string SlurmExecutor::slurmStateOf(const std::string& taskId, std::string& 
   return field(r.output, "JobState");
 }
 
+bool SlurmExecutor::continueInNextAllocation(RunKey key, std::string& why) {
+  std::int64_t step = 0;
+  try {
+    step = rupture::io::readCheckpointHeader(runPath(key, ".h5.checkpoint").string()).step;
+  } catch (const std::exception& e) {
+    why = e.what();
+    return false;
+  }
+  const std::string stepText = std::to_string(step);
+  if (auto last = readFile(runPath(key, ".resumed-step")); last && trim(*last) == stepText) {
+    why = "no step was gained in an allocation (the checkpoint is still at step " + stepText +
+          "): the time limit leaves no time to run; raise --slurm-time or lower --slurm-checkpoint-lead";
+    return false;
+  }
+  writeFileAtomic(runPath(key, ".resumed-step"), stepText + "\n");
+  m_store.requeueRun(key);
+  m_store.recordResume(key, step);
+  logLine("job " + std::to_string(key.job) + " run " + std::to_string(key.index) +
+          " stopped with a checkpoint at step " + stepText + "; submitted again to continue");
+  submit(key.job, {key.index});
+  return true;
+}
+
 void SlurmExecutor::recordFinished(RunKey key, int exitCode, const std::string& slurmState) {
   const fs::path file = runPath(key, ".h5");
+  constexpr int kStoppedWithCheckpoint = 130;  // rupture run's exit code when a signal stopped it
+  // Stopped by its time limit's warning or a preemption, not cancelled by hand (scancel: failed,
+  // with Slurm's reason; a retry continues from the checkpoint).
+  std::string why;  // why a stopped run cannot continue
+  if (exitCode == kStoppedWithCheckpoint && slurmState.rfind("CANCELLED", 0) != 0 && continueInNextAllocation(key, why))
+    return;
   if (exitCode == 0 && regularFileSize(file)) {
     Json summary;
     try {
@@ -257,6 +299,7 @@ void SlurmExecutor::recordFinished(RunKey key, int exitCode, const std::string& 
   }
   std::string message = lastLine(runPath(key, ".log"));
   if (message.empty()) message = "rupture run exited with code " + std::to_string(exitCode);
+  if (!why.empty()) message = "stopped and cannot continue: " + why + "; last output: " + message;
   if (!slurmState.empty() && slurmState != "COMPLETED" && slurmState != "FAILED") message += " (Slurm: " + slurmState + ")";
   m_store.finishFailed(key, message);
   logLine("job " + std::to_string(key.job) + " run " + std::to_string(key.index) + " failed: " + message);

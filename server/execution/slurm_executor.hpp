@@ -11,6 +11,10 @@
 //   run-k.h5.part        the run file while it is written; renamed to run-k.h5 only when complete,
 //   run-k.summary.json   after the summary (the CLI's stdout) is in place
 //   run-k.status         the exit code of `rupture run`, written last
+//   run-k.h5.checkpoint  the run's checkpoint (docs/checkpoints.md): a run stopped by its time limit's
+//                        warning (sbatch --signal) exits 130 with one, and is submitted again with
+//                        --resume to continue in the next allocation
+//   run-k.resumed-step   the step the last resubmission continued from (no step gained: failed)
 //   slurm/<n>.sbatch     the batch script of each submission; slurm/%A_%a.out Slurm's own output
 //
 // Tracking (every second): a status file decides (0 = successful, with the summary; else failed
@@ -36,6 +40,7 @@ namespace rupture::server {
 struct SlurmSettings {
   std::filesystem::path sharedDir;  ///< holds jobs/ and cache/
   std::string partition, account, time;
+  int checkpointLead = 120;  ///< s before the time limit: SIGTERM, a checkpoint, a resubmission
   int cpusPerRun = 1;
   std::vector<std::string> options;  ///< extra #SBATCH lines
   std::string cli;                   ///< the rupture binary on the compute nodes
@@ -76,6 +81,9 @@ private:
   /// Records the outcome of a run whose status file exists. False if the files are not complete yet.
   void recordFinished(RunKey key, int exitCode, const std::string& slurmState);
   std::string slurmStateOf(const std::string& taskId, std::string& reason) const;
+  /// A run that stopped with a checkpoint (exit 130) goes back to the queue to continue from it;
+  /// false (with the reason in `why`) when it cannot: no checkpoint, or no step gained since the last time.
+  bool continueInNextAllocation(RunKey key, std::string& why);
 
   JobStore& m_store;
   SlurmSettings m_settings;

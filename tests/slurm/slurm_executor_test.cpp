@@ -1,15 +1,20 @@
 // The Slurm executor against a real one-node Slurm (deploy/slurm/test-cluster.sh; ctest label
 // "slurm"; skipped with a message where no cluster answers): the same sweep gives the same results
 // as the local executor, DELETE cancels the cluster's runs, a run killed by scancel from outside is
-// failed with Slurm's reason and can be retried, and a restarted server re-attaches to the runs in
-// the queue instead of submitting them twice.
+// failed with Slurm's reason and can be retried, a restarted server re-attaches to the runs in
+// the queue instead of submitting them twice, and a run longer than its time limit checkpoints before
+// the limit and finishes through several allocations with the result of an uninterrupted run.
 #include <cmath>
 #include <chrono>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "execution/command.hpp"
+#include "rupture/run.hpp"
+#include "support/hdf5_compare.hpp"
 #include "common/files.hpp"
 #include "server_test_support.hpp"
 
@@ -198,6 +203,45 @@ TEST(SlurmExecutor, ARestartedServerReattachesInsteadOfSubmittingAgain) {
   for (const auto& e : fs::directory_iterator(shared.path() / "jobs" / std::to_string(id) / "slurm"))
     submissions += e.path().extension() == ".sbatch";
   EXPECT_EQ(submissions, 1u);
+}
+
+TEST(SlurmExecutor, ARunLongerThanItsTimeLimitFinishesThroughSeveralAllocations) {
+  REQUIRE_CLUSTER();
+  test::TempDir shared, scratch;
+  // One minute per allocation, told to checkpoint and stop 30 s before the limit (Slurm checks
+  // about every 30 s, so each allocation runs 30 to 60 s); the run needs well over a minute.
+  test::LiveServer server([&](ServerConfig& c) {
+    slurmConfig(shared.path())(c);
+    c.slurmTime = "00:01:00";
+    c.slurmCheckpointLead = 30;
+  });
+  auto client = server.client();
+  Json inputs = test::smallInputs();
+  inputs["loading"]["strain_rate"] = 1.2e4;
+  const auto id = test::submit(*client, Json{{"inputs", inputs}});
+  // The same spec uninterrupted, on the other core meanwhile.
+  Json spec = inputs;
+  spec["scenario"] = test::kScenario;
+  const fs::path whole = scratch.path() / "whole.h5";
+  bool wholeCompleted = false;
+  std::thread reference([&] {
+    RunControl control;
+    wholeCompleted = runSpec(spec, whole.string(), control, 1).completed;
+  });
+  const Json done = test::waitForJob(*client, id, {"successful", "failed", "dismissed"}, 900);
+  reference.join();
+  ASSERT_EQ(done["status"], "successful") << done.dump(2);
+  const Json& run = done["runs"][0];
+  EXPECT_GE(run.value("resumes", 0), 1) << "it fit one allocation: " << run.dump(2);
+  EXPECT_GT(run.value("resumed_from_step", std::int64_t{0}), 0);
+  EXPECT_GE(run.value("attempts", 0), 2);
+  ASSERT_TRUE(wholeCompleted);
+  const fs::path result = shared.path() / "jobs" / std::to_string(id) / "run-0.h5";
+  EXPECT_EQ(testing::hdf5Differences(whole.string(), result.string(),
+                                     {"wall_time_s", "from_cache", "sample_from_cache", "checkpoint_resumes",
+                                      "resumed_from_steps"}),
+            "");
+  EXPECT_FALSE(fs::exists(shared.path() / "jobs" / std::to_string(id) / "run-0.h5.checkpoint"));
 }
 
 }  // namespace
