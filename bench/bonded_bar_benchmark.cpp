@@ -1,4 +1,5 @@
 #include "bonded_bar_benchmark.hpp"
+#include "checkpoint_cost.hpp"
 
 #include <omp.h>
 
@@ -97,6 +98,7 @@ nlohmann::json runW1(const W1Options& options) {
   nlohmann::json report = bondedBenchReport("W1", s, options.steps, options.threads, seconds, cpuSeconds);
   report["time_step"] = dt;
   report["initial_peak_equivalent_stress"] = initialPeakStress;
+  report.update(checkpointCost([&](StateArchive& a) { s.exchangeState(a); }));
   return report;
 }
 

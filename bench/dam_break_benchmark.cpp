@@ -1,4 +1,5 @@
 #include "dam_break_benchmark.hpp"
+#include "checkpoint_cost.hpp"
 
 #include <omp.h>
 
@@ -81,7 +82,7 @@ nlohmann::json runW3(const W3Options& options) {
   const double n = static_cast<double>(s.particles.size());
   const double pairs = static_cast<double>(pairsWithinSupport(s));
   const double listed = static_cast<double>(s.neighbourList().totalPairs());
-  return {{"workload", "W3"},
+  nlohmann::json report = {{"workload", "W3"},
           {"particles", s.particles.size()},
           {"fluid_particles", static_cast<std::size_t>(std::llround(s.fluidMass() / (kDensity * std::pow(kSpacing, 3))))},
           {"steps", options.steps},
@@ -96,6 +97,8 @@ nlohmann::json runW3(const W3Options& options) {
           {"time_step", dt},
           {"end_time", s.time},
           {"max_density", s.extremes().maxDensity}};
+  report.update(checkpointCost([&](StateArchive& a) { s.exchangeState(a); }));
+  return report;
 }
 
 }  // namespace rupture::bench

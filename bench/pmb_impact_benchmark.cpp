@@ -1,4 +1,5 @@
 #include "pmb_impact_benchmark.hpp"
+#include "checkpoint_cost.hpp"
 
 #include <omp.h>
 
@@ -86,6 +87,7 @@ nlohmann::json runW2(const W2Options& options) {
   report["mean_damage"] = meanDamage;
   report["time_step"] = kTimeStep;
   report["stable_time_step"] = s.criticalTimeStep();
+  report.update(checkpointCost([&](StateArchive& a) { s.exchangeState(a); }));
   return report;
 }
 

@@ -1,5 +1,8 @@
 #include "io/checkpoint_file.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -23,6 +26,15 @@ std::string utcNow() {
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return text;
+}
+
+/// Flushes a file (or a directory's entries) to the disk: a checkpoint renamed into place must
+/// survive a power cut, not only a killed process.
+void syncToDisk(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  [[maybe_unused]] const int rc = ::fsync(fd);
+  ::close(fd);
 }
 
 /// The first differing path of two JSON values, for the refusal message ("" when equal).
@@ -73,7 +85,9 @@ std::uintmax_t writeCheckpoint(ResultFile& partial, const std::string& path, con
     Hdf5StateArchive archive(copy, kStateGroup, Hdf5StateArchive::Mode::Save);
     save(archive);
     copy.close();
+    syncToDisk(temporary);
     fs::rename(temporary, path);
+    syncToDisk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string());
   } catch (...) {
     std::error_code ec;
     fs::remove(temporary, ec);

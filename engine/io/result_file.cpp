@@ -6,6 +6,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "rupture/state_archive.hpp"
+
 namespace rupture::io {
 
 namespace {
@@ -17,8 +19,14 @@ bool isCallersTemporary(const std::string& path) {
 
 Hdf5File openPartial(const std::string& partPath, const std::string& continueFrom) {
   if (continueFrom.empty()) return Hdf5File::create(partPath);
-  std::filesystem::copy_file(continueFrom, partPath, std::filesystem::copy_options::overwrite_existing);
-  return Hdf5File::openReadWrite(partPath);
+  try {
+    std::filesystem::copy_file(continueFrom, partPath, std::filesystem::copy_options::overwrite_existing);
+    return Hdf5File::openReadWrite(partPath);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(partPath, ec);
+    throw CheckpointError("the checkpoint " + continueFrom + " cannot be read (" + e.what() + ")");
+  }
 }
 
 }  // namespace

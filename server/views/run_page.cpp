@@ -87,6 +87,10 @@ HtmlPage runHtml(const Json& data) {
                   esc(run["progress"]) + "\"></progress> <span id=\"progress\">" + esc(run["progress"]) +
                   "</span> %, <span id=\"stage\">" + esc(run.value("stage", Json(""))) + "</span></p>\n";
   if (run.contains("error")) c += "<p class=\"error\" id=\"reason\">Why: " + esc(run["error"]) + "</p>\n";
+  if (run.contains("resumes"))  // docs/checkpoints.md
+    c += "<p id=\"resumed\">Continued from its checkpoint " + esc(run["resumes"]) +
+         (run["resumes"] == 1 ? " time" : " times") + ", last from step " + esc(run.value("resumed_from_step", Json(0))) +
+         " (after a stop, a crash or a time limit; the result is the same as an uninterrupted run's).</p>\n";
   if (!run.value("swept", Json::object()).empty()) {
     c += "<table id=\"swept\"><tr><th>Swept</th><th>Value</th></tr>";
     const Json described = data.value("swept_fields", Json::object());

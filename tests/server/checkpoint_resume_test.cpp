@@ -1,7 +1,8 @@
 // A server that dies loses no running work (docs/checkpoints.md): SIGKILL after a run's first
 // checkpoint, and the restarted server continues the run from it; SIGTERM writes a checkpoint as the
 // server stops, and the next start continues from that. The job then says how many times the run
-// was resumed and from which step, and its result file equals an uninterrupted run's bit for bit.
+// was resumed and from which step (so does the run's page), and its result file equals an
+// uninterrupted run's bit for bit.
 #include <signal.h>
 
 #include <filesystem>
@@ -73,6 +74,10 @@ TEST(CheckpointResume, KilledAndStoppedServersContinueTheRunFromItsCheckpoint) {
     EXPECT_EQ(run["resumed_from_step"], stoppedAt);
     EXPECT_EQ(run["attempts"], 3);
     EXPECT_FALSE(fs::exists(checkpoint)) << "a completed run removes its checkpoint";
+    auto page = client->Get(("/jobs/" + std::to_string(id) + "/runs/0?f=html").c_str());
+    ASSERT_TRUE(page);
+    EXPECT_NE(page->body.find("Continued from its checkpoint 2 times, last from step " + std::to_string(stoppedAt)),
+              std::string::npos);
     result = data.path() / "jobs" / std::to_string(id) / "run-0.h5";
     EXPECT_EQ(server.stop(SIGTERM, 10), 0);
   }
