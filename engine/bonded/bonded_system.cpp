@@ -377,9 +377,8 @@ double BondedSystem::elasticEnergy() const { return bondEnergy() + contact.energ
 void BondedSystem::exchangeState(StateArchive& archive) {
   StateGroup group(archive, "bonded_system");
   particles.exchangeState(archive);
-  bonds.exchangeState(archive);
+  bonds.exchangeState(archive, std::holds_alternative<BeamModel>(model));
   contact.exchangeState(archive);
-  m_central.exchangeState(archive);
   archive.value("time", time);
   archive.value("steps", steps);
   archive.value("broken_last_step", brokenLastStep);
@@ -392,7 +391,9 @@ void BondedSystem::exchangeState(StateArchive& archive) {
   archive.array("min_stretch", m_minStretch);
   archive.array("min_stretch_next", m_minStretchNext);
   archive.value("load_time", m_loadTime);
-  archive.value("central_current", m_centralCurrent);
+  // The central loop's slot list is a copy of the bonds (their intact flags and thresholds): the
+  // next evaluation rebuilds it from them, and refills its packed positions every time.
+  if (archive.loading()) m_centralCurrent = false;
   archive.value("loads_stale", m_loadsStale);
   archive.array("broken", m_broken);
   archive.value("planar", m_planar);

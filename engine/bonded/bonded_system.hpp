@@ -58,7 +58,8 @@ public:
   void initialize();
 
   /// Everything a step changes (docs/checkpoints.md): particles, bonds, contacts, the damage index,
-  /// the central loop's list, the clock. The set-up (sample, model, prescriptions) is rebuilt first.
+  /// the clock (the central loop's list is rebuilt from the bonds). The set-up (sample, model,
+  /// prescriptions) is rebuilt first.
   void exchangeState(StateArchive& archive);
 
   /// One velocity-Verlet step of length dt (translation and rotation).

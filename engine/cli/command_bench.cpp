@@ -17,9 +17,10 @@ void printReport(nlohmann::json report) {
   std::cout << report.dump() << std::endl;
 }
 
-/// Reads the "--threads N" and "--steps N" that follow the workload name; returns 0, or 2 after
-/// printing what is wrong.
-int readThreadsAndSteps(const Args& args, const std::string& workload, int& threads, int& steps) {
+/// Reads the "--threads N" and "--steps N" that follow the workload name (and "--spec FILE" where
+/// `spec` is given: TANK); returns 0, or 2 after printing what is wrong.
+int readThreadsAndSteps(const Args& args, const std::string& workload, int& threads, int& steps,
+                        std::string* spec = nullptr) {
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
     long long v = 0;
@@ -29,8 +30,11 @@ int readThreadsAndSteps(const Args& args, const std::string& workload, int& thre
     } else if (args[k] == "--steps") {
       if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
       steps = static_cast<int>(v);
+    } else if (spec && args[k] == "--spec") {
+      *spec = args[k + 1];
     } else {
-      return usageError("bench " + workload + ": unknown option '" + args[k] + "'; allowed: --threads, --steps");
+      return usageError("bench " + workload + ": unknown option '" + args[k] + "'; allowed: --threads, --steps" +
+                        (spec ? ", --spec" : ""));
     }
     ++k;
   }
@@ -52,7 +56,12 @@ int benchThreadsAndSteps(const Args& args, nlohmann::json (*run)(const Options&)
 int benchCommand(const Args& args) {
   if (!args.empty() && args[0] == "W2") return benchThreadsAndSteps(args, bench::runW2);  // peridynamics
   if (!args.empty() && args[0] == "W3") return benchThreadsAndSteps(args, bench::runW3);  // SPH
-  if (!args.empty() && args[0] == "TANK") return benchThreadsAndSteps(args, bench::runTankImpactBenchmark);
+  if (!args.empty() && args[0] == "TANK") {  // another tank-impact spec with --spec (the seed-resolution example)
+    bench::TankImpactOptions options;
+    if (int code = readThreadsAndSteps(args, args[0], options.threads, options.steps, &options.spec)) return code;
+    printReport(bench::runTankImpactBenchmark(options));
+    return 0;
+  }
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
                       "'; allowed: W1, W2, W3, TANK");

@@ -38,7 +38,8 @@ commands:
   bench W1 [--threads N] [--particles N] [--steps N]
   bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
-  bench TANK [--threads N] [--steps N]  (tank-impact FXA5, fluid and shell timed apart)
+  bench TANK [--threads N] [--steps N] [--spec FILE]
+                                          tank-impact FXA5 (or FILE), fluid and shell timed apart
                                           run a benchmark, print one JSON line
   -o, --output FILE                       the output file of run and xdmf
   --help, -h                              this text (rupture run --help: run's options in full)

@@ -124,16 +124,16 @@ std::vector<int> BondStore::coordination(std::size_t particleCount) const {
   return z;
 }
 
-void BondStore::exchangeState(StateArchive& archive) {
+void BondStore::exchangeState(StateArchive& archive, bool torques) {
   StateGroup group(archive, "bonds");
   archive.expectCount("bonds", size());
   archive.array("intact", intact);
   archive.array("fjx", fjx), archive.array("fjy", fjy), archive.array("fjz", fjz);
-  archive.array("tix", tix), archive.array("tiy", tiy), archive.array("tiz", tiz);
-  archive.array("tjx", tjx), archive.array("tjy", tjy), archive.array("tjz", tjz);
+  if (torques) {
+    archive.array("tix", tix), archive.array("tiy", tiy), archive.array("tiz", tiz);
+    archive.array("tjx", tjx), archive.array("tjy", tjy), archive.array("tjz", tjz);
+  }
   archive.array("failure_measure", failureMeasure);
-  archive.array("failure_threshold", failureThreshold);
-  archive.array("stiffness", stiffness);
 }
 
 }  // namespace rupture

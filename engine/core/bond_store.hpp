@@ -66,8 +66,9 @@ struct BondStore {
 
   std::size_t intactCount() const;
 
-  /// What a run changes: the intact flags and the loads of the last evaluation.
-  void exchangeState(StateArchive& archive);
+  /// What a run changes: the intact flags and the loads of the last evaluation (the torques only
+  /// with `torques`: laws without them never write them). Stiffness and thresholds are the set-up's.
+  void exchangeState(StateArchive& archive, bool torques);
 
   /// Number of intact bonds per particle.
   std::vector<int> coordination(std::size_t particleCount) const;

@@ -85,16 +85,4 @@ void CentralBondList::build(const BondStore& bonds, bool allowCompact) {
   }
 }
 
-void CentralBondList::exchangeState(StateArchive& archive) {
-  StateGroup group(archive, "central_list");
-  archive.array("partner", partner);
-  archive.value("compact", compact);
-  archive.array("kind", kind);
-  archive.records("kinds", kinds);
-  archive.array("rest_length", restLength);
-  archive.array("stiffness", stiffness);
-  archive.array("limit", limit);
-  archive.array("packed", packed);
-}
-
 }  // namespace rupture

@@ -51,8 +51,6 @@ struct CentralBondList {
   /// Fills the slots from a finalized bond store (incidence lists, thresholds and intact flags),
   /// in the compact form when allowCompact and the bonds have few enough distinct triples.
   void build(const BondStore& bonds, bool allowCompact = true);
-
-  void exchangeState(StateArchive& archive);
 };
 
 }  // namespace rupture

@@ -24,14 +24,6 @@ namespace rupture::test {
 
 namespace fs = std::filesystem;
 
-/// What the comparison skips: how a run ran, not what it computed.
-inline const std::set<std::string>& howItRan() {
-  static const std::set<std::string> names = {"wall_time_s",   "from_cache",       "sample_from_cache",
-                                              "fluid_time_s",  "shell_time_s",     "contact_time_s",
-                                              "checkpoint_resumes", "resumed_from_steps"};
-  return names;
-}
-
 /// `count` distinct steps in [1, steps − 1], drawn afresh at every test run (printed on failure).
 inline std::vector<std::int64_t> randomStops(std::int64_t steps, int count) {
   std::random_device device;
@@ -75,7 +67,7 @@ inline nlohmann::json expectResumedRunMatches(const nlohmann::json& spec, const 
       EXPECT_EQ(control.resumedFromStep.load(), at[k - 1]);
     }
   }
-  EXPECT_EQ(rupture::testing::hdf5Differences(whole.string(), resumed.string(), howItRan()), "");
+  EXPECT_EQ(rupture::testing::hdf5Differences(whole.string(), resumed.string(), rupture::testing::howARunRan()), "");
   const io::Hdf5File file = io::Hdf5File::openReadOnly(resumed.string());
   EXPECT_EQ(file.readAttributeInt("/", "checkpoint_resumes"), static_cast<std::int64_t>(at.size()));
   EXPECT_EQ(file.readAttributeInt("/", "completed"), 1);

@@ -57,6 +57,15 @@ inline bool sameBits(const std::vector<double>& a, const std::vector<double>& b)
 
 }  // namespace hdf5_compare_detail
 
+/// What a run records about how it ran, not what it computed (docs/checkpoints.md): wall times,
+/// cache hits, the resume record. The attributes a resumed run's file may differ in.
+inline const std::set<std::string>& howARunRan() {
+  static const std::set<std::string> names = {"wall_time_s",   "from_cache",       "sample_from_cache",
+                                              "fluid_time_s",  "shell_time_s",     "contact_time_s",
+                                              "checkpoint_resumes", "resumed_from_steps"};
+  return names;
+}
+
 /// The differences between two files ("" when none): one line per differing object or attribute.
 inline std::string hdf5Differences(const std::string& a, const std::string& b,
                                    const std::set<std::string>& ignoredAttributes) {
