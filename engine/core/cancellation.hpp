@@ -19,14 +19,22 @@ public:
   Cancellation() = default;
   /// Not explicit, so a stage can take `&control.cancel` directly; nullptr never cancels.
   Cancellation(const std::atomic<bool>* flag) : m_flag(flag) {}  // NOLINT(google-explicit-constructor)
+  /// `finishFirst`: while it is set, the flag does not interrupt the stage: a run stopped to be
+  /// continued (RunControl::checkpointOnCancel) ends its step whole, to checkpoint it.
+  Cancellation(const std::atomic<bool>* flag, const std::atomic<bool>* finishFirst)
+      : m_flag(flag), m_finishFirst(finishFirst) {}
 
-  bool requested() const noexcept { return m_flag != nullptr && m_flag->load(std::memory_order_relaxed); }
+  bool requested() const noexcept {
+    return m_flag != nullptr && m_flag->load(std::memory_order_relaxed) &&
+           !(m_finishFirst != nullptr && m_finishFirst->load(std::memory_order_relaxed));
+  }
   void throwIfRequested() const {
     if (requested()) throw RunCancelled();
   }
 
 private:
   const std::atomic<bool>* m_flag = nullptr;
+  const std::atomic<bool>* m_finishFirst = nullptr;
 };
 
 }  // namespace rupture

@@ -2,8 +2,11 @@
 // a free and a prescribed piston, tank-impact with its plate, contact and cracks): the result file
 // equals an uninterrupted run's, bit for bit. The particles are re-sorted every few list builds,
 // so the stops fall between re-sorts and on them alike.
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +34,34 @@ TEST(ResumeFluids, DamBreak2d) {
 TEST(ResumeFluids, DamBreak3d) {
   rupture::testing::ScratchDir dir;
   expectResumedRunMatches(damBreak(3), dir.path());
+}
+
+// A stop to be continued (a server's SIGTERM) that lands inside a step, a list build or a snapshot
+// lets the step end whole and checkpoints it, rather than losing the step's work and the checkpoint.
+TEST(ResumeFluids, AStopFromAnotherThreadLandingMidStepStillCheckpoints) {
+  nlohmann::json spec = damBreak(3);
+  spec["run"]["end_time"] = 0.3;
+  rupture::testing::ScratchDir dir;
+  const std::string whole = (dir / "whole.h5").string(), stopped = (dir / "stopped.h5").string();
+  RunControl plain;
+  ASSERT_TRUE(runSpec(spec, whole, plain, 1).completed);
+  std::random_device device;
+  const int delayMs = std::uniform_int_distribution<int>(200, 900)(device);
+  SCOPED_TRACE("stopped after " + std::to_string(delayMs) + " ms");
+  RunControl control;
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
+    control.checkpointOnCancel = true;  // as the server's requestStop does
+    control.cancel = true;
+  });
+  const RunOutcome outcome = runSpec(spec, stopped, control, 1);
+  stopper.join();
+  ASSERT_FALSE(outcome.completed) << "the run ended before the stop: lengthen it";
+  ASSERT_GE(control.checkpointStep.load(), 0) << "stopped without a checkpoint";
+  RunControl resume;
+  resume.resume = true;
+  ASSERT_TRUE(runSpec(spec, stopped, resume, 1).completed);
+  EXPECT_EQ(rupture::testing::hdf5Differences(whole, stopped, rupture::testing::howARunRan()), "");
 }
 
 nlohmann::json pistonColumn(const nlohmann::json& piston) {

@@ -64,7 +64,9 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     snapshot("time " + formatNumber(run.snapshotTimes[nextSnapshot]));
     while (nextSnapshot < run.snapshotTimes.size() && s.time >= run.snapshotTimes[nextSnapshot] * (1 - 1e-12)) ++nextSnapshot;
   };
-  s.cancel = &control.cancel;  // list builds and snapshots poll it between their passes
+  // List builds and snapshots poll the cancel flag between their passes; a run stopped to be
+  // continued ends its step instead, and the poll below checkpoints it.
+  s.cancel = Cancellation(&control.cancel, &control.checkpointOnCancel);
   if (saved.checkpoints.resuming()) {
     saved.checkpoints.restore();
   } else {
