@@ -78,7 +78,12 @@ void ResultFile::recordResume(std::int64_t step) {
 
 void ResultFile::copyTo(const std::string& path) {
   m_file.close();  // whole on disk
-  std::filesystem::copy_file(m_partPath, path, std::filesystem::copy_options::overwrite_existing);
+  try {
+    std::filesystem::copy_file(m_partPath, path, std::filesystem::copy_options::overwrite_existing);
+  } catch (...) {
+    m_file.reopenReadWrite();  // a failed copy (a full disk) must not leave the run's own file closed
+    throw;
+  }
   m_file.reopenReadWrite();
 }
 

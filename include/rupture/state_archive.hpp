@@ -62,20 +62,11 @@ public:
     value(name, x);
     v = static_cast<int>(x);
   }
-  /// An enum class, as its underlying integer.
-  template <class E>
-    requires std::is_enum_v<E>
-  void value(const std::string& name, E& v) {
-    std::int64_t x = static_cast<std::int64_t>(v);
-    value(name, x);
-    v = static_cast<E>(x);
-  }
   void array(const std::string& name, std::vector<std::size_t>& values) {
     std::vector<std::int64_t> x(values.begin(), values.end());
     array(name, x);
     values.assign(x.begin(), x.end());
   }
-  void array(const std::string& name, std::vector<std::uint16_t>& values) { records(name, values); }
   /// Saves `count`; on loading, throws CheckpointError unless the saved one equals it (a part whose
   /// size the set-up fixed: particles, bonds).
   void expectCount(const std::string& name, std::size_t count) {
