@@ -4,27 +4,21 @@
 #include <cmath>
 #include <sstream>
 
+#include "calibration/elastic_relaxation.hpp"
+#include "calibration/test_journal.hpp"
+
 namespace rupture {
 
-namespace {
-
-constexpr double kInitialPoissonGuess = 0.25;
-
-// Least-squares slope of u(c) over all elements.
-double slope(const std::vector<double>& c, const std::vector<double>& u) {
-  double mc = 0, mu = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) { mc += c[k]; mu += u[k]; }
-  mc /= static_cast<double>(c.size());
-  mu /= static_cast<double>(c.size());
-  double num = 0, den = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    num += (c[k] - mc) * (u[k] - mu);
-    den += (c[k] - mc) * (c[k] - mc);
-  }
-  return den > 0 ? num / den : 0.0;
+bool stopBeforeStep(const CalibrationOptions& options, std::uint64_t testSteps) {
+  // The journal's poll sees cancel too (and may checkpoint first); without one, cancel alone.
+  if (options.journal) return options.journal->poll(testSteps);
+  return options.cancel && options.cancel->load(std::memory_order_relaxed);
 }
 
-}  // namespace
+bool testsStopped(const CalibrationOptions& options) {
+  return (options.cancel && options.cancel->load(std::memory_order_relaxed)) ||
+         (options.journal && options.journal->stopped());
+}
 
 TensionFaces tensionFaces(const ParticleStore& p) {
   double lo = 1e300, hi = -1e300, mean = 0;
@@ -56,81 +50,15 @@ double meanFaceStress(const ParticleStore& p, const TensionFaces& faces, double 
 }
 
 ElasticProperties measureElasticProperties(const BondedSystem& sample, const SampleSpec& spec,
-                                           const CalibrationOptions& options, BondedSystem* relaxed) {
-  BondedSystem s = sample;
-  ParticleStore& p = s.particles;
-  const std::size_t n = p.size();
-  if (n < 4) throw CalibrationError("calibration needs a sample of at least 4 elements");
-  s.beam.failureStress = 0;  // unbreakable: an elastic measurement
-  ContactParameters noContact = s.contact.parameters();
-  noContact.enabled = false;
-  s.contact.setParameters(noContact);
-  s.localDamping = options.damping;
-  s.prescribe = nullptr;
-
-  const TensionFaces faces = tensionFaces(p);
-  if (faces.xmin.empty() || faces.xmax.empty()) throw CalibrationError("calibration: sample has no X faces");
-  const std::vector<double> x0 = p.x, y0 = p.y, z0 = p.z;
-  double xc = 0, yc = 0, zc = 0;
-  for (std::size_t k = 0; k < n; ++k) { xc += x0[k]; yc += y0[k]; zc += z0[k]; }
-  xc /= static_cast<double>(n); yc /= static_cast<double>(n); zc /= static_cast<double>(n);
-
-  const double eps = options.strain;
-  for (std::size_t k = 0; k < n; ++k) {
-    p.x[k] = x0[k] + eps * (x0[k] - xc);
-    p.y[k] = y0[k] - kInitialPoissonGuess * eps * (y0[k] - yc);
-    if (p.dimension == 3) p.z[k] = z0[k] - kInitialPoissonGuess * eps * (z0[k] - zc);
-    p.vx[k] = p.vy[k] = p.vz[k] = 0;
-    p.fixedDofs[k] = 0;
-  }
-  for (std::size_t k : faces.xmin) p.fixedDofs[k] = kFixX;
-  for (std::size_t k : faces.xmax) p.fixedDofs[k] = kFixX;
-  s.initialize();
-  const double dt = options.timeStepSafety * s.criticalTimeStep();
-
-  const double section = tensionSection(spec);
-
-  auto measure = [&]() {
-    const double stress = meanFaceStress(p, faces, section);
-    std::vector<double> uy(n), uz(n);
-    for (std::size_t k = 0; k < n; ++k) { uy[k] = p.y[k] - y0[k]; uz[k] = p.z[k] - z0[k]; }
-    double lateral = slope(y0, uy);
-    if (p.dimension == 3) lateral = 0.5 * (lateral + slope(z0, uz));
-    return ElasticProperties{stress / eps, -lateral / eps, s.steps, false};
-  };
-
-  // Relax until E and ν change by less than the tolerance over a check interval (a few wave
-  // transits of the sample, counted in steps from the element count across).
-  const double across = std::sqrt(static_cast<double>(n));
-  const std::size_t interval = std::max<std::size_t>(200, static_cast<std::size_t>(4 * across));
-  // Cancel is polled every step (one relaxed load), so a large sample stops within one step.
-  auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
-  ElasticProperties previous = measure(), current = previous;
-  double firstChange = 0;  // the change at the first check, for the progress estimate
-  while (s.steps < options.maxSteps && !cancelled()) {
-    for (std::size_t k = 0; k < interval && !cancelled(); ++k) s.step(dt);
-    if (cancelled()) break;
-    current = measure();
-    const double dE = std::abs(current.youngModulus - previous.youngModulus) / std::abs(current.youngModulus);
-    const double dNu = std::abs(current.poissonRatio - previous.poissonRatio);
-    if (dE < options.tolerance && dNu < options.tolerance) {
-      current.converged = true;
-      break;
-    }
-    if (options.progress) {
-      // The changes fall roughly geometrically: estimate the fraction done on a log scale
-      // between the first change and the tolerance, bounded by the step budget.
-      const double change = std::max({dE, dNu, options.tolerance});
-      if (firstChange == 0) firstChange = std::max(change, options.tolerance * 1.0001);
-      const double byChange = std::log(firstChange / change) / std::log(firstChange / options.tolerance);
-      const double bySteps = static_cast<double>(s.steps) / static_cast<double>(options.maxSteps);
-      options.progress(std::clamp(std::max(byChange, bySteps), 0.0, 1.0));
-    }
-    previous = current;
-  }
-  current.steps = s.steps;
-  if (relaxed) *relaxed = std::move(s);
-  return current;
+                                           const CalibrationOptions& options) {
+  TestJournal* journal = options.journal;
+  if (journal)
+    if (const auto recorded = journal->replay<ElasticProperties>()) return *recorded;
+  ElasticRelaxation relaxation(sample, spec, options);
+  if (journal) journal->begin([&relaxation](StateArchive& archive) { relaxation.exchangeState(archive); });
+  const ElasticProperties measured = relaxation.run();
+  if (journal && !relaxation.stopped()) journal->finish(measured, measured.steps);
+  return measured;
 }
 
 BeamFit fitBeamParameters(const BondedSystem& sample, const SampleSpec& spec, double targetYoung,
@@ -139,7 +67,7 @@ BeamFit fitBeamParameters(const BondedSystem& sample, const SampleSpec& spec, do
   fit.beam = sample.beam;
   BondedSystem trial = sample;
   struct Cancelled {};  // unwinds the fit between tension tests
-  auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+  auto cancelled = [&] { return testsStopped(options); };
   // One tension test; the caller's progress sees the fraction of the fit's test budget.
   auto measureTrial = [&] {
     if (cancelled()) throw Cancelled{};

@@ -10,6 +10,7 @@
 // Fit: ν_M depends almost only on the beam radius ratio (decreasing), E_M is linear in E_μ: find the
 // radius ratio for the target ν by bracketing and regula falsi, then rescale E_μ by E_target / E_M.
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,8 @@
 #include "bonded/sample_spec.hpp"
 
 namespace rupture {
+
+class TestJournal;
 
 struct ElasticProperties {
   double youngModulus = 0;  ///< Pa
@@ -40,7 +43,16 @@ struct CalibrationOptions {
   /// When given, called after each convergence check of a measurement with its estimated fraction
   /// done in [0, 1] (not necessarily monotone; the relaxation has no known length).
   std::function<void(double)> progress;
+  /// When given, the run's checkpoints (test_journal.hpp): finished tests are replayed from it and
+  /// the test under way is checkpointed and resumed through it.
+  TestJournal* journal = nullptr;
 };
+
+/// True when a test should stop before its next step: options.cancel set, or the run's
+/// checkpoints (options.journal, told the test's own step count) say stop.
+bool stopBeforeStep(const CalibrationOptions& options, std::uint64_t testSteps);
+/// True once a test was stopped: a fit runs no further test.
+bool testsStopped(const CalibrationOptions& options);
 
 /// Thrown when a target cannot be reached (the message names the option and the reachable range).
 class CalibrationError : public std::runtime_error {
@@ -48,10 +60,10 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// Measures E and ν of a built sample (the system is copied; the original is untouched). When
-/// `relaxed` is given it receives the relaxed system (faces held in x, failure and contact off).
+/// Measures E and ν of a built sample (the system is copied; the original is untouched; the
+/// relaxation is elastic_relaxation.hpp).
 ElasticProperties measureElasticProperties(const BondedSystem& sample, const SampleSpec& spec,
-                                           const CalibrationOptions& options = {}, BondedSystem* relaxed = nullptr);
+                                           const CalibrationOptions& options = {});
 
 /// The elements of the X_min and X_max faces of a tension test: those whose surface lies within half
 /// a mean radius of the extreme x.

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+
+#include "calibration/elastic_relaxation.hpp"
+#include "calibration/test_journal.hpp"
 
 namespace rupture {
 
@@ -28,89 +32,177 @@ void scaleDisplacements(ParticleStore& p, const ParticleStore& reference, double
   }
 }
 
-}  // namespace
+// The test, held as a state a checkpoint can take mid-way (test_journal.hpp): stage 1 is the
+// elastic relaxation; stage 2 the strain steps, with where the loop stands in its members.
+class StrengthTest {
+public:
+  StrengthTest(const BondedSystem& sample, const SampleSpec& spec, const StrengthOptions& options)
+      : m_sample(sample), m_spec(spec), m_options(options), m_relaxation(sample, spec, options.elastic) {}
 
-StrengthResult measureTensileStrength(const BondedSystem& sample, const SampleSpec& spec,
-                                      const StrengthOptions& options) {
-  if (!(sample.beam.failureStress > 0) || !std::isfinite(sample.beam.failureStress))
-    throw CalibrationError("strength test: material.beam.failure_stress must be a finite number > 0");
-  const auto cancelled = [&] { return options.elastic.cancel && options.elastic.cancel->load(std::memory_order_relaxed); };
-  StrengthResult result;
+  StrengthResult run();
+  bool stopped() const { return m_stopped; }
+  std::uint64_t steps() const { return m_relaxation.system().steps; }
 
-  // Stage 1: the elastic field at ε_e, and the onset strain it implies.
-  BondedSystem s;
-  result.elastic = measureElasticProperties(sample, spec, options.elastic, &s);
-  result.steps = result.elastic.steps;
-  if (cancelled()) return result;
-  const double sigmaF = sample.beam.failureStress;
+  void exchangeState(StateArchive& archive) {
+    StateGroup group(archive, "strength_test");
+    archive.value("stage", m_stage);
+    archive.record("result", m_result);
+    if (m_stage == 1) {
+      m_relaxation.exchangeState(archive);
+      return;
+    }
+    // Stage 2's set-up (thresholds, contact) is not in the checkpoint: made again before loading.
+    if (archive.loading()) armForFailure();
+    m_relaxation.system().exchangeState(archive);
+    archive.value("dt", m_dt);
+    archive.array("face_xmin", m_faces.xmin);
+    archive.array("face_xmax", m_faces.xmax);
+    archive.value("strain", m_strain);
+    archive.value("in_increment", m_inIncrement);
+    archive.value("steps_in_increment", m_used);
+    archive.value("steps_in_interval", m_inInterval);
+    archive.value("broken", m_broken);
+    archive.value("broken_in_interval", m_brokenHere);
+    archive.value("previous_stress", m_previous);
+    archive.value("stress", m_stress);
+  }
+
+private:
+  /// Failure on at the sample's σ_f, the sample's contact: the damage stage's system.
+  void armForFailure() {
+    BondedSystem& s = m_relaxation.system();
+    s.beam.failureStress = m_sample.beam.failureStress;
+    s.contact.setParameters(m_sample.contact.parameters());
+    s.initialize();
+  }
+  /// Stage 1 done: the onset strain, and the damage stage set up from half a step below it.
+  void beginDamageStage();
+  StrengthResult stoppedResult() {
+    m_stopped = true;
+    m_result.steps = m_result.elastic.steps + steps();
+    return m_result;
+  }
+
+  const BondedSystem& m_sample;
+  const SampleSpec& m_spec;
+  const StrengthOptions& m_options;
+  ElasticRelaxation m_relaxation;
+  int m_stage = 1;
+  StrengthResult m_result;
+  // Stage 2: its set-up and where its loop stands.
+  double m_dt = 0, m_strain = 0;
+  TensionFaces m_faces;
+  bool m_inIncrement = false;
+  std::size_t m_used = 0, m_inInterval = 0, m_broken = 0, m_brokenHere = 0;
+  double m_previous = 0, m_stress = 0;
+  bool m_stopped = false;
+};
+
+void StrengthTest::beginDamageStage() {
+  BondedSystem& s = m_relaxation.system();
+  const double sigmaF = m_sample.beam.failureStress;
   double worst = 0;  // largest σ_eq / (σ_f × the bond's strength factor) at ε_e
   const BondStore& loads = s.bondLoads();  // current for every law (central laws store none per step)
   for (std::size_t b = 0; b < s.bonds.size(); ++b)
     if (s.bonds.intact[b] > 0.5 && std::isfinite(s.bonds.strength[b]) && s.bonds.strength[b] > 0)
       worst = std::max(worst, loads.failureMeasure[b] / (sigmaF * s.bonds.strength[b]));
   if (!(worst > 0)) throw CalibrationError("strength test: no bond is loaded by the tension (cannot break)");
-  const double strainE = options.elastic.strain;
-  result.crackOnsetStrain = strainE / worst;
+  const double strainE = m_options.elastic.strain;
+  m_result.crackOnsetStrain = strainE / worst;
 
-  // Stage 2: from half a step below the onset, strain steps with failure and contact on. The
-  // first state is relaxed and recorded before any step (it is the elastic end of the curve), and
-  // no step lands on ε_onset itself, where rounding alone decides whether the first bond breaks:
-  // the sampled curve then scales with σ_f as the curve itself does.
-  const double increment = options.strainIncrement * result.crackOnsetStrain;
-  double strain = result.crackOnsetStrain - 0.5 * increment;
-  scaleDisplacements(s.particles, sample.particles, strain / strainE);
-  s.beam.failureStress = sigmaF;
-  s.contact.setParameters(sample.contact.parameters());
-  s.initialize();
-  const double dt = options.elastic.timeStepSafety * s.criticalTimeStep();
-  const TensionFaces faces = tensionFaces(s.particles);
-  const double section = tensionSection(spec);
+  // From half a step below the onset, strain steps with failure and contact on. The first state is
+  // relaxed and recorded before any step (it is the elastic end of the curve), and no step lands on
+  // ε_onset itself, where rounding alone decides whether the first bond breaks: the sampled curve
+  // then scales with σ_f as the curve itself does.
+  const double increment = m_options.strainIncrement * m_result.crackOnsetStrain;
+  m_strain = m_result.crackOnsetStrain - 0.5 * increment;
+  scaleDisplacements(s.particles, m_sample.particles, m_strain / strainE);
+  armForFailure();
+  m_dt = m_options.elastic.timeStepSafety * s.criticalTimeStep();
+  m_faces = tensionFaces(s.particles);
+  m_inIncrement = false;
+  m_stage = 2;
+}
+
+StrengthResult StrengthTest::run() {
+  if (m_stage == 1) {
+    m_result.elastic = m_relaxation.run();
+    m_result.steps = m_result.elastic.steps;
+    if (m_relaxation.stopped()) {
+      m_stopped = true;
+      return m_result;
+    }
+    beginDamageStage();
+  }
+  BondedSystem& s = m_relaxation.system();
+  const CalibrationOptions& elastic = m_options.elastic;
+  const double increment = m_options.strainIncrement * m_result.crackOnsetStrain;
+  const double section = tensionSection(m_spec);
   double xc = 0;
-  for (double x : sample.particles.x) xc += x;
-  xc /= static_cast<double>(sample.particles.size());
+  for (double x : m_sample.particles.x) xc += x;
+  xc /= static_cast<double>(m_sample.particles.size());
   const std::size_t n = s.particles.size();
   const std::size_t interval =
       std::max<std::size_t>(200, static_cast<std::size_t>(4 * std::sqrt(static_cast<double>(n))));
-  std::size_t broken = 0;
   const double initialBonds = static_cast<double>(s.bonds.size());
-  const double maxStrain = options.maxStrainFactor * result.crackOnsetStrain;
+  const double maxStrain = m_options.maxStrainFactor * m_result.crackOnsetStrain;
 
-  for (bool first = true; !cancelled(); first = false) {
-    if (!first) {
-      strain += increment;
-      for (std::size_t k = 0; k < n; ++k) s.particles.x[k] += increment * (sample.particles.x[k] - xc);
-    }
-    ++result.increments;
-    // Relax until σ̄ settles with no break over a whole interval.
-    double previous = meanFaceStress(s.particles, faces, section);
-    double stress = previous;
-    for (std::size_t used = 0; used < options.maxStepsPerIncrement && !cancelled(); used += interval) {
-      std::size_t brokenHere = 0;
-      for (std::size_t k = 0; k < interval; ++k) {
-        s.step(dt);
-        brokenHere += s.brokenLastStep;
+  while (true) {
+    if (!m_inIncrement) {
+      if (m_result.increments > 0) {
+        m_strain += increment;
+        for (std::size_t k = 0; k < n; ++k) s.particles.x[k] += increment * (m_sample.particles.x[k] - xc);
       }
-      broken += brokenHere;
-      stress = meanFaceStress(s.particles, faces, section);
-      const double scale = std::max({std::abs(stress), result.tensileStrength, 1e-300});
-      const bool settled = brokenHere == 0 && std::abs(stress - previous) < options.stressTolerance * scale;
-      previous = stress;
+      ++m_result.increments;
+      m_previous = m_stress = meanFaceStress(s.particles, m_faces, section);
+      m_used = m_inInterval = m_brokenHere = 0;
+      m_inIncrement = true;
+    }
+    // Relax until σ̄ settles with no break over a whole interval.
+    while (m_used < m_options.maxStepsPerIncrement) {
+      for (; m_inInterval < interval; ++m_inInterval) {
+        if (stopBeforeStep(elastic, steps())) return stoppedResult();
+        s.step(m_dt);
+        m_brokenHere += s.brokenLastStep;
+      }
+      m_broken += m_brokenHere;
+      m_stress = meanFaceStress(s.particles, m_faces, section);
+      const double scale = std::max({std::abs(m_stress), m_result.tensileStrength, 1e-300});
+      const bool settled = m_brokenHere == 0 && std::abs(m_stress - m_previous) < m_options.stressTolerance * scale;
+      m_previous = m_stress;
+      m_inInterval = m_brokenHere = 0;
+      m_used += interval;
       if (settled) break;
     }
-    if (cancelled()) break;
-    if (stress > result.tensileStrength) {
-      result.tensileStrength = stress;
-      result.strainAtPeak = strain;
-      result.brokenFractionAtPeak = static_cast<double>(broken) / initialBonds;
+    m_inIncrement = false;
+    if (m_stress > m_result.tensileStrength) {
+      m_result.tensileStrength = m_stress;
+      m_result.strainAtPeak = m_strain;
+      m_result.brokenFractionAtPeak = static_cast<double>(m_broken) / initialBonds;
     }
-    if (options.elastic.progress)
-      options.elastic.progress(std::clamp(strain / maxStrain, 0.0, 1.0));
-    if ((broken > 0 && stress < options.stopFraction * result.tensileStrength) || strain >= maxStrain) {
-      result.completed = true;
+    if (elastic.progress) elastic.progress(std::clamp(m_strain / maxStrain, 0.0, 1.0));
+    if ((m_broken > 0 && m_stress < m_options.stopFraction * m_result.tensileStrength) || m_strain >= maxStrain) {
+      m_result.completed = true;
       break;
     }
   }
-  result.steps += s.steps;
+  m_result.steps += steps();
+  return m_result;
+}
+
+}  // namespace
+
+StrengthResult measureTensileStrength(const BondedSystem& sample, const SampleSpec& spec,
+                                      const StrengthOptions& options) {
+  if (!(sample.beam.failureStress > 0) || !std::isfinite(sample.beam.failureStress))
+    throw CalibrationError("strength test: material.beam.failure_stress must be a finite number > 0");
+  TestJournal* journal = options.elastic.journal;
+  if (journal)
+    if (const auto recorded = journal->replay<StrengthResult>()) return *recorded;
+  StrengthTest test(sample, spec, options);
+  if (journal) journal->begin([&test](StateArchive& archive) { test.exchangeState(archive); });
+  const StrengthResult result = test.run();
+  if (journal && !test.stopped()) journal->finish(result, test.steps());
   return result;
 }
 
@@ -118,7 +210,7 @@ StrengthFit fitFailureStress(const BondedSystem& sample, const SampleSpec& spec,
                              const StrengthOptions& options, double relativeTolerance) {
   StrengthFit fit;
   BondedSystem trial = sample;
-  const auto cancelled = [&] { return options.elastic.cancel && options.elastic.cancel->load(std::memory_order_relaxed); };
+  const auto cancelled = [&] { return testsStopped(options.elastic); };
   auto test = [&](double sigmaF) {
     trial.beam.failureStress = sigmaF;
     ++fit.evaluations;

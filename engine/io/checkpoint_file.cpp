@@ -140,7 +140,7 @@ void checkCheckpointFits(const CheckpointHeader& found, const std::string& path,
                           firstDifference(found.spec, identity) + ")");
 }
 
-void loadCheckpointState(ResultFile& partial, const std::function<void(StateArchive&)>& load) {
+void loadCheckpointState(ResultFile& partial, const std::function<void(StateArchive&)>& load, bool more) {
   Hdf5StateArchive archive(partial.file(), kStateGroup, Hdf5StateArchive::Mode::Load);
   try {
     load(archive);
@@ -149,7 +149,11 @@ void loadCheckpointState(ResultFile& partial, const std::function<void(StateArch
   } catch (const Hdf5Error& e) {
     throw CheckpointError(std::string("the checkpoint's state cannot be read (") + e.what() + ")");
   }
-  partial.file().remove(kGroup);
+  if (!more) endCheckpointLoading(partial);
+}
+
+void endCheckpointLoading(ResultFile& partial) {
+  if (partial.file().exists(kGroup)) partial.file().remove(kGroup);
 }
 
 }  // namespace rupture::io

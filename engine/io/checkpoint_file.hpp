@@ -57,7 +57,10 @@ void checkCheckpointFits(const CheckpointHeader& found, const std::string& path,
                          const nlohmann::json& spec);
 
 /// Loads the state that `load` lists from the checkpoint copy the partial result was opened
-/// from (ResultFile's continueFrom), then removes /checkpoint from it.
-void loadCheckpointState(ResultFile& partial, const std::function<void(StateArchive&)>& load);
+/// from (ResultFile's continueFrom), then removes /checkpoint from it unless `more` parts of the
+/// state are to be loaded later (then endCheckpointLoading removes it).
+void loadCheckpointState(ResultFile& partial, const std::function<void(StateArchive&)>& load, bool more = false);
+/// Removes /checkpoint from the partial result once its state is loaded.
+void endCheckpointLoading(ResultFile& partial);
 
 }  // namespace rupture::io

@@ -26,10 +26,11 @@ void RunCheckpoints::attach(io::ResultFile& result, State state) {
   m_last = Clock::now();  // the interval counts from the first step, not from the set-up
 }
 
-void RunCheckpoints::restore() {
+void RunCheckpoints::restore(bool partsFollow) {
   if (!m_result || !m_state) throw std::logic_error("RunCheckpoints::restore before attach");
   const io::CheckpointHeader header = io::readCheckpointHeader(m_path);
-  io::loadCheckpointState(*m_result, m_state);
+  io::loadCheckpointState(*m_result, m_state, partsFollow);
+  m_partsFollow = partsFollow;
   m_resumes = header.resumes + 1;
   m_wallStart -= std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(header.wallTime));
   m_result->recordResume(header.step);
@@ -39,8 +40,21 @@ void RunCheckpoints::restore() {
                           formatNumber(header.time) + " s (written " + header.written + ")");
 }
 
+void RunCheckpoints::restorePart(const State& part) {
+  if (!m_partsFollow) throw std::logic_error("RunCheckpoints::restorePart without restore(partsFollow)");
+  io::loadCheckpointState(*m_result, part);
+  m_partsFollow = false;
+}
+
+void RunCheckpoints::endRestore() {
+  if (!m_partsFollow) return;
+  io::endCheckpointLoading(*m_result);
+  m_partsFollow = false;
+}
+
 void RunCheckpoints::write(std::uint64_t step, double time) {
   if (!m_result || !m_state) throw std::logic_error("RunCheckpoints::write before attach");
+  if (m_partsFollow) throw std::logic_error("RunCheckpoints::write while a part of the state is still to load");
   const auto began = Clock::now();
   io::CheckpointHeader header;
   header.scenario = m_scenario;

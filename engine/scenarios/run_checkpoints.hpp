@@ -34,8 +34,14 @@ public:
   /// The result file and the function naming the run's state; call before restore() and poll().
   void attach(io::ResultFile& result, State state);
   /// Loads the state from the checkpoint (the set-up has rebuilt everything it does not hold) and
-  /// records the resume on the file and on RunControl::resumedFromStep.
-  void restore();
+  /// records the resume on the file and on RunControl::resumedFromStep. With `partsFollow`, a part
+  /// of the state is loaded later (restorePart; elastic-properties' test under way, set up once its
+  /// fit asks for it) or none (endRestore).
+  void restore(bool partsFollow = false);
+  /// Loads `part` (named as when saved) from the checkpoint being resumed, and ends the restore.
+  void restorePart(const State& part);
+  /// Ends a restore begun with partsFollow.
+  void endRestore();
 
   enum class Action { Continue, Stop };
   /// At the top of every step: Stop when cancelled (after a checkpoint when RunControl asks for
@@ -59,6 +65,7 @@ private:
   io::ResultFile* m_result = nullptr;
   State m_state;
   std::int64_t m_resumes = 0;
+  bool m_partsFollow = false;
 };
 
 }  // namespace rupture

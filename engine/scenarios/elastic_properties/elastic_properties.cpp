@@ -16,6 +16,8 @@
 #include "io/spec_reader.hpp"
 #include "io/result_file.hpp"
 #include "scenarios/bonded/bonded_run.hpp"
+#include "calibration/test_journal.hpp"
+#include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
 #include "scenarios/elastic_properties/elastic_properties_results.hpp"
 
@@ -68,6 +70,10 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
     o.tolerance = calibration->number("tolerance", {0.0, 0.1, true, false}, "1", o.tolerance);
     calibration->finish();
   }
+  if (const auto run = root.optionalObject("run")) {
+    s.checkpointInterval = run->number("checkpoint_interval_s", Range::closed(0.0, 1e7), "s", s.checkpointInterval);
+    run->finish();
+  }
   root.finish();
   return s;
 }
@@ -80,22 +86,38 @@ nlohmann::json toJson(const ElasticPropertiesSpec& s) {
   j["calibration"] = {{"strain", s.calibration.strain},
                       {"damping", s.calibration.damping},
                       {"tolerance", s.calibration.tolerance}};
+  j["run"] = {{"checkpoint_interval_s", s.checkpointInterval}};
   return j;
 }
 
 RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohmann::json& json, const std::string& resultPath,
                                 RunControl& control) {
-  const auto wallStart = Clock::now();
+  auto wallStart = Clock::now();
+  RunCheckpoints checkpoints(control, resultPath, kScenarioName, json, spec.checkpointInterval, wallStart);
   BondedSystem system;
   // Cancelled while building: nothing measured, the summary below reports nulls.
   const SampleReport report =
       buildRunSample(spec.sample, spec.material, system, control).value_or(SampleReport{});
-  io::ResultFile file(resultPath, kScenarioName);
-  file.writeSpec(toJson(spec), json);
+  // A resumed run continues the checkpoint's copy of the file, which holds the spec.
+  io::ResultFile file(resultPath, kScenarioName, checkpoints.continueFrom());
+  if (!checkpoints.resuming()) file.writeSpec(toJson(spec), json);
 
-  auto cancelled = [&] { return control.cancel.load(std::memory_order_relaxed); };
+  // The run's state is its tests' journal: the finished tests' results and the one under way,
+  // polled before each relaxation step (numbered over all the run's tests; quasi-static: time 0).
+  TestJournal journal({[&checkpoints](std::uint64_t step) {
+                         return checkpoints.poll(step, 0.0) == RunCheckpoints::Action::Stop;
+                       },
+                       [&checkpoints](const TestJournal::State& part) { checkpoints.restorePart(part); }});
+  checkpoints.attach(file, [&journal](StateArchive& archive) { journal.exchangeState(archive); });
+  if (checkpoints.resuming()) {
+    checkpoints.restore(/*partsFollow=*/true);
+    if (!journal.resumesInsideATest()) checkpoints.endRestore();
+  }
+
+  auto cancelled = [&] { return control.cancel.load(std::memory_order_relaxed) || journal.stopped(); };
   CalibrationOptions options = spec.calibration;
   options.cancel = &control.cancel;
+  options.journal = &journal;
   options.progress = [&control](double f) { reportProgress(control, kBuildShare + (1.0 - kBuildShare) * f); };
 
   // Calibratable styles (beams) measure E and ν on the way to their strength.
@@ -153,12 +175,14 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
   }
   const bool completed = !cancelled();
   measured = measured && completed;
+  checkpoints.endRestore();  // stopped before the test under way was asked for: its part is not needed
 
   nlohmann::json summary = {
       {"young_modulus", orNull(measured, result.youngModulus)},
       {"poisson_ratio", orNull(measured, result.poissonRatio)},
       {"converged", result.converged && completed ? 1 : 0},
       {"relaxation_steps", static_cast<std::int64_t>(result.steps)},
+      {"steps", static_cast<std::int64_t>(journal.steps())},
       {"elements", static_cast<std::int64_t>(report.elements)},
       {"bonds", static_cast<std::int64_t>(report.bonds)},
       {"mean_coordination", report.meanCoordination},
@@ -183,6 +207,7 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
   summary["wall_time_s"] = std::chrono::duration<double>(Clock::now() - wallStart).count();
   file.writeAttributes("/summary", summary, declaredUnits<elasticPropertiesSummaryFields>());
   file.finish(completed);
+  checkpoints.finished(completed);
   if (completed) reportProgress(control, 1.0);
   logStage(control, completed ? "done: E = " + formatNumber(result.youngModulus) + " Pa, nu = " + formatNumber(result.poissonRatio)
                          : "cancelled: file marked incomplete");

@@ -11,7 +11,8 @@
 // (empty: no particle field is written, but `rupture run` writes an XDMF sidecar over it);
 // /summary with the scalars below and their "<name>_unit" attributes. Written as RESULT.part and
 // renamed when closed. Cancel stops the relaxation at the next step and leaves a valid file with
-// completed = 0. Documentation: engine/dem/README.md; spec: api/schemas/elastic-properties.schema.json.
+// completed = 0. Checkpoints (docs/checkpoints.md) hold the tests finished so far and the one under
+// way (calibration/test_journal.hpp); a resumed run replays the first and continues the second. Documentation: engine/dem/README.md; spec: api/schemas/elastic-properties.schema.json.
 #include <map>
 #include <optional>
 #include <string>
@@ -38,6 +39,7 @@ struct ElasticPropertiesSpec {
   std::optional<ElasticTarget> target;  ///< present: fit the beams to it
   std::optional<double> targetStrength; ///< target.tensile_strength (Pa): fit the beams' failure stress
   CalibrationOptions calibration;       ///< strain, damping and tolerance from the spec
+  double checkpointInterval = 300;      ///< run.checkpoint_interval_s (s; 0: none)
 };
 
 /// Parses and checks a whole spec; throws SpecError naming the dotted field.

@@ -10,6 +10,7 @@ const ResultFields& elasticPropertiesSummaryFields() {
       {"poisson_ratio", "1", "Poisson's ratio", "Apparent Poisson's ratio from the lateral contraction"},
       {"converged", "1", "Converged", "1 when the static relaxation reached its tolerance"},
       {"relaxation_steps", "1", "Relaxation steps", "Damped steps of the static relaxation"},
+      {"steps", "1", "Steps", "Relaxation steps of all the run's tension tests (a checkpoint's step counts them)"},
       {"elements", "1", "Elements", "Discrete elements in the sample"},
       {"bonds", "1", "Bonds", "Bonds in the sample"},
       {"mean_coordination", "1", "Mean coordination", "Mean number of bonds per element"},
