@@ -5,20 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "checkpoint/checkpoint_support.hpp"
+#include "engine/test_elastic_properties_support.hpp"
 
 namespace rupture::test {
 namespace {
 
-/// The small beam sample of the elastic-properties tests (about 500 elements).
-nlohmann::json beamSample() {
-  return {{"scenario", "elastic-properties"},
-          {"dimension", 2},
-          {"sample", {{"size", {0.15e-6, 0.15e-6}}, {"element_radius", 3.3e-9}, {"seed", 7}}},
-          {"material",
-           {{"model", "beam"},
-            {"density", 6060.0},
-            {"beam", {{"young_modulus", 2865e9}, {"poisson_ratio", 0.3}, {"radius_ratio", 0.3}, {"failure_stress", 4e9}}}}}};
-}
+nlohmann::json beamSample() { return smallBeamElasticPropertiesSpec(); }
 
 TEST(ResumeElasticProperties, StrengthTestAcrossBothStages) {
   rupture::testing::ScratchDir dir;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "support/test_support.hpp"
+#include "engine/test_elastic_properties_support.hpp"
 #include "../cli/cli_runner.hpp"
 #include "calibration/calibration.hpp"
 #include "samples/sample_builder.hpp"
@@ -28,15 +29,7 @@ namespace fs = std::filesystem;
 using rupture::testing::ScratchDir;
 using rupture::testing::rejectedField;
 
-nlohmann::json smallSpec() {
-  return {{"scenario", "elastic-properties"},
-          {"dimension", 2},
-          {"sample", {{"size", {0.15e-6, 0.15e-6}}, {"element_radius", 3.3e-9}, {"seed", 7}}},
-          {"material",
-           {{"model", "beam"},
-            {"density", 6060.0},
-            {"beam", {{"young_modulus", 2865e9}, {"poisson_ratio", 0.3}, {"radius_ratio", 0.3}, {"failure_stress", 4e9}}}}}};
-}
+nlohmann::json smallSpec() { return test::smallBeamElasticPropertiesSpec(); }
 
 const std::vector<std::string> kAlways = {"young_modulus", "poisson_ratio", "converged", "relaxation_steps",
                                           "elements",      "bonds",         "mean_coordination", "porosity",
