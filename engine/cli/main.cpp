@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "io/provenance.hpp"
 #include "cli/cli.hpp"
 
 namespace {
@@ -58,7 +59,9 @@ int main(int argc, char** argv) {
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "--version") {
-    std::cout << "rupture " << RUPTURE_VERSION << "\n";
+    const rupture::io::BuildInfo& build = rupture::io::buildInfo();
+    std::cout << "rupture " << RUPTURE_VERSION << "\ncommit " << build.commit << "\ncompiler " << build.compiler
+              << " (" << build.buildType << ": " << build.flags << ")\n";
     return 0;
   }
   const std::string command = args[0];

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "io/hdf5_state_archive.hpp"
+#include "io/provenance.hpp"
 
 namespace rupture::io {
 
@@ -18,15 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kGroup = "/checkpoint";
 constexpr const char* kStateGroup = "/checkpoint/state";
-
-std::string utcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 /// Flushes a file (or a directory's entries) to the disk: a checkpoint renamed into place must
 /// survive a power cut, not only a killed process.

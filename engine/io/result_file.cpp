@@ -6,6 +6,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "io/provenance.hpp"
 #include "rupture/state_archive.hpp"
 
 namespace rupture::io {
@@ -40,6 +41,7 @@ ResultFile::ResultFile(std::string resultPath, const std::string& scenario, cons
   m_file.setAttribute("/", "scenario", scenario);
   m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
   m_file.setAttribute("/", "completed", std::int64_t{0});
+  writeStartProvenance(m_file);
 }
 
 ResultFile::~ResultFile() {
@@ -50,6 +52,7 @@ void ResultFile::writeSpec(const nlohmann::json& resolved, const nlohmann::json&
   m_file.createGroup("/spec");
   m_file.setAttribute("/spec", "json", resolved.dump());
   m_file.setAttribute("/spec", "input", input.dump());
+  writeSpecProvenance(m_file, resolved);
 }
 
 void ResultFile::writeAttributes(const std::string& group, const nlohmann::json& values,
@@ -89,6 +92,7 @@ void ResultFile::copyTo(const std::string& path) {
 
 void ResultFile::finish(bool completed) {
   m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
+  writeFinishProvenance(m_file);
   m_file.close();
   if (m_partPath != m_resultPath) std::filesystem::rename(m_partPath, m_resultPath);
   m_done = true;

@@ -6,6 +6,8 @@
 // rename (the job server does, after recording the summary: one rename, not two). Common layout:
 //   /        attributes scenario, rupture_version, completed (int64 1/0)
 //   /spec    attributes json (the resolved spec, defaults filled in) and input (as submitted)
+//   /provenance  what made the file: build, host processor, threads, spec digest, seeds, start and
+//            finish times (io/provenance.hpp)
 // Scalar groups (/summary, ...) are written by writeAttributes: booleans as int64 0/1, integers as
 // int64, numbers as double, null as NaN, strings as strings, anything else as its JSON text, each
 // with a "<name>_unit" string attribute when its unit is known.
