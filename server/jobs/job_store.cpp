@@ -128,7 +128,7 @@ CREATE TABLE IF NOT EXISTS idempotency_keys(  -- POST Idempotency-Key -> the job
 
 constexpr const char* kJobColumns =
     "id, process_id, name, status, sweep_mode, swept_paths, inputs, sweep, message, created, started, "
-    "finished, updated, study";
+    "finished, updated, study, provenance";
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
@@ -156,6 +156,7 @@ JobRecord readJob(const Stmt& q) {
   j.finished = q.text(11);
   j.updated = q.text(12);
   j.study = q.json(13);
+  j.provenance = q.json(14);
   return j;
 }
 
@@ -244,6 +245,7 @@ void JobStore::migrate() {
   // Studies (replicates, refinement): a JSON column per job and a replicate index per run; live
   // progress: the run's stage message. A database from before gets them with their neutral values.
   if (!hasColumn("jobs", "study")) exec("ALTER TABLE jobs ADD COLUMN study TEXT");
+  if (!hasColumn("jobs", "provenance")) exec("ALTER TABLE jobs ADD COLUMN provenance TEXT");
   if (!hasColumn("runs", "replicate")) exec("ALTER TABLE runs ADD COLUMN replicate INTEGER NOT NULL DEFAULT 0");
   if (!hasColumn("runs", "stage")) exec("ALTER TABLE runs ADD COLUMN stage TEXT NOT NULL DEFAULT ''");
   // 1: runs.spec holds a JSON Patch against the job's base spec (the inputs are stored once per job).
@@ -324,12 +326,13 @@ CreatedJob JobStore::createJobOnce(const NewJob& job) {
   }
   Stmt insertJob(m_db,
                  "INSERT INTO jobs(process_id, name, status, sweep_mode, swept_paths, inputs, sweep, "
-                 "message, created, updated, study) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?, ?)");
+                 "message, created, updated, study, provenance) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insertJob.bind(1, job.processId).bind(2, job.name).bind(3, job.sweepMode).bind(4, job.sweptPaths.dump())
       .bind(5, job.inputs.dump()).bind(6, job.sweep.dump())
       .bind(7, std::to_string(job.runs.size()) + (job.runs.size() == 1 ? " run queued" : " runs queued"))
       .bind(8, now).bind(9, now);
   if (job.study.is_null()) insertJob.bindNull(10); else insertJob.bind(10, job.study.dump());
+  if (job.provenance.is_null()) insertJob.bindNull(11); else insertJob.bind(11, job.provenance.dump());
   insertJob.run();
   const std::int64_t id = sqlite3_last_insert_rowid(m_db);
   Stmt insertRun(m_db,

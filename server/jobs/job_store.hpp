@@ -74,6 +74,9 @@ struct JobRecord {
   /// The study plan and its record, null for a plain sweep: {"replicates": {count, vary},
   /// "refine": {...}, "refinement": {"state": "pending"|"done", "rounds", "runs_added", "points", "stopped"}}
   Json study;
+  /// What the job was submitted to: the server's build and host (io/provenance.hpp), its executor
+  /// and threads per run; null for a job from before it was recorded. Each run's file has its own.
+  Json provenance;
 };
 
 /// The spec every run of a job starts from: {"scenario": processId} followed by the inputs as
@@ -102,6 +105,7 @@ struct NewJob {
   std::vector<std::pair<Json, Json>> runs;
   std::vector<int> replicates;  ///< replicate index per run (empty: all 0)
   Json study;                   ///< JobRecord::study (null: none)
+  Json provenance;              ///< JobRecord::provenance
   std::string idempotencyKey;  ///< the POST's Idempotency-Key header, "" when none
   std::string requestHash;     ///< identifies the request body sent with that key
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/public_message.hpp"
+#include "io/provenance.hpp"
 #include "jobs/progress_info.hpp"
 #include "routes/answers.hpp"
 #include "rupture/progress.hpp"
@@ -51,6 +52,12 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   return doc;
 }
 
+Json buildDocument() {
+  const rupture::io::BuildInfo& b = rupture::io::buildInfo();
+  return {{"rupture_version", b.version}, {"git_commit", b.commit},      {"compiler", b.compiler},
+          {"compile_flags", b.flags},    {"build_type", b.buildType},   {"host_processor", rupture::io::hostProcessor()}};
+}
+
 Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   Json doc = Json::object();
   const std::string id = std::to_string(job.id);
@@ -76,6 +83,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
       if (job.study.contains(key)) doc[key] = job.study[key];
     }
   }
+  if (job.provenance.is_object()) doc["provenance"] = job.provenance;
   if (runs) {
     Json list = Json::array();
     for (const RunRecord& r : *runs) list.push_back(runDocument(job, r));
@@ -85,6 +93,7 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   doc["links"] = Json::array({
       link(base, "self", kJsonType, "this job's status"),
       link(base + "/results", std::string(kOgcRel) + "results", kHdf5Type, "all runs in one HDF5 file"),
+      link(base + "/crate", "describedby", "application/zip", "RO-Crate: request, specs, results, summary, provenance"),
       link(base + "/summary", "related", kJsonType, "summary table"),
       link(base + "/summary?format=csv", "alternate", "text/csv", "summary table as CSV"),
       link(base + "/summary.svg", "related", "image/svg+xml", "summary plot"),

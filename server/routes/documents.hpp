@@ -16,6 +16,10 @@ Json runDocument(const JobRecord& job, const RunRecord& run);
 /// statusInfo of a job; with `runs`, each run's document too.
 Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs);
 
+/// This server's build and host (io/provenance.hpp): rupture_version, git_commit, compiler,
+/// compile_flags, build_type, host_processor. GET /health shows it; a job records it when submitted.
+Json buildDocument();
+
 Json processSummary(const rupture::ScenarioInfo& info);
 
 }  // namespace rupture::server

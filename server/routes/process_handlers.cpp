@@ -211,6 +211,9 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   job.inputs = inputs;
   const Json* sweep = submission.member("sweep");
   job.sweep = sweep && sweep->is_object() ? *sweep : Json::object();
+  job.provenance = buildDocument();
+  job.provenance["executor"] = ctx.scheduler->name();
+  job.provenance["threads_per_run"] = ctx.scheduler->threadsPerRun();
   job.runs.reserve(runCount);
   for (std::size_t k = 0; k < runCount; ++k) {
     job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));

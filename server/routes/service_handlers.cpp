@@ -4,6 +4,7 @@
 #include <httplib.h>
 
 #include "routes/answers.hpp"
+#include "routes/documents.hpp"
 #include "routes/handlers.hpp"
 #include "routes/request_params.hpp"
 #include "rupture/run.hpp"
@@ -47,6 +48,7 @@ void getHealth(ServerContext& ctx, const Request&, Response& res) {
   Json doc = Json::object();
   doc["status"] = ctx.stopping ? "stopping" : "ok";
   doc["version"] = RUPTURE_VERSION;
+  doc["build"] = buildDocument();
   doc["executor"] = ctx.scheduler->name();
   doc["workers"] = ctx.scheduler->workers();
   doc["threads_per_run"] = ctx.scheduler->threadsPerRun();

@@ -106,6 +106,7 @@ void writeMergedFile(Hdf5File& out, const JobRecord& job, const std::vector<RunR
   out.setAttribute("/", "created", job.created);
   out.setAttribute("/", "runs_total", std::int64_t{job.runsTotal});
   if (job.study.is_object()) out.setAttribute("/", "study", job.study.dump());  // replicates, refinement record
+  if (job.provenance.is_object()) out.setAttribute("/", "provenance", job.provenance.dump());  // each run's is in its group
   std::int64_t included = 0;
   for (const RunRecord& run : runs) {
     if (run.status != Status::Successful || run.resultPath.empty()) continue;

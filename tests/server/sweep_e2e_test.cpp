@@ -2,6 +2,8 @@
 // with every output format, zip vs grid counts, whole-job rejection, and cancellation.
 #include <gtest/gtest.h>
 
+#include "io/sha256.hpp"
+#include "io/provenance.hpp"
 #include "io/hdf5_file.hpp"
 #include "server_test_support.hpp"
 
@@ -192,7 +194,20 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
     auto run = download(*client, "/jobs/" + id + "/runs/3/results", tmp, "run3.h5", &runBytes);
     EXPECT_TRUE(run.exists("/series/strain"));
     EXPECT_GT(run.readDatasetDouble("/series/strain").size(), 1u);
+    // Provenance (docs/provenance.md): the run's file says what made it, as the job does.
+    EXPECT_EQ(run.readAttributeString("/provenance", "git_commit"), done["provenance"]["git_commit"]);
+    EXPECT_EQ(run.readAttributeString("/provenance", "spec_sha256"),
+              rupture::sha256Hex(run.readAttributeString("/spec", "json")));
+    EXPECT_EQ(Json::parse(run.readAttributeString("/provenance", "seeds")),
+              (Json{{"sample.seed", Json::parse(run.readAttributeString("/spec", "json"))["sample"]["seed"]}}));
   }
+  // The job records the build and host it was submitted to; /health shows the server's.
+  EXPECT_EQ(done["provenance"]["rupture_version"], RUPTURE_VERSION);
+  EXPECT_EQ(done["provenance"]["executor"], "local");
+  EXPECT_EQ(done["provenance"]["host_processor"], rupture::io::hostProcessor());
+  const Json health = getJson(*client, "/health");
+  EXPECT_EQ(health["build"]["git_commit"], done["provenance"]["git_commit"]);
+  EXPECT_EQ(health["build"]["compile_flags"], done["provenance"]["compile_flags"]);
   // Range requests work on downloads.
   auto range = client->Get(("/jobs/" + id + "/runs/3/results").c_str(), httplib::Headers{{"Range", "bytes=0-7"}});
   ASSERT_TRUE(range);
