@@ -10,7 +10,8 @@ real rupture-server (started here on a free port with its own data directory).
 2. Runs the checks below with the venv's python, which must import the installed package:
    submit a 2-rate sweep with 2 replicates (and the same request again with reuse=True: the same
    job), wait with progress, summary per run and aggregated (DataFrames with units), a run's series,
-   the files, a comparison of two jobs, a download of a valid HDF5 file, a plot, and the errors: a
+   the files, a comparison of two jobs, a download of a valid HDF5 file, the job's RO-Crate (read with
+   zipfile and checked against RO-Crate's and the Workflow Run Crate's required entities), a plot, and the errors: a
    misspelled key raises RuptureError with the server's message and status 400, an unknown job 404.
 """
 import json
@@ -19,6 +20,54 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+
+def check_crate(path, job, runs):
+    """The RO-Crate of a job, read with the standard library's zipfile (an independent reader):
+    RO-Crate 1.1's required entities (metadata descriptor, root data entity with name, description,
+    datePublished, license), the Workflow Run Crate's (conformsTo, a ComputationalWorkflow mainEntity,
+    a CreateAction with it as instrument), every listed file in the ZIP with its stated size, and
+    each run's spec and HDF5 file (their /provenance is checked by the server tests)."""
+    import zipfile
+
+    with zipfile.ZipFile(path) as crate:
+        assert crate.testzip() is None, "a member's CRC does not match"
+        names = set(crate.namelist())
+        metadata = json.loads(crate.read("ro-crate-metadata.json"))
+        assert metadata["@context"] == "https://w3id.org/ro/crate/1.1/context", metadata["@context"]
+        graph = {e["@id"]: e for e in metadata["@graph"]}
+        descriptor = graph["ro-crate-metadata.json"]
+        assert descriptor["@type"] == "CreativeWork" and descriptor["about"] == {"@id": "./"}, descriptor
+        assert {"@id": "https://w3id.org/ro/crate/1.1"} in descriptor["conformsTo"], descriptor
+        root = graph["./"]
+        assert root["@type"] == "Dataset", root
+        for key in ("name", "description", "datePublished", "license", "hasPart", "mainEntity"):
+            assert key in root, key
+        assert graph[root["license"]["@id"]]["name"], root["license"]
+        profiles = {p["@id"] for p in root["conformsTo"]}
+        assert "https://w3id.org/ro/wfrun/workflow/0.5" in profiles and "https://w3id.org/ro/wfrun/process/0.5" in profiles
+        workflow = graph[root["mainEntity"]["@id"]]
+        assert {"File", "SoftwareSourceCode", "ComputationalWorkflow"} <= set(workflow["@type"]), workflow
+        request = json.loads(crate.read(workflow["@id"]))
+        assert request["sweep"] == {"loading.strain_rate": [1e6, 1e7]}, request
+        actions = [graph[m["@id"]] for m in root["mentions"]]
+        assert all(a["@type"] == "CreateAction" for a in actions), actions
+        assert [a for a in actions if a["instrument"] == root["mainEntity"]], "no action runs the workflow"
+        # Every data entity the root lists is in the ZIP with the stated size, and nothing else is.
+        parts = [p["@id"] for p in root["hasPart"]]
+        assert set(parts) | {"ro-crate-metadata.json"} == names, (sorted(parts), sorted(names))
+        for part in parts:
+            assert int(graph[part]["contentSize"]) == crate.getinfo(part).file_size, part
+        run_actions = [a for a in actions if a["instrument"] == {"@id": "#rupture"}]
+        assert len(run_actions) == runs, run_actions
+        for action in run_actions:
+            spec = json.loads(crate.read(action["object"][0]["@id"]))
+            result = action["result"][0]["@id"]
+            assert crate.read(result)[:8] == b"\x89HDF\r\n\x1a\n", result
+            assert graph[result]["encodingFormat"] == "application/x-hdf5", graph[result]
+            assert spec["loading"]["strain_rate"] in (1e6, 1e7) and spec["scenario"] == "dynamic-tension", spec
+            assert action["actionStatus"]["@id"] == "http://schema.org/CompletedActionStatus", action
+    return path
 
 
 def checks(server_binary, source, data):
@@ -76,6 +125,7 @@ def checks(server_binary, source, data):
         client.download(job, path)
         assert path.read_bytes()[:8] == b"\x89HDF\r\n\x1a\n", "not an HDF5 file"
         assert not pathlib.Path(str(path) + ".part").exists()
+        check_crate(client.crate(job, pathlib.Path(data) / "crate.zip"), job, 4)
         plot = pathlib.Path(data) / "peak.svg"
         client.plot(job, plot, x="loading.strain_rate", y="peak_stress")
         assert b"<svg" in plot.read_bytes()[:400], plot.read_bytes()[:400]

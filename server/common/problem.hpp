@@ -27,6 +27,7 @@ inline constexpr const char* kTooManyRuns = "urn:rupture:problem:too-many-runs";
 inline constexpr const char* kInvalidParameter = "urn:rupture:problem:invalid-parameter";
 inline constexpr const char* kNotFound = "urn:rupture:problem:not-found";
 inline constexpr const char* kNoResults = "urn:rupture:problem:no-results";
+inline constexpr const char* kCrateTooLarge = "urn:rupture:problem:crate-too-large";
 inline constexpr const char* kNothingToRetry = "urn:rupture:problem:nothing-to-retry";
 inline constexpr const char* kUnauthorized = "urn:rupture:problem:unauthorized";
 inline constexpr const char* kMethodNotAllowed = "urn:rupture:problem:method-not-allowed";

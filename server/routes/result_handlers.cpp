@@ -1,5 +1,5 @@
-// The result files: the job's merged HDF5 file, a run's file, its series, its ParaView sidecar
-// and bundle.
+// The result files: the job's merged HDF5 file and RO-Crate, a run's file, its series, its
+// ParaView sidecar and bundle.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,7 +15,9 @@
 #include "rupture/result_fields.hpp"
 #include "rupture/run.hpp"
 #include "views/results.hpp"
+#include "views/ro_crate.hpp"
 #include "views/tar_archive.hpp"
+#include "views/zip_archive.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
@@ -40,13 +42,9 @@ std::string runSidecar(const ServerContext& ctx, const JobRecord& job, const Run
   return rupture::io::xdmfDocument(file, runFileStem(job, run) + ".h5");
 }
 
-}  // namespace
-
-namespace handlers {
-
-void getJobResults(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
-  // A job whose refinement is pending gets more runs: its merged file waits for the last round.
+/// A job's whole downloads (the merged file, the crate) wait for its last run, and for the last
+/// round of a pending refinement, which adds runs.
+void requireEveryRunFinished(const JobRecord& job, const std::string& what) {
   const bool refining = job.study.is_object() && job.study.contains("refinement") &&
                         job.study["refinement"].value("state", "") == "pending";
   if (job.runsAccepted + job.runsRunning > 0 || refining) {
@@ -55,15 +53,51 @@ void getJobResults(ServerContext& ctx, const Request& req, Response& res) {
                        std::to_string(job.runsTotal - job.runsAccepted - job.runsRunning) + " of " +
                        std::to_string(job.runsTotal) +
                        " runs finished" + (refining ? ", refinement pending" : "") +
-                       "); its results file is ready when every run has finished",
+                       "); its " + what + " is ready when every run has finished",
                    "", Json{{"jobStatus", toString(job.status)}});
   }
+}
+
+/// Streams an archive (TarArchive, ZipArchive) as the response body, 64 KiB at a time.
+template <class Archive>
+void sendArchive(Response& res, std::shared_ptr<Archive> archive, const std::string& type, const std::string& filename) {
+  res.set_header("Content-Disposition", "attachment; filename=\"" + filename + "\"");
+  res.set_content_provider(static_cast<std::size_t>(archive->size()), type,
+                           [archive](std::size_t offset, std::size_t want, httplib::DataSink& sink) {
+                             std::vector<char> buffer(std::min<std::size_t>(want, 64 * 1024));
+                             const std::size_t n = archive->read(offset, buffer.data(), buffer.size());
+                             if (n == 0) return false;
+                             return sink.write(buffer.data(), n);
+                           });
+}
+
+}  // namespace
+
+namespace handlers {
+
+void getJobResults(ServerContext& ctx, const Request& req, Response& res) {
+  const JobRecord job = loadJob(ctx, req);
+  requireEveryRunFinished(job, "results file");
   if (job.runsSuccessful == 0) {
     throw ApiError(404, problem::kNoResults, "No results",
                    "job " + std::to_string(job.id) + " has no successful run (" + publicMessage(job.message) + ")");
   }
   const fs::path path = mergedResults(job, ctx.store->runs(job.id), ctx.resultsDir);
   sendFile(req, res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
+}
+
+void getJobCrate(ServerContext& ctx, const Request& req, Response& res) {
+  const JobRecord job = loadJob(ctx, req);
+  requireEveryRunFinished(job, "RO-Crate");
+  std::shared_ptr<ZipArchive> crate;
+  try {
+    crate = jobCrate(job, ctx.store->runs(job.id), ctx.resultsDir);
+  } catch (const std::length_error&) {
+    throw ApiError(409, problem::kCrateTooLarge, "Crate too large",
+                   "job " + std::to_string(job.id) + "'s RO-Crate would be 4 GiB or larger (a ZIP without ZIP64): "
+                   "download its runs' files one by one from /jobs/" + std::to_string(job.id) + "/runs/{k}/results");
+  }
+  sendArchive(res, crate, "application/zip", "rupture-job-" + std::to_string(job.id) + "-crate.zip");
 }
 
 void getRunResults(ServerContext& ctx, const Request& req, Response& res) {
@@ -97,14 +131,7 @@ void getRunBundle(ServerContext& ctx, const Request& req, Response& res) {
   auto tar = std::make_shared<TarArchive>();
   tar->addFile(stem + "/" + stem + ".h5", h5, mtime);
   tar->addText(stem + "/" + stem + ".xdmf2", xml, mtime);
-  res.set_header("Content-Disposition", "attachment; filename=\"" + stem + ".tar\"");
-  res.set_content_provider(static_cast<std::size_t>(tar->size()), "application/x-tar",
-                           [tar](std::size_t offset, std::size_t want, httplib::DataSink& sink) {
-                             std::vector<char> buffer(std::min<std::size_t>(want, 64 * 1024));
-                             const std::size_t n = tar->read(offset, buffer.data(), buffer.size());
-                             if (n == 0) return false;
-                             return sink.write(buffer.data(), n);
-                           });
+  sendArchive(res, tar, "application/x-tar", stem + ".tar");
 }
 
 void getRunSeries(ServerContext& ctx, const Request& req, Response& res) {

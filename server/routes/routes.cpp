@@ -44,6 +44,7 @@ const std::vector<Route>& routeTable() {
       {"DELETE", "/jobs/" + kId, deleteJob},
       {"POST", "/jobs/" + kId + "/retry", postRetry},
       {"GET", "/jobs/" + kId + "/results", getJobResults},
+      {"GET", "/jobs/" + kId + "/crate", getJobCrate},
       {"GET", "/jobs/" + kId + "/runs", getRuns},
       {"GET", "/jobs/" + kId + "/runs/" + kId, getRun},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/results", getRunResults},

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 namespace rupture::server {
@@ -48,59 +47,37 @@ std::string TarArchive::header(const std::string& name, std::uint64_t size, std:
   return std::string(h, sizeof h);
 }
 
-void TarArchive::append(Segment segment) {
-  segment.offset = m_size;
-  m_size += segment.length;
-  if (segment.length > 0) m_segments.push_back(std::move(segment));
-}
-
 void TarArchive::pad(std::uint64_t length) {
   const std::uint64_t rest = length % kBlock;
-  if (rest != 0) append(Segment{0, kBlock - rest, std::string(kBlock - rest, '\0'), {}});
+  if (rest != 0) m_stream.appendBytes(std::string(kBlock - rest, '\0'));
 }
 
 void TarArchive::addText(const std::string& name, const std::string& bytes, std::int64_t mtime) {
-  append(Segment{0, kBlock, header(name, bytes.size(), mtime), {}});
-  append(Segment{0, bytes.size(), bytes, {}});
+  m_stream.appendBytes(header(name, bytes.size(), mtime));
+  m_stream.appendBytes(bytes);
   pad(bytes.size());
 }
 
 void TarArchive::addFile(const std::string& name, const std::filesystem::path& path, std::int64_t mtime) {
   const std::uint64_t size = std::filesystem::file_size(path);
-  append(Segment{0, kBlock, header(name, size, mtime), {}});
-  append(Segment{0, size, {}, path});
+  m_stream.appendBytes(header(name, size, mtime));
+  m_stream.appendFile(path, size);
   pad(size);
 }
 
-std::uint64_t TarArchive::size() const { return m_size + 2 * kBlock; }
+std::uint64_t TarArchive::size() const { return m_stream.size() + 2 * kBlock; }
 
 std::size_t TarArchive::read(std::uint64_t offset, char* out, std::size_t length) const {
   std::size_t done = 0;
-  while (done < length && offset < size()) {
-    auto it = std::upper_bound(m_segments.begin(), m_segments.end(), offset,
-                               [](std::uint64_t o, const Segment& s) { return o < s.offset; });
-    const Segment* seg = it == m_segments.begin() ? nullptr : &*std::prev(it);
-    if (!seg || offset >= seg->offset + seg->length) {  // the end blocks
-      const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(length - done, size() - offset));
-      std::memset(out + done, 0, n);
-      done += n;
-      offset += n;
-      continue;
-    }
-    const std::uint64_t within = offset - seg->offset;
-    const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(length - done, seg->length - within));
-    if (seg->file.empty()) {
-      std::memcpy(out + done, seg->bytes.data() + within, n);
-    } else {
-      std::ifstream in(seg->file, std::ios::binary);
-      in.seekg(static_cast<std::streamoff>(within));
-      in.read(out + done, static_cast<std::streamsize>(n));
-      if (in.gcount() != static_cast<std::streamsize>(n)) return done;  // the file shrank: stop short
-    }
-    done += n;
-    offset += n;
+  if (offset < m_stream.size()) {
+    done = m_stream.read(offset, out, length);
+    if (offset + done < m_stream.size()) return done;  // stopped short (or the buffer is full)
   }
-  return done;
+  // The two zero end blocks.
+  const std::uint64_t at = offset + done;
+  const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(length - done, size() > at ? size() - at : 0));
+  std::memset(out + done, 0, n);
+  return done + n;
 }
 
 }  // namespace rupture::server

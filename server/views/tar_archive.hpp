@@ -5,7 +5,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
-#include <vector>
+
+#include "views/pieced_stream.hpp"
 
 namespace rupture::server {
 
@@ -28,15 +29,8 @@ public:
   static std::string header(const std::string& name, std::uint64_t size, std::int64_t mtime);
 
 private:
-  struct Segment {
-    std::uint64_t offset = 0, length = 0;
-    std::string bytes;             ///< the segment's bytes, or
-    std::filesystem::path file;    ///< a file read from its start (bytes empty)
-  };
-  void append(Segment segment);
   void pad(std::uint64_t length);
-  std::vector<Segment> m_segments;
-  std::uint64_t m_size = 0;
+  PiecedStream m_stream;
 };
 
 }  // namespace rupture::server

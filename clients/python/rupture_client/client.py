@@ -281,6 +281,11 @@ class Client:
         where = "/jobs/" + self._id(job) + ("/results" if run is None else f"/runs/{int(run)}/results")
         return self._save(where, path, "application/x-hdf5")
 
+    def crate(self, job, path):
+        """Saves the job as an RO-Crate ZIP (Workflow Run Crate: request, specs, result files, summary
+        and their provenance; docs/provenance.md) at path; returns path."""
+        return self._save("/jobs/" + self._id(job) + "/crate", path, "application/zip")
+
     def plot(self, job, path, x=None, y=None, format=None, **options):
         """Saves the server's plot of the job (SVG or PNG, after path's extension or format=),
         e.g. plot(job, "peak.png", x="loading.strain_rate", y="peak_stress", title="...")."""
