@@ -205,6 +205,7 @@ Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, c
   Json chosen = Json::object();
   if (run.status == Status::Successful) {
     data["pictures"] = runPictures(ctx.resultsDir / run.resultPath, scenario);
+    data["provenance"] = runProvenance(ctx.resultsDir / run.resultPath);
     const Json& available = data["pictures"]["fields"];
     if (req.has_param("field")) {
       const std::string field = req.get_param_value("field");

@@ -204,11 +204,24 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
   // The merged file exists only once a run has succeeded: no link that would answer 404.
   const bool anySuccessful =
       status.contains("runs_by_status") && status["runs_by_status"].value("successful", 0) > 0;
+  const bool finished = jobStatus == "successful" || jobStatus == "failed" || jobStatus == "dismissed";
   c += "<h2>Downloads</h2><ul>";
   if (anySuccessful) c += "<li><a href=\"" + href(base + "/results") + "\">every run in one HDF5 file</a></li>";
+  // The crate waits for the last run (409 before): offered once the job has ended.
+  if (finished)
+    c += "<li><a id=\"crate\" href=\"" + href(base + "/crate") +
+         "\">everything as an RO-Crate (ZIP: request, specs, files, summary, provenance)</a></li>";
   c += "<li><a href=\"" + href(base + "/summary?format=csv") + "\">summary table (CSV)</a></li>"
        "<li><a href=\"" + href(base + "/summary") + "\">summary (JSON)</a></li>"
        "<li><a href=\"" + href(base) + "\">status (JSON)</a></li></ul>";
+  // What made it (docs/provenance.md): the build and host the job was submitted to.
+  if (const Json p = status.value("provenance", Json()); p.is_object()) {
+    c += "<p id=\"provenance\" class=\"hint\">Made by Rupture " + esc(p.value("rupture_version", Json(""))) +
+         ", commit <code>" + esc(p.value("git_commit", Json(""))) + "</code>, " + esc(p.value("compiler", Json(""))) +
+         " (" + esc(p.value("build_type", Json(""))) + ": <code>" + esc(p.value("compile_flags", Json(""))) +
+         "</code>), on " + esc(p.value("host_processor", Json(""))) + ", " + esc(p.value("executor", Json(""))) +
+         " executor, " + esc(p.value("threads_per_run", Json(""))) + " thread(s) per run.</p>\n";
+  }
   // Live progress: poll the JSON while the job runs; reload once it ends (for the summary and plot).
   const std::string script =
       "const final=['successful','failed','dismissed'];let seen='" + esc(status["status"]) + "';"

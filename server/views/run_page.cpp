@@ -49,6 +49,18 @@ std::string snapshotText(const Json& s) {
 
 }  // namespace
 
+Json runProvenance(const std::filesystem::path& path) {
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(path.string());
+  Json out = Json::object();
+  constexpr const char* kGroup = "/provenance";
+  if (!file.exists(kGroup)) return out;
+  for (const char* name : {"rupture_version", "git_commit", "compiler", "compile_flags", "build_type", "host_processor",
+                           "started_utc", "finished_utc", "spec_sha256", "seeds"})
+    if (file.hasAttribute(kGroup, name)) out[name] = file.readAttributeString(kGroup, name);
+  if (file.hasAttribute(kGroup, "threads")) out["threads"] = file.readAttributeInt(kGroup, "threads");
+  return out;
+}
+
 Json runPictures(const std::filesystem::path& path, const ScenarioInfo* scenario) {
   const io::Hdf5File file = io::Hdf5File::openReadOnly(path.string());
   Json pictures = {{"fields", Json::array()}, {"snapshots", Json::array()}, {"series", Json::array()}};
@@ -91,6 +103,15 @@ HtmlPage runHtml(const Json& data) {
     c += "<p id=\"resumed\">Continued from its checkpoint " + esc(run["resumes"]) +
          (run["resumes"] == 1 ? " time" : " times") + ", last from step " + esc(run.value("resumed_from_step", Json(0))) +
          " (after a stop, a crash or a time limit; the result is the same as an uninterrupted run's).</p>\n";
+  // What made the file (its /provenance; docs/provenance.md).
+  if (const Json p = data.value("provenance", Json::object()); !p.empty()) {
+    c += "<p id=\"provenance\" class=\"hint\">Made by Rupture " + esc(p.value("rupture_version", Json(""))) +
+         ", commit <code>" + esc(p.value("git_commit", Json(""))) + "</code>, " + esc(p.value("compiler", Json(""))) +
+         " (<code>" + esc(p.value("compile_flags", Json(""))) + "</code>), on " + esc(p.value("host_processor", Json(""))) +
+         " with " + esc(p.value("threads", Json(""))) + " thread(s), from " + esc(p.value("started_utc", Json(""))) +
+         " to " + esc(p.value("finished_utc", Json(""))) + "; spec SHA-256 <code>" +
+         esc(p.value("spec_sha256", Json(""))) + "</code>, seeds <code>" + esc(p.value("seeds", Json(""))) + "</code>.</p>\n";
+  }
   if (!run.value("swept", Json::object()).empty()) {
     c += "<table id=\"swept\"><tr><th>Swept</th><th>Value</th></tr>";
     const Json described = data.value("swept_fields", Json::object());

@@ -75,6 +75,11 @@ TEST_F(HtmlViews, PagesListTheJobItsRunsSummaryAndPlot) {
   EXPECT_NE(page.substr(all).find("title=\"bonds\""), std::string::npos);
   EXPECT_NE(page.find("/summary.svg?x=loading.strain_rate&amp;y=peak_stress"), std::string::npos);
   EXPECT_NE(page.find("/runs/0/bundle"), std::string::npos);
+  // What made it, and all of it as an RO-Crate (docs/provenance.md).
+  const Json status = getJson(*client, "/jobs/" + id);
+  EXPECT_NE(page.find("id=\"provenance\""), std::string::npos);
+  EXPECT_NE(page.find("<code>" + status["provenance"]["git_commit"].get<std::string>() + "</code>"), std::string::npos);
+  EXPECT_NE(page.find("href=\"/jobs/" + id + "/crate\""), std::string::npos);
   EXPECT_EQ(client->Get(("/jobs/" + id + "?f=xml").c_str())->status, 400);
 }
 
@@ -91,6 +96,10 @@ TEST(HtmlJobPage, AFailedJobSaysWhyAndOffersNoFileThatDoesNotExist) {
   EXPECT_NE(page.find("sample.porosity = &lt;0.9&gt; leaves no path"), std::string::npos) << "the run's reason, escaped";
   EXPECT_EQ(page.find("/runs/0/results"), std::string::npos) << "a failed run has no file to link";
   EXPECT_EQ(page.find("every run in one HDF5 file"), std::string::npos) << "nor the job a merged file";
+  EXPECT_NE(page.find("/jobs/7/crate"), std::string::npos) << "an ended job's crate holds its specs and summary";
+  Json running = status;
+  running["status"] = "running";
+  EXPECT_EQ(jobHtml(running, Json(), "").body.find("/crate"), std::string::npos) << "not before its last run (409)";
 }
 
 }  // namespace

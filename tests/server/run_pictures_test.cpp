@@ -122,6 +122,11 @@ TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
   EXPECT_NE(html.find(" MPa</td>"), std::string::npos) << "engineering units in the summary";
   EXPECT_NE(html.find("1e7 /s"), std::string::npos) << "the swept strain rate as people read it";
   EXPECT_NE(html.find("id=\"spec\""), std::string::npos);
+  // What made the file: its /provenance, the spec's digest among it.
+  const std::size_t made = html.find("id=\"provenance\"");
+  ASSERT_NE(made, std::string::npos);
+  EXPECT_NE(html.find("spec SHA-256 <code>", made), std::string::npos);
+  EXPECT_NE(html.find("seeds <code>{&quot;sample.seed&quot;:", made), std::string::npos) << html.substr(made, 600);
   // Every picture the page names answers 200.
   for (const std::string& needle : {std::string("src=\"") + run(1) + "/field?", std::string("src=\"") + run(1) + "/series?"}) {
     const std::size_t at = html.find(needle);
