@@ -255,24 +255,31 @@ std::string SlurmExecutor::slurmStateOf(const std::string& taskId, std::string& 
 }
 
 bool SlurmExecutor::continueInNextAllocation(RunKey key, std::string& why) {
-  std::int64_t step = 0;
-  try {
-    step = rupture::io::readCheckpointHeader(runPath(key, ".h5.checkpoint").string()).step;
-  } catch (const std::exception& e) {
-    why = e.what();
-    return false;
+  // No checkpoint: stopped in its set-up, before its first step (Slurm may signal up to a minute
+  // early): submitted again to start afresh, like a run that gained steps, once.
+  std::int64_t step = -1;
+  const fs::path checkpoint = runPath(key, ".h5.checkpoint");
+  if (fs::exists(checkpoint)) {
+    try {
+      step = rupture::io::readCheckpointHeader(checkpoint.string()).step;
+    } catch (const std::exception& e) {
+      why = e.what();
+      return false;
+    }
   }
-  const std::string stepText = std::to_string(step);
+  const std::string stepText = step < 0 ? "none" : std::to_string(step);
   if (auto last = readFile(runPath(key, ".resumed-step")); last && trim(*last) == stepText) {
-    why = "no step was gained in an allocation (the checkpoint is still at step " + stepText +
-          "): the time limit leaves no time to run; raise --slurm-time or lower --slurm-checkpoint-lead";
+    why = (step < 0 ? std::string("stopped twice before its first checkpoint (in its set-up)")
+                    : "no step was gained in an allocation (the checkpoint is still at step " + stepText + ")") +
+          ": the time limit leaves no time to run; raise --slurm-time or lower --slurm-checkpoint-lead";
     return false;
   }
   writeFileAtomic(runPath(key, ".resumed-step"), stepText + "\n");
   m_store.requeueRun(key);
-  m_store.recordResume(key, step);
+  if (step >= 0) m_store.recordResume(key, step);
   logLine("job " + std::to_string(key.job) + " run " + std::to_string(key.index) +
-          " stopped with a checkpoint at step " + stepText + "; submitted again to continue");
+          (step < 0 ? " stopped in its set-up, before a checkpoint; submitted again to start afresh"
+                    : " stopped with a checkpoint at step " + stepText + "; submitted again to continue"));
   submit(key.job, {key.index});
   return true;
 }

@@ -208,16 +208,18 @@ TEST(SlurmExecutor, ARestartedServerReattachesInsteadOfSubmittingAgain) {
 TEST(SlurmExecutor, ARunLongerThanItsTimeLimitFinishesThroughSeveralAllocations) {
   REQUIRE_CLUSTER();
   test::TempDir shared, scratch;
-  // One minute per allocation, told to checkpoint and stop 30 s before the limit (Slurm checks
-  // about every 30 s, so each allocation runs 30 to 60 s); the run needs well over a minute.
+  // Two minutes per allocation, told to checkpoint and stop 30 s before the limit: Slurm may signal
+  // up to 60 s early, so each allocation runs 30 to 90 s, never less than the run's set-up (with one
+  // minute the signal once came 1 s in; such a run is now submitted again, but a test must not
+  // depend on it happening once only). The run needs well over 90 s.
   test::LiveServer server([&](ServerConfig& c) {
     slurmConfig(shared.path())(c);
-    c.slurmTime = "00:01:00";
+    c.slurmTime = "00:02:00";
     c.slurmCheckpointLead = 30;
   });
   auto client = server.client();
   Json inputs = test::smallInputs();
-  inputs["loading"]["strain_rate"] = 1.2e4;
+  inputs["loading"]["strain_rate"] = 6e3;
   const auto id = test::submit(*client, Json{{"inputs", inputs}});
   // The same spec uninterrupted, on the other core meanwhile.
   Json spec = inputs;
