@@ -28,6 +28,7 @@
 #include <thread>
 
 #include "cli/cli.hpp"
+#include "cli/interrupt_guard.hpp"
 #include "cli/progress_view.hpp"
 #include "cli/spec_file.hpp"
 #include "io/checkpoint_file.hpp"
@@ -64,36 +65,6 @@ void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const n
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
 
-// The cancel flag of the run in flight, for the signal handler (std::atomic<bool> is lock-free,
-// so storing to it is async-signal-safe).
-std::atomic<bool>* g_cancel = nullptr;
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-extern "C" void onInterrupt(int) {
-  if (g_cancel) g_cancel->store(true);
-}
-
-/// Installs the SIGINT handler for the lifetime of a run; SA_RESETHAND: a second Ctrl-C kills.
-class InterruptGuard {
-public:
-  explicit InterruptGuard(std::atomic<bool>& cancel) {
-    g_cancel = &cancel;
-    struct sigaction action {};
-    action.sa_handler = onInterrupt;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &action, &m_previousInt);
-    sigaction(SIGTERM, &action, &m_previousTerm);
-  }
-  ~InterruptGuard() {
-    sigaction(SIGINT, &m_previousInt, nullptr);
-    sigaction(SIGTERM, &m_previousTerm, nullptr);
-    g_cancel = nullptr;
-  }
-
-private:
-  struct sigaction m_previousInt {}, m_previousTerm {};
-};
 
 /// {"progress": 0.42, "stage": "...", "elapsed_s": 12.3, "completed": false} written to a temporary
 /// name and renamed, so a reader on another node sees a whole document or the previous one.

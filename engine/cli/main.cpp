@@ -29,6 +29,11 @@ commands:
   validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
   validate REQUEST.json [--scenario NAME] check a server request file (the body of
                                           POST /processes/NAME/execution): its inputs against NAME
+  validate-suite [--quick|--full] [-o DIR] [--case ID]... [--threads N] [--list]
+                                          run the published validation cases (validation/) and
+                                          write the report: DIR/index.html, report.json,
+                                          report.csv, figures/ (docs/validation.md); exit 1 when
+                                          a quantity leaves its tolerance
   scenarios                               list the scenarios
   schema SCENARIO                         print a scenario's JSON Schema
   calibrate SPEC.json [--target-young-modulus E --target-poisson-ratio NU]
@@ -82,6 +87,7 @@ int main(int argc, char** argv) {
     if (command == "bench") return benchCommand(rest);
     if (command == "xdmf") return xdmfCommand(rest);
     if (command == "plot") return plotCommand(rest);
+    if (command == "validate-suite") return validateSuiteCommand(rest);
   } catch (const std::exception& e) {
     std::cerr << "rupture " << command << ": " << e.what() << "\n";
     return 1;

@@ -17,11 +17,12 @@ Scenario damBreakScenario();      // scenarios/dam_break/
 Scenario pistonColumnScenario();   // scenarios/piston_column/
 Scenario impactScenario();         // scenarios/impact/
 Scenario tankImpactScenario();     // scenarios/tank_impact/
+Scenario validationScenario();     // scenarios/validation/
 
 const std::vector<Scenario>& scenarioRegistry() {
   static const std::vector<Scenario> registry = {dynamicTensionScenario(), elasticPropertiesScenario(),
                                                  damBreakScenario(), pistonColumnScenario(), impactScenario(),
-                                                 tankImpactScenario()};
+                                                 tankImpactScenario(), validationScenario()};
   return registry;
 }
 

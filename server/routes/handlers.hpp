@@ -28,6 +28,7 @@ void getRun(ServerContext&, const httplib::Request&, httplib::Response&);
 // result_handlers.cpp
 void getJobResults(ServerContext&, const httplib::Request&, httplib::Response&);
 void getJobCrate(ServerContext&, const httplib::Request&, httplib::Response&);
+void getJobReport(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunResults(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunSeries(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRunXdmf(ServerContext&, const httplib::Request&, httplib::Response&);

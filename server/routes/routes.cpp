@@ -45,6 +45,7 @@ const std::vector<Route>& routeTable() {
       {"POST", "/jobs/" + kId + "/retry", postRetry},
       {"GET", "/jobs/" + kId + "/results", getJobResults},
       {"GET", "/jobs/" + kId + "/crate", getJobCrate},
+      {"GET", "/jobs/" + kId + "/report", getJobReport},
       {"GET", "/jobs/" + kId + "/runs", getRuns},
       {"GET", "/jobs/" + kId + "/runs/" + kId, getRun},
       {"GET", "/jobs/" + kId + "/runs/" + kId + "/results", getRunResults},

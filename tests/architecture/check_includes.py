@@ -18,7 +18,8 @@ import tempfile
 from pathlib import Path
 
 SEARCH_ROOTS = ["engine", "server", "include", "bench", "tests", "tests/server"]
-GENERATED = {"openapi_yaml.inc", "rupture_schemas.inc", "rupture_build_commit.hpp", "rupture_build_flags.hpp"}  # written by the build, not in the tree
+GENERATED = {"openapi_yaml.inc", "rupture_schemas.inc", "rupture_build_commit.hpp", "rupture_build_flags.hpp",
+             "rupture_validation_files.inc"}  # written by the build, not in the tree
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
