@@ -3,7 +3,9 @@
 // "validation" scenario run whose file lands in DIR/cases/<case>.h5, and writes the report:
 // DIR/index.html, DIR/report.json, DIR/report.csv, DIR/figures/<case>.svg. Exit 0 when every
 // quantity is within its tolerance or a documented known failure, 1 otherwise (or when a case could
-// not run), 2 for bad options, 130 when interrupted (the report then holds the cases done).
+// not run), 2 for bad options, 130 when interrupted (the report then holds the cases done). The
+// report covers every case of the level that DIR/cases holds a file of, so --case re-runs one case
+// of an existing report.
 #include <omp.h>
 
 #include <algorithm>
@@ -120,13 +122,29 @@ int validateSuiteCommand(const Args& args) {
     std::cerr << prefix << c.id << ": " << results.back()["verdict"].get<std::string>() << "\n";
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The report covers every case of this level whose file DIR/cases holds, so that re-running one
+  // case (--case) updates a whole report; the cases run now come first in its list of runs.
+  const std::size_t ranNow = results.size();
+  for (const validation::CaseListing& c : all) {
+    if (std::any_of(results.begin(), results.end(), [&](const nlohmann::json& r) { return r["case"] == c.id; })) continue;
+    const fs::path earlier = fs::path(directory) / "cases" / (c.id + ".h5");
+    if (!fs::exists(earlier)) continue;
+    try {
+      nlohmann::json result = validation::readCaseResult(earlier.string());
+      if (result.value("level", "") == level) results.push_back(std::move(result));
+    } catch (const std::exception&) {
+      // an interrupted or foreign file: not part of the report
+    }
+  }
+  std::sort(results.begin(), results.end(),
+            [](const nlohmann::json& a, const nlohmann::json& b) { return a["case"] < b["case"]; });
   const io::BuildInfo& build = io::buildInfo();
   const nlohmann::json context = {{"rupture", build.version + " (" + build.commit + ")"},
                                   {"compiler", build.compiler + " " + build.buildType},
                                   {"host", io::hostProcessor()},
                                   {"threads", threads},
                                   {"finished", io::utcNow()},
-                                  {"wall time", std::to_string(static_cast<long long>(wall + 0.5)) + " s"}};
+                                  {"wall time of this invocation", std::to_string(static_cast<long long>(wall + 0.5)) + " s"}};
   const validation::SuiteReport report = validation::buildSuiteReport(results, level, context, false);
   try {
     validation::writeSuiteReport(report, directory);
@@ -134,8 +152,8 @@ int validateSuiteCommand(const Args& args) {
     std::cerr << "rupture validate-suite: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "rupture validate-suite: " << (interrupted ? "interrupted; " : "") << results.size() << " case(s) in "
-            << static_cast<long long>(wall + 0.5) << " s: "
+  std::cerr << "rupture validate-suite: " << (interrupted ? "interrupted; " : "") << ranNow << " case(s) run in "
+            << static_cast<long long>(wall + 0.5) << " s, " << results.size() << " in the report: "
             << (report.passed ? "every quantity within tolerance or a known failure" : "FAILED") << "; report in "
             << (fs::path(directory) / "index.html").string() << "\n";
   if (interrupted) return 130;

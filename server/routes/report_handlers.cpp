@@ -23,7 +23,7 @@ void getJobReport(ServerContext& ctx, const Request& req, Response& res) {
     throw ApiError(404, problem::kNoResults, "No report",
                    "job " + std::to_string(job.id) + " runs " + job.processId +
                        "; a report is made for validation jobs (POST /processes/validation/execution)");
-  std::vector<Json> results;
+  std::vector<nlohmann::json> results;
   std::string level;
   int pending = 0;
   for (const RunRecord& run : ctx.store->runs(job.id)) {
@@ -44,7 +44,7 @@ void getJobReport(ServerContext& ctx, const Request& req, Response& res) {
     }
   }
   const rupture::io::BuildInfo& build = rupture::io::buildInfo();
-  Json context = {{"job", job.id}, {"status", toString(job.status)},
+  nlohmann::json context = {{"job", job.id}, {"status", toString(job.status)},
                   {"rupture", build.version + " (" + build.commit + ")"}, {"host", rupture::io::hostProcessor()}};
   if (pending > 0) context["runs still to finish"] = pending;
   const auto report = rupture::validation::buildSuiteReport(results, level.empty() ? "full" : level, context, true);

@@ -61,6 +61,7 @@ const std::map<std::string, Json>& tinySpecs() {
         {"plate", {{"thickness", 0.002}, {"spacing", 0.004}, {"precrack", {{"shape", "hole"}, {"hole_diameter", 0.012}}}}},
         {"resolution", {{"spacing", 0.005}}},
         {"run", {{"end_time", 2e-5}}}}},
+      {"validation", {{"scenario", "validation"}, {"case", "lattice-elastic-constants"}, {"level", "quick"}}},
   };
   return specs;
 }

@@ -53,7 +53,7 @@ TEST(ValidationCases, EveryCaseFolderIsEmbeddedParsedAndInTheSchema) {
     embedded.insert(c.id);
     EXPECT_FALSE(c.citation.empty()) << c.id;
     EXPECT_FALSE(c.quantities.empty()) << c.id;
-    for (const std::string& level : {"quick", "full"}) {
+    for (const std::string level : {"quick", "full"}) {
       if (level == std::string("quick") && !c.inQuick) continue;
       for (const auto& [name, members] : caseSpecs(c, level))
         for (const json& spec : members) EXPECT_NO_THROW(rupture::validateSpec(spec)) << c.id << " " << name << " " << level;
@@ -163,7 +163,7 @@ TEST(ValidationReport, TheHtmlTableAgreesWithTheJsonAndTheCsvAndEveryFigureHasCo
   std::getline(csv, line);
   EXPECT_EQ(line.rfind("case,quantity,label,unit,ours,reference", 0), 0u);
   std::size_t k = 0;
-  const std::regex row(R"(<tr class="[a-z]+" data-case="([^"]*)" data-quantity="([^"]*)" data-ours="([^"]*)" data-verdict="([^"]*)">)");
+  const std::regex row(R"re(<tr class="[a-z]+" data-case="([^"]*)" data-quantity="([^"]*)" data-ours="([^"]*)" data-verdict="([^"]*)">)re");
   std::vector<std::smatch> htmlRows;
   for (std::sregex_iterator it(report.html.begin(), report.html.end(), row), end; it != end; ++it) htmlRows.push_back(*it);
   ASSERT_EQ(htmlRows.size(), doc["table"].size());

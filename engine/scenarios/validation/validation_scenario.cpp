@@ -26,8 +26,6 @@ struct ValidationSpec {
 
 const ResultFields& validationSummaryFields() {
   static const ResultFields fields = {
-      {"case", "", "Case", "Id of the validation case (its folder in validation/)"},
-      {"level", "", "Level", "quick (reduced where the docs show the same answer) or full"},
       {"verdict", "", "Verdict", "pass, fail, known failure (documented), or unexpected pass (a known failure that now passes)"},
       {"quantities", "1", "Quantities", "Quantities compared at this level"},
       {"passed", "1", "Passed", "Quantities within their tolerance"},
@@ -85,7 +83,7 @@ RunOutcome runValidation(const ValidationSpec& s, const nlohmann::json& json, co
   for (const auto& [name, specs] : validation::caseSpecs(c, s.level)) members += static_cast<std::int64_t>(specs.size());
   logStage(control, "validation case " + c.id + " (" + s.level + "): " + std::to_string(members) + " run(s)");
   const auto data = validation::runCase(c, s.level, resultPath + ".runs", control, control.threads);
-  nlohmann::json summary = {{"case", c.id}, {"level", s.level}, {"member_runs", members}};
+  nlohmann::json summary = {{"member_runs", members}};  // the case and level are the spec's (/spec)
   summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   if (!data) {
     summary["completed"] = 0;
