@@ -130,6 +130,16 @@ def checks(server_binary, source, data):
         client.plot(job, plot, x="loading.strain_rate", y="peak_stress")
         assert b"<svg" in plot.read_bytes()[:400], plot.read_bytes()[:400]
 
+        # A validation job (one quick case) and its report as a table and as a page.
+        check = client.submit("validation", {"level": "quick"}, {"case": ["lattice-elastic-constants"]}, name="client validation")
+        client.wait(check, poll=0.5, timeout=300)
+        report = client.validation_report(check)
+        assert isinstance(report, pandas.DataFrame) and len(report) == 4, report
+        assert set(report["verdict"]) <= {"pass", "known failure"}, report[["quantity", "verdict"]]
+        assert report.attrs["report"]["passed"] is True
+        page = client.validation_report(check, pathlib.Path(data) / "report.html")
+        assert b"<svg" in pathlib.Path(page).read_bytes(), "the report page shows its figures inline"
+
         spec["loading"]["strain_rte"] = spec["loading"].pop("strain_rate")
         try:
             client.submit("dynamic-tension", spec)

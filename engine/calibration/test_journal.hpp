@@ -41,6 +41,7 @@ public:
   /// without running), else nothing (the caller runs it: begin(), poll() every step, finish()).
   template <class Result>
   std::optional<Result> replay() {
+    static_assert(std::is_trivially_copyable_v<Result>);  // restored byte for byte, as finish() recorded it
     if (m_replayed >= m_results.size()) return std::nullopt;
     const std::vector<std::uint8_t>& bytes = m_results[m_replayed++];
     Result r;

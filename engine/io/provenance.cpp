@@ -26,18 +26,23 @@ const BuildInfo& buildInfo() {
 }
 
 std::string hostProcessor() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
-    const auto colon = line.find(':');
-    if (colon == std::string::npos) break;
-    const auto start = line.find_first_not_of(" \t", colon + 1);
-    if (start != std::string::npos) return line.substr(start);
-  }
-  utsname name{};
-  if (uname(&name) == 0) return name.machine;
-  return "unknown";
+  // Read once: the processor does not change under a running program, and every run file and
+  // report asks for it.
+  static const std::string processor = [] {
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(cpuinfo, line)) {
+      if (line.rfind("model name", 0) != 0) continue;
+      const auto colon = line.find(':');
+      if (colon == std::string::npos) break;
+      const auto start = line.find_first_not_of(" \t", colon + 1);
+      if (start != std::string::npos) return line.substr(start);
+    }
+    utsname name{};
+    if (uname(&name) == 0) return std::string(name.machine);
+    return std::string("unknown");
+  }();
+  return processor;
 }
 
 std::string utcNow() {

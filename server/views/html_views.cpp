@@ -206,6 +206,11 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
       status.contains("runs_by_status") && status["runs_by_status"].value("successful", 0) > 0;
   const bool finished = jobStatus == "successful" || jobStatus == "failed" || jobStatus == "dismissed";
   c += "<h2>Downloads</h2><ul>";
+  // A validation job's report (docs/validation.md): its cases against their references, figures inline.
+  if (status.value("processID", "") == "validation")
+    c += "<li><a id=\"report\" href=\"" + href(base + "/report") +
+         "\">validation report (the cases against their published references, with figures)</a>, as <a href=\"" +
+         href(base + "/report?format=csv") + "\">CSV</a> or <a href=\"" + href(base + "/report?format=json") + "\">JSON</a></li>";
   if (anySuccessful) c += "<li><a href=\"" + href(base + "/results") + "\">every run in one HDF5 file</a></li>";
   // The crate waits for the last run (409 before): offered once the job has ended.
   if (finished)

@@ -63,6 +63,11 @@ TEST(ValidationReportHttp, ASweepOverCasesReportsTheirVerdictsAsHtmlJsonAndCsv) 
   EXPECT_EQ(lines, report["table"].size() + 1);
 
   expectProblem(client->Get(("/jobs/" + id + "/report?format=pdf").c_str()), 400, "format");
+
+  // The job's page in a browser links the report.
+  auto page = client->Get(("/jobs/" + id + "?f=html").c_str());
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("id=\"report\" href=\"/jobs/" + id + "/report\""), std::string::npos);
 }
 
 TEST(ValidationReportHttp, AJobOfAnotherProcessHasNoReport) {

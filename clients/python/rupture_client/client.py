@@ -286,6 +286,19 @@ class Client:
         and their provenance; docs/provenance.md) at path; returns path."""
         return self._save("/jobs/" + self._id(job) + "/crate", path, "application/zip")
 
+    def validation_report(self, job, path=None):
+        """A validation job's report (docs/validation.md): without path, the table as a DataFrame (one
+        row per quantity: case, reference, ours, tolerance, deviation, verdict; the whole document in
+        .attrs["report"]); with path, saves the HTML page (figures inline) there and returns path."""
+        url = "/jobs/" + self._id(job) + "/report"
+        if path is not None:
+            return self._save(url, path, "text/html")
+        import pandas
+        doc = self._json("GET", url + "?format=json")
+        table = pandas.DataFrame(doc["table"])
+        table.attrs["report"] = doc
+        return table
+
     def plot(self, job, path, x=None, y=None, format=None, **options):
         """Saves the server's plot of the job (SVG or PNG, after path's extension or format=),
         e.g. plot(job, "peak.png", x="loading.strain_rate", y="peak_stress", title="...")."""
