@@ -1,9 +1,9 @@
 #include "io/xdmf_writer.hpp"
 
+#include "io/atomic_text_file.hpp"
 #include "io/xml_escape.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -12,8 +12,6 @@
 #include <optional>
 #include <system_error>
 #include <vector>
-
-#include <unistd.h>
 
 #include "io/hdf5_file.hpp"
 
@@ -190,32 +188,6 @@ std::string snapshotGrid(const Hdf5File& file, const std::string& root, const st
   return xml;
 }
 
-/// Write to a unique temporary file beside the target, then rename: readers (ParaView, the job
-/// server) never see a half-written sidecar, and concurrent writers never share a temporary.
-void writeAtomically(const std::string& path, const std::string& text) {
-  static std::atomic<unsigned long> counter{0};
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" +
-                          std::to_string(counter.fetch_add(1));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error("XDMF: cannot write sidecar '" + tmp + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error("XDMF: cannot rename '" + tmp + "' to '" + path + "': " +
-                             ec.message());
-  }
-}
-
 }  // namespace
 
 std::string xdmfDocument(const std::string& hdf5Path, const std::string& fileRef, const std::string& root) {
@@ -246,7 +218,7 @@ std::string xdmfDocument(const std::string& hdf5Path, const std::string& fileRef
 }
 
 void writeXdmfSidecar(const std::string& hdf5Path, const std::string& xdmfPath, const std::string& root) {
-  writeAtomically(xdmfPath, xdmfDocument(hdf5Path, relativeReference(hdf5Path, xdmfPath), root));
+  writeTextAtomically(xdmfPath, xdmfDocument(hdf5Path, relativeReference(hdf5Path, xdmfPath), root));
 }
 
 std::vector<std::string> runGroupsWithSnapshots(const std::string& hdf5Path) {

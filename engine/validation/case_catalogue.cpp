@@ -2,6 +2,7 @@
 // specs they start from resolved, and the specs of a level made from them.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 

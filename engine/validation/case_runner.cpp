@@ -78,9 +78,11 @@ std::optional<CaseRunData> runCase(const ValidationCase& c, const std::string& l
       }
       if (!outcome.completed) return std::nullopt;
       RunData run{outcome.summary, {}};
-      const io::Hdf5File file = io::Hdf5File::openReadOnly(path);
-      for (const std::string& series : seriesNeeded(c, name))
-        if (file.exists("/series/" + series)) run.series.emplace_back(series, file.readDatasetDouble("/series/" + series));
+      {  // closed before the file is removed
+        const io::Hdf5File file = io::Hdf5File::openReadOnly(path);
+        for (const std::string& series : seriesNeeded(c, name))
+          if (file.exists("/series/" + series)) run.series.emplace_back(series, file.readDatasetDouble("/series/" + series));
+      }
       results.push_back(std::move(run));
       fs::remove(path);
       done += 1;

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "io/atomic_text_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xml_escape.hpp"
 #include "rupture/quantity_text.hpp"
@@ -250,24 +250,10 @@ SuiteReport buildSuiteReport(const std::vector<Json>& results, const std::string
 
 void writeSuiteReport(const SuiteReport& report, const std::string& directory) {
   fs::create_directories(fs::path(directory) / "figures");
-  auto write = [](const fs::path& path, const std::string& text) {
-    const fs::path part = path.string() + ".part";
-    {
-      std::ofstream out(part, std::ios::binary | std::ios::trunc);
-      out << text;
-      out.flush();
-      if (!out) {
-        std::error_code ignored;
-        fs::remove(part, ignored);
-        throw std::runtime_error("cannot write " + path.string() + " (disk full or not writable?)");
-      }
-    }
-    fs::rename(part, path);
-  };
-  for (const auto& [name, svg] : report.figures) write(fs::path(directory) / "figures" / name, svg);
-  write(fs::path(directory) / "report.json", report.json);
-  write(fs::path(directory) / "report.csv", report.csv);
-  write(fs::path(directory) / "index.html", report.html);
+  for (const auto& [name, svg] : report.figures) io::writeTextAtomically((fs::path(directory) / "figures" / name).string(), svg);
+  io::writeTextAtomically((fs::path(directory) / "report.json").string(), report.json);
+  io::writeTextAtomically((fs::path(directory) / "report.csv").string(), report.csv);
+  io::writeTextAtomically((fs::path(directory) / "index.html").string(), report.html);
 }
 
 }  // namespace rupture::validation
