@@ -252,6 +252,36 @@ Box parseBox(const SpecReader& box, int dimension) {
   return b;
 }
 
+/// One factor of material.disorder: {"distribution": "weibull", "modulus": m} or
+/// {"distribution": "normal", "cv": c}.
+FactorDistribution parseFactorDistribution(const SpecReader& factor) {
+  FactorDistribution d;
+  const std::string kind = factor.choice("distribution", {"weibull", "normal"});
+  if (kind == "weibull") {
+    d.kind = FactorDistribution::Kind::Weibull;
+    d.weibullModulus = factor.number("modulus", Range::closed(0.5, 1000.0), "1");
+  } else {
+    d.kind = FactorDistribution::Kind::Normal;
+    // Up to 0.3 the ±3 sd truncation keeps every factor positive (>= 0.1) and the mean at 1.
+    d.variation = factor.number("cv", Range::closed(0.0, 0.3), "1");
+  }
+  factor.finish();
+  return d;
+}
+
+std::uint64_t rawSampleSeed(const SpecReader& root) {
+  const auto& node = root.node();
+  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("seed") &&
+      node["sample"]["seed"].is_number_unsigned())
+    return node["sample"]["seed"].get<std::uint64_t>();
+  return 1;
+}
+
+nlohmann::json toJson(const FactorDistribution& d) {
+  if (d.kind == FactorDistribution::Kind::Weibull) return {{"distribution", "weibull"}, {"modulus", d.weibullModulus}};
+  return {{"distribution", "normal"}, {"cv", d.variation}};
+}
+
 }  // namespace
 
 MaterialSpec parseMaterial(const SpecReader& root) {
@@ -302,6 +332,17 @@ MaterialSpec parseMaterial(const SpecReader& root) {
   for (const SpecReader& box : material.objects("no_failure_regions", "{\"min\": [...], \"max\": [...]} (m)")) {
     m.noFailureRegions.push_back(parseBox(box, rawDimension(root)));
     box.finish();
+  }
+  if (auto disorder = material.optionalObject("disorder")) {
+    // Its own seed; by default the sample's, so that replicates over sample.seed vary both.
+    m.disorder.seed = static_cast<std::uint64_t>(
+        disorder->integer("seed", 0, std::int64_t{1} << 53, static_cast<std::int64_t>(rawSampleSeed(root))));
+    if (auto strength = disorder->optionalObject("strength")) m.disorder.strength = parseFactorDistribution(*strength);
+    if (auto stiffness = disorder->optionalObject("stiffness")) m.disorder.stiffness = parseFactorDistribution(*stiffness);
+    if (!m.disorder.any())
+      material.fail("disorder", "an object with \"strength\" or \"stiffness\" (or both), e.g. "
+                                "{\"strength\": {\"distribution\": \"weibull\", \"modulus\": 6}}");
+    disorder->finish();
   }
   material.finish();
   return m;
@@ -369,6 +410,11 @@ nlohmann::json toJson(const MaterialSpec& m) {
       const int d = b.min[2] < -1e307 ? 2 : 3;
       j["no_failure_regions"].push_back({{"min", point(b.min, d)}, {"max", point(b.max, d)}});
     }
+  }
+  if (m.disorder.any()) {
+    j["disorder"] = {{"seed", m.disorder.seed}};
+    if (m.disorder.strength.kind != FactorDistribution::Kind::None) j["disorder"]["strength"] = toJson(m.disorder.strength);
+    if (m.disorder.stiffness.kind != FactorDistribution::Kind::None) j["disorder"]["stiffness"] = toJson(m.disorder.stiffness);
   }
   return j;
 }

@@ -72,6 +72,25 @@ struct SampleSpec {
   double bondGap = 0.1;                  ///< pairs closer than (R_i + R_j)(1 + gap/2) are bonded (1)
 };
 
+/// The distribution of a random per-bond factor of mean 1 (samples/bond_disorder.hpp).
+struct FactorDistribution {
+  enum class Kind { None, Weibull, Normal };
+  Kind kind = Kind::None;
+  double weibullModulus = 0;  ///< m of a Weibull factor, scaled to mean 1 (1)
+  double variation = 0;       ///< coefficient of variation of a normal factor, truncated at ±3 sd (1)
+};
+
+/// Disorder of the bonds (material.disorder): each bond's critical value (its strength, in its
+/// criterion's measure) and its stiffness are multiplied by independent random factors of mean 1,
+/// drawn from `seed` (Ostoja-Starzewski 2002; Li et al. 2018's Weibull bond strengths).
+struct BondDisorder {
+  FactorDistribution strength, stiffness;
+  std::uint64_t seed = 1;
+  bool any() const {
+    return strength.kind != FactorDistribution::Kind::None || stiffness.kind != FactorDistribution::Kind::None;
+  }
+};
+
 struct MaterialSpec {
   std::string model = "beam";  ///< a registered material style (bonded/materials/registry.cpp)
   double density = 0;          ///< bulk density of the dense material (kg/m³)
@@ -80,6 +99,7 @@ struct MaterialSpec {
   PmbSpec pmb;                 ///< when model is pmb
   ContactParameters contact;
   std::vector<Box> noFailureRegions;  ///< bonds with an end inside never break
+  BondDisorder disorder;              ///< random per-bond strength and stiffness (none by default)
   /// Interblock critical stretch (PeriLab "Interblock Damage", docs/references.md#perilabdamage):
   /// the s0 of bonds from
   /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two

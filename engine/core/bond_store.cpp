@@ -20,7 +20,7 @@ std::size_t BondStore::add(const ParticleStore& p, std::size_t a, std::size_t b)
   n0y.push_back(dy / length);
   n0z.push_back(dz / length);
   intact.push_back(1.0);
-  stiffness.push_back(0.0);
+  stiffness.push_back(1.0);
   threshold.push_back(std::numeric_limits<double>::infinity());
   strength.push_back(1.0);
   return i.size() - 1;

@@ -17,7 +17,9 @@ struct BondStore {
   std::vector<double> intact;          ///< 1 intact, 0 broken (a factor, so the kernel has no branch)
 
   // Set once from the material (samples/material_assignment.cpp) and the microstructure; carried by remap.
-  std::vector<double> stiffness;       ///< normal stiffness of laws with a per-bond k (N/m); 0 otherwise
+  /// The bond's own stiffness: central laws' normal stiffness k (N/m); for beams, whose stiffness
+  /// follows the (calibrated) beam parameters, the factor on E_μ (1). 1 until the material sets it.
+  std::vector<double> stiffness;
   std::vector<double> threshold;       ///< failure threshold, in the criterion's unit (+inf: unbreakable)
   std::vector<double> strength;        ///< factor on the threshold (1; +inf: never breaks), e.g. regions
 

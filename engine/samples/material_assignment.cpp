@@ -7,6 +7,7 @@
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/registry.hpp"
 #include "bonded/sample_spec.hpp"
+#include "samples/bond_disorder.hpp"
 #include "samples/grains.hpp"
 #include "samples/inclusions.hpp"
 
@@ -35,6 +36,7 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
   if (sample.inclusions.volumeFraction > 0)
     applyInclusionProperties(sample.inclusions, insideInclusions(placeInclusions(sample, cancel), system.particles),
                              system.particles, bonds);
+  applyBondDisorder(m.disorder, bonds);
   for (std::size_t b = 0; b < bonds.size(); ++b)
     for (const Box& box : m.noFailureRegions) {
       const std::int32_t i = bonds.i[b], j = bonds.j[b];

@@ -1,5 +1,6 @@
 // The bonded microstructure options through `rupture run`: the example with Voronoi grains,
-// inclusions and local damping runs (coarsened), and its file's resolved spec keeps them.
+// inclusions and local damping runs (coarsened) with Weibull bond strengths, and its file's resolved
+// spec keeps them.
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -23,6 +24,7 @@ TEST(CliMicrostructure, GrainsInclusionsAndLocalDampingRunAndAreRecorded) {
   spec["sample"]["spacing"] = 0.001;  // the example's plate at twice its spacing, for 20 µs
   spec["sample"]["thickness"] = 0.001;
   spec["run"] = {{"end_time", 2e-5}};
+  spec["material"]["disorder"] = {{"strength", {{"distribution", "weibull"}, {"modulus", 8}}}};
   const fs::path out = dir.path() / "micro.h5";
   const auto r = runCli("run " + writeSpec(spec, "cli-micro.json") + " -o " + out.string() + " --threads 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -35,17 +37,17 @@ TEST(CliMicrostructure, GrainsInclusionsAndLocalDampingRunAndAreRecorded) {
   EXPECT_DOUBLE_EQ(resolved["sample"]["inclusions"]["volume_fraction"].get<double>(), 0.15);
   EXPECT_DOUBLE_EQ(resolved["sample"]["inclusions"]["interface_strength_factor"].get<double>(), 0.8);
   EXPECT_DOUBLE_EQ(resolved["material"]["local_damping"].get<double>(), 1.0);
+  // The disorder's seed defaults to the sample's and is written out.
+  EXPECT_EQ(resolved["material"]["disorder"]["seed"], resolved["sample"]["seed"]);
+  EXPECT_DOUBLE_EQ(resolved["material"]["disorder"]["strength"]["modulus"].get<double>(), 8.0);
 
-  // The same spec with a stiffness factor on beams is refused before any work, naming the field.
-  nlohmann::json beams = spec;
-  beams["material"] = nlohmann::json::parse(
-      readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "impact-branching-beam.json"))["material"];
-  beams["sample"] = nlohmann::json::parse(
-      readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "impact-branching-beam.json"))["sample"];
-  beams["sample"]["inclusions"] = spec["sample"]["inclusions"];
-  const auto refused = runCli("run " + writeSpec(beams, "cli-micro-beam.json") + " -o " + (dir.path() / "b.h5").string());
+  // A disorder the spec cannot have is refused before any work, naming the field.
+  nlohmann::json disordered = spec;
+  disordered["material"]["disorder"] = {{"strength", {{"distribution", "weibull"}, {"modulus", 0}}}};
+  const auto refused =
+      runCli("run " + writeSpec(disordered, "cli-micro-disorder.json") + " -o " + (dir.path() / "b.h5").string());
   EXPECT_EQ(refused.exitCode, 2);
-  EXPECT_NE(refused.err.find("sample.inclusions.stiffness_factor"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("material.disorder.strength.modulus"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(dir.path() / "b.h5"));
 }
 

@@ -60,11 +60,33 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
             "sample.inclusions.volume_fraction");
   EXPECT_EQ(with([](auto& s) { s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {3e-8, 2e-8}}}; }),
             "sample.inclusions.radius");
-  // Beams take one set of parameters: no stiffer inclusions (lattice springs and PMB do).
+  // Beams take a per-bond factor on E_mu: stiffer inclusions are allowed.
   EXPECT_EQ(with([](auto& s) {
               s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {2e-8, 3e-8}}, {"stiffness_factor", 2}};
             }),
-            "sample.inclusions.stiffness_factor");
+            "");
+  // material.disorder: each bad field is named.
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = nlohmann::json::object(); }), "material.disorder");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"seed", 3}}; }), "material.disorder");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"strength", {{"distribution", "gamma"}}}}; }),
+            "material.disorder.strength.distribution");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"strength", {{"distribution", "weibull"}}}}; }),
+            "material.disorder.strength.modulus");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"strength", {{"distribution", "weibull"}, {"modulus", 0.1}}}}; }),
+            "material.disorder.strength.modulus");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"stiffness", {{"distribution", "normal"}, {"cv", 0.5}}}}; }),
+            "material.disorder.stiffness.cv");
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["disorder"] = {{"stiffness", {{"distribution", "normal"}, {"cv", 0.1}, {"modulus", 4}}}};
+            }),
+            "material.disorder.stiffness.modulus");
+  EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"seed", -1}, {"strength", {{"distribution", "normal"}, {"cv", 0.1}}}}; }),
+            "material.disorder.seed");
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["disorder"] = {{"seed", 9}, {"strength", {{"distribution", "weibull"}, {"modulus", 6}}},
+                                           {"stiffness", {{"distribution", "normal"}, {"cv", 0.2}}}};
+            }),
+            "");
   EXPECT_EQ(with([](auto& s) {
               s["sample"]["inclusions"] = {{"volume_fraction", 0.2}, {"radius", {2e-8, 3e-8}}, {"strength_factor", 2}};
             }),

@@ -1,6 +1,7 @@
 // Style "beam": cohesive Euler–Bernoulli beams between touching elements (dem/beam_law.hpp), on
-// random packings or lattices. One set of beam parameters for every bond (no per-bond stiffness),
-// Rankine failure at the beam section's failure stress; the only style the calibration fits.
+// random packings or lattices. One set of beam parameters for every bond, each bond's E_μ scaled by
+// its stiffness factor (1 but for inclusions and disorder; dem/beam_law.hpp), Rankine failure at the
+// beam section's failure stress; the only style the calibration fits.
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/material_style.hpp"
 
@@ -14,7 +15,7 @@ class BeamStyle final : public MaterialStyle {
   std::vector<CriterionKey> criteria() const override { return {{"rankine", "failure_stress", "Pa"}}; }
   std::string criterion(const MaterialSpec&) const override { return "rankine"; }
 
-  void parse(const io::SpecReader& material, const MaterialContext& context, MaterialSpec& m) const override {
+  void parse(const io::SpecReader& material, const MaterialContext&, MaterialSpec& m) const override {
     const io::SpecReader beam = material.object("beam");
     m.beam.youngModulus = beam.number("young_modulus", io::Range::positive(), "Pa");
     m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
@@ -26,14 +27,6 @@ class BeamStyle final : public MaterialStyle {
     m.contact.youngModulus = beamContactModulus(m.beam);
     m.contact.poissonRatio = m.beam.poissonRatio;
     m.contactModulusFromBeams = m.contactPoissonFromBeams = true;
-    // Beam stiffness comes from one set of beam parameters, not from a per-bond constant.
-    const auto& raw = context.root;
-    if (raw.contains("sample") && raw["sample"].is_object() && raw["sample"].contains("inclusions") &&
-        raw["sample"]["inclusions"].is_object() && raw["sample"]["inclusions"].contains("stiffness_factor") &&
-        raw["sample"]["inclusions"]["stiffness_factor"] != 1)
-      throw SpecError("sample.inclusions.stiffness_factor", io::describeValue(raw["sample"]["inclusions"]["stiffness_factor"]),
-                      "1 with material.model \"beam\" (beams take one set of parameters; use hookean, born or pmb "
-                      "for stiffer or softer inclusions)");
   }
 
   nlohmann::json toJson(const MaterialSpec& m) const override {
