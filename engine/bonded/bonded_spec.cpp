@@ -277,6 +277,55 @@ std::uint64_t rawSampleSeed(const SpecReader& root) {
   return 1;
 }
 
+int rawGrainCount(const SpecReader& root) {
+  const auto& node = root.node();
+  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("grains") &&
+      node["sample"]["grains"].is_object() && node["sample"]["grains"].contains("count") &&
+      node["sample"]["grains"]["count"].is_number_integer())
+    return node["sample"]["grains"]["count"].get<int>();
+  return 0;
+}
+
+/// A block id of material.anisotropic_damage.block_angles ("1" … "999").
+int blockIdOf(const SpecReader& object, const std::string& key) {
+  std::size_t used = 0;
+  int id = 0;
+  try {
+    id = std::stoi(key, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != key.size() || id < 1 || id > 999)
+    throw SpecError(object.pathOf(key), describeValue(object.node()[key]), "keys that are block ids in [1, 999]");
+  return id;
+}
+
+/// material.anisotropic_damage: the critical factors along the material axes and the frames.
+AnisotropicDamageSpec parseAnisotropicDamage(const SpecReader& a, const SpecReader& root) {
+  AnisotropicDamageSpec spec;
+  const int dimension = rawDimension(root);
+  const std::size_t d = static_cast<std::size_t>(dimension), angleCount = dimension == 2 ? 1 : 3;
+  spec.criticalFactors = a.numbers("critical_factors", d, d, {0.0, 100.0, true, false}, "1");
+  auto readAngles = [&](const SpecReader& reader, const std::string& key) {
+    const std::vector<double> degrees = reader.numbers(key, angleCount, angleCount, Range::closed(-360, 360), "deg");
+    FrameAngles angles{0, 0, 0};
+    for (std::size_t k = 0; k < angleCount; ++k) angles[k] = degrees[k];
+    return angles;
+  };
+  if (a.has("angles")) spec.angles = readAngles(a, "angles");
+  if (auto blocks = a.optionalObject("block_angles")) {
+    for (const auto& [key, value] : blocks->node().items()) spec.blockAngles[blockIdOf(*blocks, key)] = readAngles(*blocks, key);
+    blocks->finish();
+  }
+  spec.randomGrainFrames = a.choice("grain_frames", {"none", "random"}, "none") == "random";
+  if (spec.randomGrainFrames && rawGrainCount(root) < 2)
+    a.fail("grain_frames", "\"none\" unless sample.grains has a count of 2 or more (\"random\" gives each grain its own frame)");
+  if (spec.randomGrainFrames && (a.has("angles") || a.has("block_angles")))
+    a.fail("grain_frames", "\"none\" when angles or block_angles set the frames (give one way)");
+  a.finish();
+  return spec;
+}
+
 nlohmann::json toJson(const FactorDistribution& d) {
   if (d.kind == FactorDistribution::Kind::Weibull) return {{"distribution", "weibull"}, {"modulus", d.weibullModulus}};
   return {{"distribution", "normal"}, {"cv", d.variation}};
@@ -333,6 +382,8 @@ MaterialSpec parseMaterial(const SpecReader& root) {
     m.noFailureRegions.push_back(parseBox(box, rawDimension(root)));
     box.finish();
   }
+  if (auto anisotropic = material.optionalObject("anisotropic_damage"))
+    m.anisotropicDamage = parseAnisotropicDamage(*anisotropic, root);
   if (auto disorder = material.optionalObject("disorder")) {
     // Its own seed; by default the sample's, so that replicates over sample.seed vary both.
     m.disorder.seed = static_cast<std::uint64_t>(
@@ -409,6 +460,22 @@ nlohmann::json toJson(const MaterialSpec& m) {
     for (const Box& b : m.noFailureRegions) {
       const int d = b.min[2] < -1e307 ? 2 : 3;
       j["no_failure_regions"].push_back({{"min", point(b.min, d)}, {"max", point(b.max, d)}});
+    }
+  }
+  if (m.anisotropicDamage.enabled()) {
+    const AnisotropicDamageSpec& a = m.anisotropicDamage;
+    const int d = static_cast<int>(a.criticalFactors.size());
+    auto degrees = [&](const FrameAngles& angles) {
+      nlohmann::json out = nlohmann::json::array();
+      for (int k = 0; k < (d == 2 ? 1 : 3); ++k) out.push_back(angles[k]);
+      return out;
+    };
+    j["anisotropic_damage"] = {{"critical_factors", a.criticalFactors},
+                               {"grain_frames", a.randomGrainFrames ? "random" : "none"}};
+    if (!a.randomGrainFrames) j["anisotropic_damage"]["angles"] = degrees(a.angles);
+    if (!a.blockAngles.empty()) {
+      j["anisotropic_damage"]["block_angles"] = nlohmann::json::object();
+      for (const auto& [id, angles] : a.blockAngles) j["anisotropic_damage"]["block_angles"][std::to_string(id)] = degrees(angles);
     }
   }
   if (m.disorder.any()) {

@@ -44,8 +44,7 @@ void BondedSystem::initialize() {
   m_minStretchNext.assign(particles.size(), 0.0);
   m_centralCurrent = false;
   m_loadsStale = false;
-  m_wasIntact.assign(bonds.size(), 0);
-  for (std::size_t b = 0; b < bonds.size(); ++b) m_wasIntact[b] = bonds.intact[b] > 0.5;
+  m_recordedIntegrity = bonds.intact;
   m_bondedVolume.assign(particles.size(), 0.0);
   m_brokenVolume.assign(particles.size(), 0.0);
   m_damage.assign(particles.size(), 0.0);
@@ -54,7 +53,7 @@ void BondedSystem::initialize() {
     m_bondedVolume[bonds.j[b]] += partnerVolume(bonds.i[b]);
   }
   for (std::size_t b = 0; b < bonds.size(); ++b)
-    if (!m_wasIntact[b]) recordDamage(b);
+    if (m_recordedIntegrity[b] < 1.0) recordDamage(b, 1.0 - m_recordedIntegrity[b]);
   m_previousLength.clear();
   if (bondDamping > 0) {
     m_previousLength.resize(bonds.size());
@@ -69,10 +68,10 @@ void BondedSystem::initialize() {
   computeLoads();
 }
 
-void BondedSystem::handOverBrokenBonds() {
-  // Find the bonds that just broke (a parallel scan: each thread keeps its own list, and the lists
-  // are joined in thread order, so the order does not depend on timing) and hand their pairs to
-  // the contact search.
+std::size_t BondedSystem::handOverDamagedBonds() {
+  // Find the bonds whose integrity just dropped (a parallel scan: each thread keeps its own list,
+  // and the lists are joined in thread order, so the order does not depend on timing), add their
+  // loss to the damage index and hand the pairs of those that broke to the contact search.
   std::vector<std::vector<std::size_t>> found;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
 #pragma omp parallel if (worthParallel(bonds.size()))
@@ -82,29 +81,35 @@ void BondedSystem::handOverBrokenBonds() {
     std::vector<std::size_t>& mine = found[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (std::ptrdiff_t b = 0; b < n; ++b)
-      if (m_wasIntact[b] && bonds.intact[b] < 0.5) mine.push_back(b);
+      if (bonds.intact[b] < m_recordedIntegrity[b]) mine.push_back(b);
   }
-  for (const auto& list : found) recordBrokenBonds(list);
+  std::size_t broken = 0;
+  for (const auto& list : found) broken += recordDamagedBonds(list);
+  return broken;
 }
 
 double BondedSystem::partnerVolume(std::int32_t k) const {
   return particles.volume.size() == particles.size() ? particles.volume[k] : 1.0;
 }
 
-void BondedSystem::recordDamage(std::size_t b) {
+void BondedSystem::recordDamage(std::size_t b, double lost) {
   const std::int32_t i = bonds.i[b], j = bonds.j[b];
-  m_brokenVolume[i] += partnerVolume(j);
-  m_brokenVolume[j] += partnerVolume(i);
+  m_brokenVolume[i] += lost * partnerVolume(j);
+  m_brokenVolume[j] += lost * partnerVolume(i);
   m_damage[i] = m_brokenVolume[i] / m_bondedVolume[i];
   m_damage[j] = m_brokenVolume[j] / m_bondedVolume[j];
 }
 
-void BondedSystem::recordBrokenBonds(const std::vector<std::size_t>& broken) {
-  for (std::size_t b : broken) {
-    m_wasIntact[b] = 0;
-    recordDamage(b);
+std::size_t BondedSystem::recordDamagedBonds(const std::vector<std::size_t>& damaged) {
+  std::size_t broken = 0;
+  for (std::size_t b : damaged) {
+    recordDamage(b, m_recordedIntegrity[b] - bonds.intact[b]);
+    m_recordedIntegrity[b] = bonds.intact[b];
+    if (bonds.intact[b] > 0.0) continue;  // partly damaged: still bonded
+    ++broken;
     contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
   }
+  return broken;
 }
 
 const BondStore& BondedSystem::bondLoads() const {
@@ -121,7 +126,7 @@ void BondedSystem::computeLoads() {
     using Law = std::decay_t<decltype(law)>;
     using Criterion = std::decay_t<decltype(criterion)>;
     if constexpr (!Law::kRotational) {
-      if (centralLoop && bondDamping <= 0) {
+      if (centralLoop && bondDamping <= 0 && !bonds.hasFibres()) {
         if (!m_centralCurrent) {
           m_central.build(bonds, compactCentralList);
           m_centralCurrent = true;
@@ -146,8 +151,7 @@ void BondedSystem::computeLoads() {
           central(std::true_type{});
         else
           central(std::false_type{});
-        brokenLastStep = m_broken.size();
-        recordBrokenBonds(m_broken);
+        brokenLastStep = recordDamagedBonds(m_broken);
         m_loadsStale = true;
         return;
       }
@@ -157,16 +161,20 @@ void BondedSystem::computeLoads() {
     // One dispatch per pass on the planar form (2D), then the loops are templates.
     auto pass = [&](auto planar) {
       constexpr bool kPlanar = decltype(planar)::value;
-      if (bondDamping > 0 && m_step > 0) {
-        const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
-                                     m_previousLength.data()};
-        brokenLastStep = evaluateBonds<Law, Criterion, true, kPlanar>(law, criterion, particles, bonds,
-                                                                      m_minStretch.data(), damping);
-      } else {
-        brokenLastStep = evaluateBonds<Law, Criterion, false, kPlanar>(law, criterion, particles, bonds,
-                                                                       m_minStretch.data());
-      }
-      if (brokenLastStep > 0) handOverBrokenBonds();
+      // One instantiation with the fibres of anisotropic damage, one without.
+      auto evaluate = [&](auto fibres) -> std::size_t {
+        constexpr bool kFibres = decltype(fibres)::value;
+        if (bondDamping > 0 && m_step > 0) {
+          const SillingDamping damping{bondDamping, 1.0 / (m_step * dampingWaveSpeed), m_damage.data(),
+                                       m_previousLength.data()};
+          return evaluateBonds<Law, Criterion, true, kPlanar, kFibres>(law, criterion, particles, bonds,
+                                                                       m_minStretch.data(), damping);
+        }
+        return evaluateBonds<Law, Criterion, false, kPlanar, kFibres>(law, criterion, particles, bonds,
+                                                                      m_minStretch.data());
+      };
+      const std::size_t damaged = bonds.hasFibres() ? evaluate(std::true_type{}) : evaluate(std::false_type{});
+      brokenLastStep = damaged > 0 ? handOverDamagedBonds() : 0;
       if constexpr (Criterion::kNodalShift) {
         if (criterion.alpha != 0.0) {
           gatherBondLoads<Law::kRotational, true, kPlanar>(bonds, particles, m_minStretch.data());
@@ -347,8 +355,8 @@ double BondedSystem::maxFailureRatio() const {
   bondLoads();
   double worst = 0;
   for (std::size_t b = 0; b < bonds.size(); ++b)
-    if (bonds.intact[b] > 0.5 && std::isfinite(bonds.failureThreshold[b]) && bonds.failureThreshold[b] > 0)
-      worst = std::max(worst, bonds.failureMeasure[b] / bonds.failureThreshold[b]);
+    if (bonds.intact[b] > 0.0 && std::isfinite(bonds.failureThreshold[b]) && bonds.failureThreshold[b] > 0)
+      worst = std::max(worst, bonds.failureMeasure[b] / (bonds.failureThreshold[b] * bonds.firstDamageFactor(b)));
   return worst;
 }
 
@@ -382,7 +390,7 @@ void BondedSystem::exchangeState(StateArchive& archive) {
   archive.value("time", time);
   archive.value("steps", steps);
   archive.value("broken_last_step", brokenLastStep);
-  archive.array("was_intact", m_wasIntact);
+  archive.array("recorded_integrity", m_recordedIntegrity);
   archive.array("damage", m_damage);
   archive.array("broken_volume", m_brokenVolume);
   archive.array("bonded_volume", m_bondedVolume);

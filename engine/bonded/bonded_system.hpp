@@ -87,8 +87,8 @@ public:
   const BondStore& bondLoads() const;
 
   /// Damage index φ of each particle (PeriLab's damage index; docs/references.md#eq-pd) over its
-  /// initial bonds,
-  /// weighted by the partners' volumes; kept up to date as bonds break (O(broken bonds) per step).
+  /// initial bonds, φ = Σ (1 − integrity) V_partner / Σ V_partner (a broken bond counts 1, a partly
+  /// damaged one its lost part); kept up to date as bonds break (O(damaged bonds) per step).
   const std::vector<double>& damageIndex() const { return m_damage; }
 
   /// True when the system moves in the x-y plane (set by initialize): dimension 2, every particle
@@ -111,13 +111,15 @@ public:
 
 private:
   void computeLoads();
-  void handOverBrokenBonds();
-  void recordBrokenBonds(const std::vector<std::size_t>& broken);  ///< damage index and contact hand-over
+  /// Records the bonds whose integrity dropped in the last evaluation (damage index, contact
+  /// hand-over of those that broke); returns how many broke.
+  std::size_t handOverDamagedBonds();
+  std::size_t recordDamagedBonds(const std::vector<std::size_t>& damaged);
   void kick(double halfDt);
   void drift(double dt);
   double partnerVolume(std::int32_t particle) const;  ///< V (m³), or 1 without volumes
-  void recordDamage(std::size_t bond);               ///< adds a broken bond to its ends' φ
-  std::vector<std::uint8_t> m_wasIntact;
+  void recordDamage(std::size_t bond, double lost);  ///< adds a bond's lost integrity to its ends' φ
+  std::vector<double> m_recordedIntegrity;           ///< each bond's integrity as φ counts it
   std::vector<double> m_damage, m_brokenVolume, m_bondedVolume;  ///< φ = broken / bonded partner volume
   std::vector<double> m_previousLength;  ///< bond lengths at the last evaluation, for the damping
   double m_step = 0.0;                   ///< Δt of the step being taken (0 before the first)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "damage/anisotropic_damage.hpp"
 #include "dem/beam_bond.hpp"
 #include "dem/hertz_contact.hpp"
 #include "lattice/spring_spec.hpp"
@@ -91,6 +92,17 @@ struct BondDisorder {
   }
 };
 
+/// Anisotropic damage (material.anisotropic_damage; damage/anisotropic_damage.hpp): each bond is a
+/// parallel bundle of one fibre per material axis, fibre k carrying the fraction (n0·a_k)² of the bond
+/// and failing at criticalFactors[k] times the bond's critical value.
+struct AnisotropicDamageSpec {
+  std::vector<double> criticalFactors;  ///< one per axis (dimension values; empty: isotropic damage)
+  FrameAngles angles{0, 0, 0};          ///< the frame of particles in no listed block (degrees)
+  std::map<int, FrameAngles> blockAngles;  ///< frames of sample.blocks ids (degrees)
+  bool randomGrainFrames = false;       ///< each Voronoi grain its own uniformly random frame
+  bool enabled() const { return !criticalFactors.empty(); }
+};
+
 struct MaterialSpec {
   std::string model = "beam";  ///< a registered material style (bonded/materials/registry.cpp)
   double density = 0;          ///< bulk density of the dense material (kg/m³)
@@ -100,6 +112,7 @@ struct MaterialSpec {
   ContactParameters contact;
   std::vector<Box> noFailureRegions;  ///< bonds with an end inside never break
   BondDisorder disorder;              ///< random per-bond strength and stiffness (none by default)
+  AnisotropicDamageSpec anisotropicDamage;  ///< direction-dependent partial damage (none by default)
   /// Interblock critical stretch (PeriLab "Interblock Damage", docs/references.md#perilabdamage):
   /// the s0 of bonds from
   /// block a to block b, keyed a * 1000 + b; a bond of the store breaks at the smaller of its two

@@ -101,11 +101,11 @@ private:
 void StrengthTest::beginDamageStage() {
   BondedSystem& s = m_relaxation.system();
   const double sigmaF = m_sample.beam.failureStress;
-  double worst = 0;  // largest σ_eq / (σ_f × the bond's strength factor) at ε_e
+  double worst = 0;  // largest σ_eq / (σ_f × the bond's strength factor × its first fibre's factor) at ε_e
   const BondStore& loads = s.bondLoads();  // current for every law (central laws store none per step)
   for (std::size_t b = 0; b < s.bonds.size(); ++b)
-    if (s.bonds.intact[b] > 0.5 && std::isfinite(s.bonds.strength[b]) && s.bonds.strength[b] > 0)
-      worst = std::max(worst, loads.failureMeasure[b] / (sigmaF * s.bonds.strength[b]));
+    if (s.bonds.intact[b] > 0.0 && std::isfinite(s.bonds.strength[b]) && s.bonds.strength[b] > 0)
+      worst = std::max(worst, loads.failureMeasure[b] / (sigmaF * s.bonds.strength[b] * s.bonds.firstDamageFactor(b)));
   if (!(worst > 0)) throw CalibrationError("strength test: no bond is loaded by the tension (cannot break)");
   const double strainE = m_options.elastic.strain;
   m_result.crackOnsetStrain = strainE / worst;

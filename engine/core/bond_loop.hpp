@@ -36,11 +36,14 @@ template <class Law>
 /// and stores the loads of the intact ones. `nodalMinStretch` (per particle, read only by criteria
 /// with a nodal shift) is the smallest bond stretch of each node at the previous evaluation.
 /// With kDamped, each intact bond also carries Silling's local damping (core/local_damping.hpp).
-/// Returns the number of bonds that broke in this call.
+/// With kFibres (anisotropic damage, BondStore::fibreFactor), a bond loses its fibres one by one
+/// instead: its integrity is that left by the last fibre whose factor × threshold the measure
+/// reached, and never grows back.
+/// Returns the number of bonds whose integrity dropped in this call (those that broke, without fibres).
 /// With kPlanar (2D systems whose motion stays in the x-y plane, BondedSystem::planarMotion), the
 /// law's planarResponse is used: z, n0_z and the in-plane quaternion parts are not read, and only
 /// fjx, fjy, tiz, tjz are stored (the caller keeps fjz, tix, tiy, tjx, tjy at 0).
-template <class Law, class Criterion, bool kDamped = false, bool kPlanar = false>
+template <class Law, class Criterion, bool kDamped = false, bool kPlanar = false, bool kFibres = false>
 std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const ParticleStore& p, BondStore& bonds,
                           const double* nodalMinStretch, const SillingDamping& damping = {}) {
   // Bind the arrays to local pointers: the loop body is then plain loads, arithmetic and stores.
@@ -56,6 +59,11 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
   const double *x = p.x.data(), *y = p.y.data(), *z = p.z.data(), *rad = p.radius.data();
   const double *qw = p.qw.data(), *qx = p.qx.data(), *qy = p.qy.data(), *qz = p.qz.data();
   const double* sMin = nodalMinStretch;
+  const double *f0 = nullptr, *f1 = nullptr, *f2 = nullptr, *k0 = nullptr, *k1 = nullptr, *k2 = nullptr;
+  if constexpr (kFibres) {
+    f0 = bonds.fibreFactor[0].data(); f1 = bonds.fibreFactor[1].data(); f2 = bonds.fibreFactor[2].data();
+    k0 = bonds.fibreIntegrity[0].data(); k1 = bonds.fibreIntegrity[1].data(); k2 = bonds.fibreIntegrity[2].data();
+  }
   const Law lawCopy = law;
   const Criterion crit = criterion;
   const SillingDamping damper = damping;
@@ -97,8 +105,20 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
     if constexpr (Criterion::kNodalShift) effective += crit.alpha * std::max(sMin[i], sMin[j]);
     // Arithmetic instead of && so the loop has no control flow: now = was · [measure < threshold].
     const double was = intact[b];
-    const double now = was * static_cast<double>(effective < limit[b]);
-    broken += static_cast<std::size_t>(was - now);
+    double now;
+    if constexpr (kFibres) {
+      // Selects, fibres in the order they fail: the last one reached sets the integrity.
+      const double t = limit[b];
+      double left = 1.0;
+      left = effective < f0[b] * t ? left : k0[b];
+      left = effective < f1[b] * t ? left : k1[b];
+      left = effective < f2[b] * t ? left : k2[b];
+      now = std::min(was, left);
+      broken += static_cast<std::size_t>(now < was);
+    } else {
+      now = was * static_cast<double>(effective < limit[b]);
+      broken += static_cast<std::size_t>(was - now);
+    }
     intact[b] = now;
     measured[b] = m;
     fjx[b] = now * r.fjx; fjy[b] = now * r.fjy;
@@ -151,7 +171,7 @@ void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretc
           tz += (e & 1) ? tjz[b] : tiz[b];
         }
       }
-      if constexpr (kMinStretch) lowest = intact[b] > 0.5 ? std::min(lowest, measure[b]) : lowest;
+      if constexpr (kMinStretch) lowest = intact[b] > 0.0 ? std::min(lowest, measure[b]) : lowest;
     }
     p.fx[k] = fx; p.fy[k] = fy; p.fz[k] = fz;
     if constexpr (kTorques) {
@@ -188,13 +208,14 @@ double bondEnergy(const Law& law, const ParticleStore& p, const BondStore& bonds
   double e = 0;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
   // A select instead of a branch, so that the loop vectorises (a broken bond's response is computed
-  // and dropped; it is not multiplied by 0, which could turn an infinite one into NaN).
+  // and dropped; it is not multiplied by 0, which could turn an infinite one into NaN). A partly
+  // damaged bond (anisotropic damage) stores its integrity times the intact bond's energy.
 #pragma omp parallel for simd reduction(+ : e) schedule(static) if (worthParallel(bonds.size()))
   for (std::ptrdiff_t b = 0; b < n; ++b) {
     double energy;
     if constexpr (kPlanar) energy = law.planarEnergy(bondGeometry<Law>(p, bonds, b));
     else energy = law.response(bondGeometry<Law>(p, bonds, b)).energy;
-    e += bonds.intact[b] > 0.5 ? energy : 0.0;
+    e += bonds.intact[b] > 0.0 ? bonds.intact[b] * energy : 0.0;
   }
   return e;
 }
@@ -206,7 +227,7 @@ void accumulateBondStiffness(const Law& law, const ParticleStore& p, const BondS
   translational.assign(p.size(), 0.0);
   rotational.assign(p.size(), 0.0);
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
+    if (bonds.intact[b] <= 0.0) continue;  // a partly damaged bond counts whole: a safe bound
     const BondStiffness k = law.stiffness(bondGeometry<Law>(p, bonds, b));
     translational[bonds.i[b]] += k.translational; translational[bonds.j[b]] += k.translational;
     rotational[bonds.i[b]] += k.rotational; rotational[bonds.j[b]] += k.rotational;

@@ -111,16 +111,26 @@ void BondStore::filter(const std::vector<std::uint8_t>& keep) {
   truncate(m);
 }
 
+double BondStore::firstDamageFactor(std::size_t b) const {
+  if (!hasFibres()) return 1.0;
+  double left = 1.0;
+  for (std::size_t c = 0; c < fibreFactor.size(); ++c) {
+    if (fibreIntegrity[c][b] < left) return fibreFactor[c][b];
+    left = fibreIntegrity[c][b];
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 std::size_t BondStore::intactCount() const {
   std::size_t n = 0;
-  for (double v : intact) n += v > 0.5;
+  for (double v : intact) n += v > 0.0;
   return n;
 }
 
 std::vector<int> BondStore::coordination(std::size_t particleCount) const {
   std::vector<int> z(particleCount, 0);
   for (std::size_t b = 0; b < size(); ++b)
-    if (intact[b] > 0.5) { ++z[i[b]]; ++z[j[b]]; }
+    if (intact[b] > 0.0) { ++z[i[b]]; ++z[j[b]]; }
   return z;
 }
 

@@ -2,6 +2,7 @@
 // Contiguous bond arrays (structure of arrays). A bond joins particle indices i < j and keeps its
 // reference state: rest length L0 and unit direction n0 (i -> j) at creation. Orientations are the
 // identity when bonds are created, so the body-frame tangent of both ends is n0 itself.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -14,7 +15,9 @@ struct BondStore {
   std::vector<std::int32_t> i, j;
   std::vector<double> restLength;      ///< L0 (m)
   std::vector<double> n0x, n0y, n0z;   ///< reference direction i -> j
-  std::vector<double> intact;          ///< 1 intact, 0 broken (a factor, so the kernel has no branch)
+  /// The bond's integrity: 1 intact, 0 broken, in between partly damaged (anisotropic damage); a
+  /// factor on its loads, so the kernel has no branch.
+  std::vector<double> intact;
 
   // Set once from the material (samples/material_assignment.cpp) and the microstructure; carried by remap.
   /// The bond's own stiffness: central laws' normal stiffness k (N/m); for beams, whose stiffness
@@ -30,6 +33,17 @@ struct BondStore {
   mutable std::vector<double> fjx, fjy, fjz;
   std::vector<double> tix, tiy, tiz;
   std::vector<double> tjx, tjy, tjz;
+  /// Anisotropic damage (damage/anisotropic_damage.hpp): the bond as a bundle of up to three fibres,
+  /// in the order they fail. Fibre c fails once the failure measure reaches fibreFactor[c] times the
+  /// effective threshold, leaving the bond the integrity fibreIntegrity[c] (non-increasing in c; the
+  /// last fibre leaves 0; unused fibres have factor +inf). Set by the material after the bonds are
+  /// final; empty (the default): one fibre, the isotropic criterion.
+  std::array<std::vector<double>, 3> fibreFactor, fibreIntegrity;
+  bool hasFibres() const { return !fibreFactor[0].empty(); }
+  /// The factor on bond b's threshold at which it first loses integrity: its first fibre that
+  /// carries something (1 without fibres; +inf if none does).
+  double firstDamageFactor(std::size_t b) const;
+
   mutable std::vector<double> failureMeasure;  ///< the criterion's measure at the last evaluation (its unit)
   std::vector<double> failureThreshold;  ///< threshold × strength, refreshed by finalize (criterion's unit)
 
@@ -85,6 +99,11 @@ private:
   template <class F>
   void forEachReferenceArray(F&& f) {
     for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) f(*v);
+    if (hasFibres())
+      for (std::size_t c = 0; c < fibreFactor.size(); ++c) {
+        f(fibreFactor[c]);
+        f(fibreIntegrity[c]);
+      }
   }
 };
 

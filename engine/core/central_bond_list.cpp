@@ -16,7 +16,7 @@ constexpr double kBroken = -std::numeric_limits<double>::infinity();
 // The threshold a slot carries: an intact bond whose threshold is itself −inf breaks at its first
 // evaluation; NaN does that (no measure is below it) without being mistaken for the broken mark.
 double slotLimit(const BondStore& bonds, std::size_t b) {
-  if (bonds.intact[b] <= 0.5) return kBroken;
+  if (bonds.intact[b] <= 0.0) return kBroken;
   return bonds.failureThreshold[b] == kBroken ? std::numeric_limits<double>::quiet_NaN() : bonds.failureThreshold[b];
 }
 

@@ -95,7 +95,7 @@ double contactReach(const ParticleStore& p, const BondStore& bonds, const CutLen
   for (std::int32_t s = bonds.incidenceStart[i]; s < bonds.incidenceStart[i + 1]; ++s) {
     const std::int32_t b = bonds.incidence[s] >> 1;
     if (bonds.i[b] != k && bonds.j[b] != k) continue;
-    if (bonds.intact[b] > 0.5) return -1.0;
+    if (bonds.intact[b] > 0.0) return -1.0;  // bonded (partly damaged bonds too)
     reach = std::min(reach, bonds.restLength[b]);
   }
   return reach;

@@ -22,7 +22,7 @@ namespace rupture::io {
 std::string checkpointPathFor(const std::string& resultPath);
 
 /// The checkpoint format; a file of another format is refused.
-inline constexpr std::int64_t kCheckpointFormat = 1;
+inline constexpr std::int64_t kCheckpointFormat = 2;  // 2: bonds carry a fractional integrity
 
 /// What a checkpoint says about the run it belongs to.
 struct CheckpointHeader {

@@ -7,6 +7,7 @@
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/registry.hpp"
 #include "bonded/sample_spec.hpp"
+#include "samples/anisotropic_damage.hpp"
 #include "samples/bond_disorder.hpp"
 #include "samples/grains.hpp"
 #include "samples/inclusions.hpp"
@@ -32,7 +33,13 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
                                     backward != m.interblock.end() ? backward->second : own);
     }
   }
-  if (sample.grains.count > 0) weakenGrainBoundaries(voronoiGrains(sample, p, cancel), sample.grains.boundaryFactor, bonds);
+  std::vector<std::int32_t> grain;
+  if (sample.grains.count > 0) {
+    grain = voronoiGrains(sample, p, cancel);
+    weakenGrainBoundaries(grain, sample.grains.boundaryFactor, bonds);
+  }
+  if (m.anisotropicDamage.enabled())
+    assignFibres(m.anisotropicDamage, sample.dimension, materialFrames(m.anisotropicDamage, sample, p, grain), bonds);
   if (sample.inclusions.volumeFraction > 0)
     applyInclusionProperties(sample.inclusions, insideInclusions(placeInclusions(sample, cancel), system.particles),
                              system.particles, bonds);

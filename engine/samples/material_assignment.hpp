@@ -1,7 +1,8 @@
 #pragma once
 // Gives a built sample its material: the style's law, criterion and per-bond constants
 // (bonded/materials/), then what every style shares — interblock critical values, grain boundaries,
-// inclusions, bond disorder, no-failure regions, contact and local damping.
+// inclusions, bond disorder, anisotropic damage's fibres, no-failure regions, contact and local
+// damping.
 #include "core/cancellation.hpp"
 
 namespace rupture {

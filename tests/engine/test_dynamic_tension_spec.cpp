@@ -82,6 +82,45 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
             "material.disorder.stiffness.modulus");
   EXPECT_EQ(with([](auto& s) { s["material"]["disorder"] = {{"seed", -1}, {"strength", {{"distribution", "normal"}, {"cv", 0.1}}}}; }),
             "material.disorder.seed");
+  // material.anisotropic_damage: each bad field is named.
+  EXPECT_EQ(with([](auto& s) { s["material"]["anisotropic_damage"] = nlohmann::json::object(); }),
+            "material.anisotropic_damage.critical_factors");
+  EXPECT_EQ(with([](auto& s) { s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5, 0.2}}}; }),
+            "material.anisotropic_damage.critical_factors");  // 2D: two axes
+  EXPECT_EQ(with([](auto& s) { s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0}}}; }),
+            "material.anisotropic_damage.critical_factors");
+  EXPECT_EQ(with([](auto& s) { s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"angles", {10, 20}}}; }),
+            "material.anisotropic_damage.angles");
+  EXPECT_EQ(with([](auto& s) { s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"angles", {400}}}; }),
+            "material.anisotropic_damage.angles");
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"block_angles", {{"x", {30}}}}};
+            }),
+            "material.anisotropic_damage.block_angles.x");
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"block_angles", {{"2", {30, 1}}}}};
+            }),
+            "material.anisotropic_damage.block_angles[2]");  // the reader names numeric keys as indices
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"grain_frames", "random"}};
+            }),
+            "material.anisotropic_damage.grain_frames");  // no grains
+  EXPECT_EQ(with([](auto& s) {
+              s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0.5}};
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"grain_frames", "random"},
+                                                     {"angles", {30}}};
+            }),
+            "material.anisotropic_damage.grain_frames");
+  EXPECT_EQ(with([](auto& s) {
+              s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0.5}};
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"grain_frames", "random"}};
+            }),
+            "");
+  EXPECT_EQ(with([](auto& s) {
+              s["material"]["anisotropic_damage"] = {{"critical_factors", {1, 0.5}}, {"angles", {30}},
+                                                     {"block_angles", {{"2", {-45}}}}};
+            }),
+            "");
   EXPECT_EQ(with([](auto& s) {
               s["material"]["disorder"] = {{"seed", 9}, {"strength", {{"distribution", "weibull"}, {"modulus", 6}}},
                                            {"stiffness", {{"distribution", "normal"}, {"cv", 0.2}}}};

@@ -20,7 +20,7 @@ void writeBondState(io::Hdf5File& file, const std::string& snapshot, const Bonde
   const BondStore& bonds = system.bondLoads();
   const std::size_t nb = bonds.size();
   std::vector<std::uint8_t> intact(nb);
-  for (std::size_t b = 0; b < nb; ++b) intact[b] = bonds.intact[b] > 0.5 ? 1 : 0;
+  for (std::size_t b = 0; b < nb; ++b) intact[b] = bonds.intact[b] > 0.0 ? 1 : 0;
   file.writeDataset(snapshot + "/bond_intact", intact, {nb}, "1");
 
   // Measure and threshold exist once the loop has run (initialize() evaluates every bond).

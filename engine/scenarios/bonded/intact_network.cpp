@@ -12,7 +12,7 @@ std::vector<double> elementDamage(const BondStore& bonds, std::size_t elementCou
                                   const std::vector<double>* volume) {
   std::vector<double> initial(elementCount, 0.0), broken(elementCount, 0.0);
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    const double lost = bonds.intact[b] > 0.5 ? 0.0 : 1.0;
+    const double lost = 1.0 - bonds.intact[b];  // a partly damaged bond (anisotropic damage) in part
     const std::int32_t i = bonds.i[b], j = bonds.j[b];
     const double vi = volume ? (*volume)[i] : 1.0, vj = volume ? (*volume)[j] : 1.0;
     initial[i] += vj;  // i's neighbourhood weighs its partner j, and the converse
@@ -28,7 +28,7 @@ BondComponents::BondComponents(const BondStore& bonds, std::size_t elementCount)
     : m_parent(elementCount), m_size(elementCount, 1) {
   std::iota(m_parent.begin(), m_parent.end(), std::size_t{0});
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
+    if (bonds.intact[b] <= 0.0) continue;
     std::size_t a = root(static_cast<std::size_t>(bonds.i[b]));
     std::size_t c = root(static_cast<std::size_t>(bonds.j[b]));
     if (a == c) continue;

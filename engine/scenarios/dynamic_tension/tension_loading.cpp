@@ -113,7 +113,7 @@ double affineWaveSpeed(const BondedSystem& system, const TensionGeometry& geomet
   const std::vector<double> stiffness = system.bondStiffness();
   double modulus = 0;
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
+    if (bonds.intact[b] <= 0.0) continue;
     const double L0 = bonds.restLength[b];
     const double k = stiffness[b];
     const double nx2 = bonds.n0x[b] * bonds.n0x[b];

@@ -11,7 +11,7 @@ std::vector<double> virialStress(const BondedSystem& system, double packingFract
   std::vector<double> sigma(9 * n, 0.0);
   // Accumulate Σ_b −½(d ⊗ F_j + F_j ⊗ d) on both ends of each intact bond.
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
+    if (bonds.intact[b] <= 0.0) continue;
     const std::size_t i = static_cast<std::size_t>(bonds.i[b]), j = static_cast<std::size_t>(bonds.j[b]);
     const double d[3] = {p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]};
     const double f[3] = {bonds.fjx[b], bonds.fjy[b], bonds.fjz[b]};

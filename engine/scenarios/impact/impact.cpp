@@ -61,7 +61,7 @@ std::vector<double> particleStress(const BondedSystem& s) {
   const BondStore& bonds = s.bondLoads();
   std::vector<double> sigma(9 * p.size(), 0.0);
   for (std::size_t b = 0; b < bonds.size(); ++b) {
-    if (bonds.intact[b] < 0.5) continue;
+    if (bonds.intact[b] <= 0.0) continue;
     const std::int32_t i = bonds.i[b], j = bonds.j[b];
     const double d[3] = {p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]};
     const double f[3] = {bonds.fjx[b], bonds.fjy[b], bonds.fjz[b]};
