@@ -27,4 +27,31 @@ inline MaterialSpec ceramic() {
   return m;
 }
 
+/// A square lattice of beams, rows × columns elements 0.1 mm apart (2D): every bond along x or y,
+/// so a pull along x loads the x bonds alone. For the weakest-link and anisotropic-damage tests.
+inline SampleSpec squareBeamLattice(int rows, int columns) {
+  SampleSpec s;
+  s.dimension = 2;
+  s.lattice = "square";
+  s.spacing = 1e-4;
+  s.elementRadius = 0.5e-4;
+  s.thickness = 1e-4;
+  s.size = {columns * 1e-4, rows * 1e-4, 0};
+  return s;
+}
+
+/// Glass-like beams (E_μ 70 GPa, ν_μ 0.3, radius ratio 0.5, σ_f 100 MPa) with their default contact.
+inline MaterialSpec glassBeams() {
+  MaterialSpec m;
+  m.model = "beam";
+  m.density = 2500;
+  m.beam.youngModulus = 70e9;
+  m.beam.poissonRatio = 0.3;
+  m.beam.radiusRatio = 0.5;
+  m.beam.failureStress = 100e6;
+  m.contact.youngModulus = beamContactModulus(m.beam);
+  m.contact.poissonRatio = 0.3;
+  return m;
+}
+
 }  // namespace rupture::testing

@@ -13,6 +13,7 @@
 #include "calibration/strength_test.hpp"
 #include "samples/anisotropic_damage.hpp"
 #include "samples/grains.hpp"
+#include "sample_test_support.hpp"
 #include "samples/sample_builder.hpp"
 
 namespace rupture {
@@ -74,15 +75,9 @@ SampleSpec crossNotchedPlate() {
   return s;
 }
 
+/// The glass beams with anisotropic factors and a frame angle (degrees).
 MaterialSpec beams(std::vector<double> factors, double angle) {
-  MaterialSpec m;
-  m.model = "beam";
-  m.density = 2500;
-  m.beam.youngModulus = 70e9;
-  m.beam.poissonRatio = 0.3;
-  m.beam.radiusRatio = 0.5;
-  m.beam.failureStress = 100e6;
-  m.contact.enabled = false;
+  MaterialSpec m = testing::glassBeams();
   m.anisotropicDamage.criticalFactors = std::move(factors);
   m.anisotropicDamage.angles = {angle, 0, 0};
   return m;
@@ -153,27 +148,8 @@ PullResult pull(const MaterialSpec& material, int axis, int steps = 6000) {
   return r;
 }
 
-SampleSpec squareBeamLattice() {
-  SampleSpec s;
-  s.dimension = 2;
-  s.lattice = "square";
-  s.spacing = 1e-4;
-  s.elementRadius = 0.5e-4;
-  s.thickness = 1e-4;
-  s.size = {12e-4, 12e-4, 0};
-  return s;
-}
-
-MaterialSpec beamsWithContact(std::vector<double> factors, double angle) {
-  MaterialSpec m = beams(std::move(factors), angle);
-  m.contact.enabled = true;
-  m.contact.youngModulus = beamContactModulus(m.beam);
-  m.contact.poissonRatio = 0.3;
-  return m;
-}
-
 StrengthResult strength(const MaterialSpec& material) {
-  const SampleSpec spec = squareBeamLattice();
+  const SampleSpec spec = testing::squareBeamLattice(12, 12);
   BondedSystem s;
   buildSample(spec, material, s);
   return measureTensileStrength(s, spec);
@@ -184,16 +160,16 @@ StrengthResult strength(const MaterialSpec& material) {
 // 90° they are fibre 2 (factor 0.5): half of it. The quasi-static test (calibration/strength_test.hpp)
 // scales exactly with the critical value, so the ratio is the factors' ratio.
 TEST(AnisotropicDamage, BeamLatticeStrengthsAreInTheRatioOfTheCriticalValues) {
-  const StrengthResult isotropic = strength(beamsWithContact({1.0, 1.0}, 0));
-  const StrengthResult alongStrong = strength(beamsWithContact({1.0, 0.5}, 0));
-  const StrengthResult alongWeak = strength(beamsWithContact({1.0, 0.5}, 90));
+  const StrengthResult isotropic = strength(beams({1.0, 1.0}, 0));
+  const StrengthResult alongStrong = strength(beams({1.0, 0.5}, 0));
+  const StrengthResult alongWeak = strength(beams({1.0, 0.5}, 90));
   ASSERT_TRUE(isotropic.completed && alongStrong.completed && alongWeak.completed);
   EXPECT_GT(isotropic.tensileStrength, 0);
   EXPECT_NEAR(alongStrong.tensileStrength / isotropic.tensileStrength, 1.0, 1e-9);
   EXPECT_NEAR(alongWeak.tensileStrength / isotropic.tensileStrength, 0.5, 1e-6);
   EXPECT_NEAR(alongWeak.crackOnsetStrain / isotropic.crackOnsetStrain, 0.5, 1e-9);
   // Factors the other way round in the unturned frame: the same as turning it.
-  const StrengthResult swapped = strength(beamsWithContact({0.5, 1.0}, 0));
+  const StrengthResult swapped = strength(beams({0.5, 1.0}, 0));
   EXPECT_NEAR(swapped.tensileStrength / alongWeak.tensileStrength, 1.0, 1e-9);
 }
 

@@ -11,6 +11,7 @@
 
 #include "calibration/strength_test.hpp"
 #include "samples/bond_disorder.hpp"
+#include "sample_test_support.hpp"
 #include "samples/sample_builder.hpp"
 
 namespace rupture {
@@ -194,30 +195,13 @@ TEST(BondDisorder, ZeroScatterIsBitForBitNoDisorder) {
 namespace rupture {
 namespace {
 
-SampleSpec squareBar(int rows, int columns) {
-  SampleSpec s;
-  s.dimension = 2;
-  s.lattice = "square";
-  s.spacing = 1e-4;
-  s.elementRadius = 0.5e-4;
-  s.thickness = 1e-4;
-  s.size = {columns * 1e-4, rows * 1e-4, 0};
-  return s;
-}
+using testing::squareBeamLattice;
 
 MaterialSpec weibullBeams(double m, std::uint64_t seed) {
-  MaterialSpec mat;
-  mat.model = "beam";
-  mat.density = 2500;
-  mat.beam.youngModulus = 70e9;
-  mat.beam.poissonRatio = 0.3;
-  mat.beam.radiusRatio = 0.5;
-  mat.beam.failureStress = 100e6;
-  mat.contact.youngModulus = beamContactModulus(mat.beam);
-  mat.contact.poissonRatio = 0.3;
-  mat.disorder.seed = seed;
-  mat.disorder.strength = weibull(m);
-  return mat;
+  MaterialSpec material = testing::glassBeams();
+  material.disorder.seed = seed;
+  material.disorder.strength = weibull(m);
+  return material;
 }
 
 struct Replicates {
@@ -227,7 +211,7 @@ struct Replicates {
 
 Replicates strengthTests(int size, double m, int count) {
   Replicates r;
-  const SampleSpec spec = squareBar(size, size);
+  const SampleSpec spec = squareBeamLattice(size, size);
   for (int seed = 1; seed <= count; ++seed) {
     BondedSystem s;
     buildSample(spec, weibullBeams(m, static_cast<std::uint64_t>(seed)), s);
@@ -257,7 +241,7 @@ std::pair<double, double> ratioOfMeans(const std::vector<double>& a, const std::
 TEST(BondDisorder, WeibullStrengthsGiveTheWeakestLinkSizeEffect) {
   constexpr int kReplicates = 10;
   BondedSystem uniform;
-  const SampleSpec small = squareBar(12, 12);
+  const SampleSpec small = squareBeamLattice(12, 12);
   MaterialSpec noScatter = weibullBeams(6, 1);
   noScatter.disorder = {};
   buildSample(small, noScatter, uniform);
