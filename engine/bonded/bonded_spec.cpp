@@ -209,14 +209,19 @@ SampleSpec parseSample(const SpecReader& root) {
 
 namespace {
 
-/// The lattice named by the (already validated) sample, read from the raw spec: the material's
-/// admissible range depends on it.
-LatticeKind rawLattice(const SpecReader& root) {
+/// sample.<key> of the raw spec, or null: the material's parsing reads a few sample fields (the
+/// sample itself is validated on its own).
+const nlohmann::json* rawSampleMember(const SpecReader& root, const std::string& key) {
   const auto& node = root.node();
-  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("lattice") &&
-      node["sample"]["lattice"].is_string()) {
+  if (!node.contains("sample") || !node["sample"].is_object() || !node["sample"].contains(key)) return nullptr;
+  return &node["sample"][key];
+}
+
+/// The lattice named by the (already validated) sample: the material's admissible range depends on it.
+LatticeKind rawLattice(const SpecReader& root) {
+  if (const auto* lattice = rawSampleMember(root, "lattice"); lattice && lattice->is_string()) {
     try {
-      return latticeKind(node["sample"]["lattice"].get<std::string>());
+      return latticeKind(lattice->get<std::string>());
     } catch (const std::invalid_argument&) {
     }
   }
@@ -270,20 +275,14 @@ FactorDistribution parseFactorDistribution(const SpecReader& factor) {
 }
 
 std::uint64_t rawSampleSeed(const SpecReader& root) {
-  const auto& node = root.node();
-  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("seed") &&
-      node["sample"]["seed"].is_number_unsigned())
-    return node["sample"]["seed"].get<std::uint64_t>();
-  return 1;
+  const auto* seed = rawSampleMember(root, "seed");
+  return seed && seed->is_number_unsigned() ? seed->get<std::uint64_t>() : 1;  // 1: the sample's default
 }
 
 int rawGrainCount(const SpecReader& root) {
-  const auto& node = root.node();
-  if (node.contains("sample") && node["sample"].is_object() && node["sample"].contains("grains") &&
-      node["sample"]["grains"].is_object() && node["sample"]["grains"].contains("count") &&
-      node["sample"]["grains"]["count"].is_number_integer())
-    return node["sample"]["grains"]["count"].get<int>();
-  return 0;
+  const auto* grains = rawSampleMember(root, "grains");
+  if (!grains || !grains->is_object() || !grains->contains("count") || !(*grains)["count"].is_number_integer()) return 0;
+  return (*grains)["count"].get<int>();
 }
 
 /// A block id of material.anisotropic_damage.block_angles ("1" … "999").

@@ -83,7 +83,8 @@ struct FactorDistribution {
 
 /// Disorder of the bonds (material.disorder): each bond's critical value (its strength, in its
 /// criterion's measure) and its stiffness are multiplied by independent random factors of mean 1,
-/// drawn from `seed` (Ostoja-Starzewski 2002; Li et al. 2018's Weibull bond strengths).
+/// drawn from `seed` (Ostoja-Starzewski & Wang 2006; Li, Pan & Sinka 2011's Weibull strengths;
+/// docs/references.md#eq-disorder).
 struct BondDisorder {
   FactorDistribution strength, stiffness;
   std::uint64_t seed = 1;

@@ -15,7 +15,7 @@ struct BondGeometry {
   double restLength;           ///< L0 (m)
   double n0x, n0y, n0z;        ///< reference unit direction i -> j
   double radiusI, radiusJ;     ///< element radii (m)
-  double stiffness;            ///< per-bond normal stiffness set at set-up (N/m); laws that derive it ignore it
+  double stiffness;            ///< BondStore::stiffness: central laws' k (N/m), the beam law's factor on E_μ (1)
   double qiw, qix, qiy, qiz;   ///< orientation of i
   double qjw, qjx, qjy, qjz;   ///< orientation of j
 };

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <random>
 
+#include "samples/blocks.hpp"
+
 namespace rupture {
 
 namespace {
@@ -40,12 +42,10 @@ std::vector<FrameAxes> materialFrames(const AnisotropicDamageSpec& spec, const S
   const FrameAxes fallback = frameAxes(spec.angles, sample.dimension);
   std::map<int, FrameAxes> byBlock;
   for (const auto& [id, angles] : spec.blockAngles) byBlock[id] = frameAxes(angles, sample.dimension);
+  const std::vector<int> block = byBlock.empty() ? std::vector<int>() : particleBlocks(sample, p);
   for (std::size_t k = 0; k < p.size(); ++k) {
-    const FrameAxes* frame = &fallback;
-    for (const BlockRegion& r : sample.blocks)
-      if (r.box.contains(p.x[k], p.y[k], p.z[k]))
-        if (const auto found = byBlock.find(r.id); found != byBlock.end()) frame = &found->second;
-    frames[k] = *frame;
+    const auto found = byBlock.empty() ? byBlock.end() : byBlock.find(block[k]);
+    frames[k] = found != byBlock.end() ? found->second : fallback;
   }
   return frames;
 }

@@ -13,8 +13,8 @@ namespace rupture {
 
 /// Each particle's frame axes. With randomGrainFrames, grain g's frame is uniformly random (a
 /// rotation angle uniform in [0°, 180°) in 2D, a uniform random rotation in 3D), drawn from a stream of
-/// sample.seed of its own; else the frame of the last sample.blocks box holding the particle that
-/// blockAngles lists, or the default angles. `grain` is the particle's grain (samples/grains.hpp),
+/// sample.seed of its own; else its block's frame (samples/blocks.hpp) where blockAngles lists the
+/// block, the default angles where it does not. `grain` is the particle's grain (samples/grains.hpp),
 /// read only with randomGrainFrames.
 std::vector<FrameAxes> materialFrames(const AnisotropicDamageSpec& spec, const SampleSpec& sample,
                                       const ParticleStore& particles, const std::vector<std::int32_t>& grain);

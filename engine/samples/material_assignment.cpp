@@ -8,6 +8,7 @@
 #include "bonded/materials/registry.hpp"
 #include "bonded/sample_spec.hpp"
 #include "samples/anisotropic_damage.hpp"
+#include "samples/blocks.hpp"
 #include "samples/bond_disorder.hpp"
 #include "samples/grains.hpp"
 #include "samples/inclusions.hpp"
@@ -19,10 +20,7 @@ void assignMaterial(BondedSystem& system, const SampleSpec& sample, const Materi
   materialStyle(m.model).assign(system, sample, m);
   const ParticleStore& p = system.particles;
   if (!m.interblock.empty()) {  // interblock critical stretches replace the block's s0
-    std::vector<int> block(p.size(), 1);
-    for (std::size_t k = 0; k < p.size(); ++k)
-      for (const BlockRegion& r : sample.blocks)
-        if (r.box.contains(p.x[k], p.y[k], p.z[k])) block[k] = r.id;
+    const std::vector<int> block = particleBlocks(sample, p);
     for (std::size_t b = 0; b < bonds.size(); ++b) {
       const int bi = block[bonds.i[b]], bj = block[bonds.j[b]];
       if (bi == bj) continue;
