@@ -6,6 +6,9 @@
 //   fixed       at rest (tank walls)
 //   prescribed  speed along the axis from a piecewise-linear history (held constant past its ends)
 //   free        mass M, decelerated or driven by the fluid force and gravity along the axis
+//   driven      moves at the speed its owner sets before each step (a structure integrated
+//               outside the fluid, such as the elastic piston of fsi/impactor_column.hpp, which
+//               reads the body's force back)
 // This is the coupling interface a structure uses later: its boundary particles' positions and
 // velocities are set from outside and the per-particle fluid force m·a is read back.
 #include <array>
@@ -15,10 +18,16 @@
 
 namespace rupture::sph {
 
-enum class BodyMotion { Fixed, Prescribed, Free };
+enum class BodyMotion { Fixed, Prescribed, Free, Driven };
 
 inline std::string toString(BodyMotion m) {
-  return m == BodyMotion::Fixed ? "fixed" : m == BodyMotion::Prescribed ? "prescribed" : "free";
+  switch (m) {
+    case BodyMotion::Fixed: return "fixed";
+    case BodyMotion::Prescribed: return "prescribed";
+    case BodyMotion::Free: return "free";
+    case BodyMotion::Driven: return "driven";
+  }
+  return "fixed";
 }
 
 /// Speed (m/s) against time (s), linear between points, constant outside them.
@@ -40,7 +49,8 @@ struct RigidBody {
   double mass = 0;                      ///< kg (kg/m in 2D); free bodies only
   SpeedHistory history;                 ///< prescribed bodies only
 
-  // State, along the axis: speed (m/s) and displacement from the start (m).
+  // State, along the axis: speed (m/s) and displacement from the start (m). A driven body's
+  // owner sets `speed` before each step: the body drifts dt × speed in it.
   double speed = 0, displacement = 0;
   /// The fluid's force on the body (N; N/m in 2D) and its time integral (N·s).
   std::array<double, 3> force{0, 0, 0}, impulse{0, 0, 0};

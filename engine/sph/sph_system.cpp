@@ -145,6 +145,8 @@ void SphSystem::step(double dt) {
     } else if (b.motion == BodyMotion::Prescribed) {
       b.speed = b.history.at(time + half);  // midpoint: exact displacement for linear histories
       estimate = b.history.at(time + dt);
+    } else {
+      estimate = b.speed;  // driven: its owner's speed over the step
     }
     const double dx = dt * b.speed;
     b.displacement += dx;

@@ -87,6 +87,19 @@ TEST(ResumeFluids, PistonColumnPrescribedPiston) {
       dir.path());
 }
 
+// The impactor's column (carriage, piston points, face force) is part of the state.
+TEST(ResumeFluids, PistonColumnStruckThroughAnElasticPiston) {
+  nlohmann::json spec = pistonColumn(nullptr);
+  spec.erase("piston");
+  spec["dimension"] = 3;
+  spec["resolution"]["spacing"] = 0.008;
+  spec["probes"] = {{0.0, 0.0, 0.1}};
+  spec["impactor"] = {{"mass", 5.0}, {"speed", 2.0}, {"piston", {{"length", 0.05}, {"elements", 10}}}};
+  rupture::testing::ScratchDir dir;
+  const nlohmann::json summary = expectResumedRunMatches(spec, dir.path());
+  EXPECT_EQ(summary.value("impactor_model", std::string()), "elastic_piston");
+}
+
 TEST(ResumeFluids, TankImpactWithPlateContactAndCracks) {
   std::ifstream in(std::filesystem::path(RUPTURE_SOURCE_DIR) / "examples" / "tank-impact-FUA5.json");
   nlohmann::json spec = nlohmann::json::parse(in);

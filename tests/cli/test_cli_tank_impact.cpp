@@ -59,3 +59,26 @@ TEST(CliTankImpact, BadFieldExitsTwoNamingIt) {
 }
 
 }  // namespace
+
+// The campaign request of docs/tank-impact.md#the-campaign is a valid server request, and a spec
+// naming a specimen runs from the CLI with the seed's measurements in its summary.
+TEST(CliTankImpact, CampaignRequestValidatesAndASpecimenRunReportsTheSeed) {
+  const std::string request = (fs::path(RUPTURE_SOURCE_DIR) / "examples" / "tank-campaign.json").string();
+  const auto valid = runCli("validate " + request + " --scenario tank-impact");
+  EXPECT_EQ(valid.exitCode, 0) << valid.err;
+  const nlohmann::json spec = {{"scenario", "tank-impact"}, {"specimen", "E20A5"},
+                               {"plate", {{"spacing", 0.004}}}, {"resolution", {{"spacing", 0.01}}},
+                               {"run", {{"end_time", 1e-5}}}};
+  ScratchDir dir;
+  const auto r = runCli("run " + writeSpec(spec, "cli-tank-specimen.json") + " -o " + (dir.path() / "s.h5").string() +
+                        " --threads 1 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["specimen"], "E20A5");
+  EXPECT_DOUBLE_EQ(summary["seed_jet_speed"].get<double>(), 92.0);
+  EXPECT_EQ(summary["impactor_model"], "elastic_piston");
+  const auto bad = runCli("run " + writeSpec({{"scenario", "tank-impact"}, {"specimen", "E99"}, {"resolution", {{"spacing", 0.01}}}},
+                                             "cli-tank-bad-specimen.json") + " -o /dev/null --threads 1");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("specimen"), std::string::npos) << bad.err;
+}

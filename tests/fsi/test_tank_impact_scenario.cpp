@@ -42,14 +42,15 @@ nlohmann::json runCoarse(const std::string& name, const nlohmann::json& spec) {
 }
 
 // E20A5: 25 mm plate with a 20 mm hole, 245 kg at 5 m/s. The wave reaches the gauge with at least
-// the acoustic pressure ρ0 c0 V and at most twice it (reflection on a rigid bottom); the water
-// jets through the hole no faster than the largest pressure can drive it (Bernoulli, √(2 p/ρ0)).
+// the acoustic pressure ρ0 c0 V and at most four times it (the steel piston's face moves at up to
+// 2 V, and a rigid bottom doubles the wave); the water jets through the hole no faster than the
+// largest pressure can drive it (Bernoulli, √(2 p/ρ0)).
 TEST(TankImpactScenario, E20A5ReportsAJetAndAFirstPressurePeak) {
   const nlohmann::json s = runCoarse("E20A5", coarseExample("E20A5"));
   EXPECT_NEAR(s["final_time"].get<double>(), 3e-3, 1e-9);
   const double acoustic = s["acoustic_pressure"];
   EXPECT_GE(s["first_pressure_peak"].get<double>(), 0.9 * acoustic);
-  EXPECT_LE(s["first_pressure_peak"].get<double>(), 2.2 * acoustic);
+  EXPECT_LE(s["first_pressure_peak"].get<double>(), 4.0 * acoustic);
   EXPECT_GT(s["time_of_first_peak"].get<double>(), 0.0);
   ASSERT_FALSE(s["max_jet_speed"].is_null());
   EXPECT_GT(s["max_jet_speed"].get<double>(), 5.0);  // faster than the carriage: the hole is 1/16 of the section
@@ -59,6 +60,25 @@ TEST(TankImpactScenario, E20A5ReportsAJetAndAFirstPressurePeak) {
   // plate's rim (0.4 % at this resolution, docs/fsi-contact.md); none goes through the piston.
   EXPECT_LT(s["particles_outside_max"].get<double>(), 0.01 * s["fluid_particles"].get<double>());
   EXPECT_LT(s["carriage_final_speed"].get<double>(), 5.0);
+}
+
+// E14A5 and E14A2 as given (fluid 4 mm, plate 2 mm, the elastic piston), to 0.35 ms: past the
+// first peak's window t <= 2.5 H/c0 = 0.31 ms, so the first peak is the full run's. The seed
+// measured 210-277 bar (four repeats) and 58-83 bar (three): ours must lie within those ranges
+// widened by 20 % (issue #27's acceptance). The one-body rigid impactor stays below them: the
+// piston's own bounce off the carriage is what makes the peak (docs/tank-impact.md#impactor).
+TEST(TankImpactScenario, E14FirstPeaksLieInTheMeasuredRanges) {
+  struct Case { const char* name; double low, high; };
+  for (const Case& c : {Case{"E14A5", 210e5, 277e5}, Case{"E14A2", 58e5, 83e5}}) {
+    SCOPED_TRACE(c.name);
+    nlohmann::json spec = example(c.name);
+    spec["run"]["end_time"] = 3.5e-4;
+    const double peak = runCoarse(c.name, spec)["first_pressure_peak"].get<double>();
+    EXPECT_GE(peak, 0.8 * c.low);
+    EXPECT_LE(peak, 1.2 * c.high);
+    spec["impactor"]["model"] = "rigid";
+    EXPECT_LT(runCoarse(c.name, spec)["first_pressure_peak"].get<double>(), 0.8 * c.low);
+  }
 }
 
 // FUA5: 2 mm plate with a U pre-crack: the tongue opens downwards (0 < angle < 90°).

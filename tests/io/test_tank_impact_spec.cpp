@@ -135,6 +135,68 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
   EXPECT_EQ(fieldOf(with({{"plate", {{"thicknes", 0.002}}}})), "plate.thicknes");
 }
 
+// `specimen` (Table 4): the specimen's plate and speed under the spec's own keys.
+TEST(TankImpactSpec, SpecimenSetsItsTestUnderTheSpecsKeys) {
+  nlohmann::json spec = minimal();
+  spec["specimen"] = "E14A5";
+  TankImpactSpec s = parseTankImpactSpec(spec);
+  EXPECT_EQ(s.specimen, "E14A5");
+  EXPECT_DOUBLE_EQ(s.plate.shell.thickness, 0.025);
+  EXPECT_NEAR(s.waterHeight, 0.180, 1e-15);  // 205 mm − e_p
+  EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::Hole);
+  EXPECT_DOUBLE_EQ(s.plate.precrack.holeDiameter, 0.014);
+  EXPECT_DOUBLE_EQ(s.impactor.speed, 5.0);
+  // The spec's values win; a pre-crack it gives replaces the specimen's whole.
+  spec["impactor"] = {{"speed", 3.0}};
+  spec["plate"] = {{"precrack", {{"shape", "U"}}}, {"spacing", 0.002}};
+  s = parseTankImpactSpec(spec);
+  EXPECT_DOUBLE_EQ(s.impactor.speed, 3.0);
+  EXPECT_DOUBLE_EQ(s.plate.shell.thickness, 0.025);
+  EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::U);
+  EXPECT_DOUBLE_EQ(s.plate.precrack.width, 0.020);
+  // F14E3A5's 3 mm cracks need the 1 mm plate spacing; TFA5 has no pre-crack; FUA2 is at 2 m/s.
+  spec = minimal();
+  spec["specimen"] = "F14E3A5";
+  s = parseTankImpactSpec(spec);
+  EXPECT_DOUBLE_EQ(s.plate.spacing, 0.001);
+  EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::HoleAndCracks);
+  spec["specimen"] = "TFA5";
+  s = parseTankImpactSpec(spec);
+  EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::None);
+  EXPECT_DOUBLE_EQ(s.plate.shell.thickness, 0.001);
+  spec["specimen"] = "FUA2";
+  EXPECT_DOUBLE_EQ(parseTankImpactSpec(spec).impactor.speed, 2.0);
+  // The resolved spec names the specimen and reads back to itself.
+  const nlohmann::json resolved = toJson(parseTankImpactSpec(spec));
+  EXPECT_EQ(resolved["specimen"], "FUA2");
+  EXPECT_EQ(toJson(parseTankImpactSpec(resolved)), resolved);
+  // An unknown one names the field and lists the specimens.
+  spec["specimen"] = "E14A9";
+  EXPECT_EQ(fieldOf(spec), "specimen");
+  try {
+    parseTankImpactSpec(spec);
+  } catch (const SpecError& e) {
+    EXPECT_NE(std::string(e.what()).find("TF14A5"), std::string::npos) << e.what();
+  }
+  spec["specimen"] = 3;
+  EXPECT_EQ(fieldOf(spec), "specimen");
+}
+
+// The impactor's keys within the tank's spec: the model, the piston, their errors.
+TEST(TankImpactSpec, ImpactorModelAndPiston) {
+  nlohmann::json spec = minimal();
+  EXPECT_EQ(parseTankImpactSpec(spec).impactor.model, fsi::ImpactorModel::ElasticPiston);
+  EXPECT_DOUBLE_EQ(parseTankImpactSpec(spec).impactor.pistonDiameter, 0.08);  // the bore
+  spec["tank"] = {{"inner_diameter", 0.06}};
+  EXPECT_DOUBLE_EQ(parseTankImpactSpec(spec).impactor.pistonDiameter, 0.06);
+  spec["impactor"] = {{"model", "rigid"}};
+  EXPECT_EQ(parseTankImpactSpec(spec).impactor.model, fsi::ImpactorModel::Rigid);
+  spec["impactor"]["piston"] = {{"length", 0.1}};
+  EXPECT_EQ(fieldOf(spec), "impactor.piston");
+  spec["impactor"] = {{"piston", {{"length", 0.0}}}};
+  EXPECT_EQ(fieldOf(spec), "impactor.piston.length");
+}
+
 TEST(TankImpactSpec, ResolvedSpecReadsBackToItself) {
   nlohmann::json j = minimal();
   j["description"] = "FXA5";

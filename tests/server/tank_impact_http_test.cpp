@@ -59,5 +59,38 @@ TEST(TankImpactHttp, TinyJobSweptOverTheCarriageSpeedReportsTheDocumentedSummary
   for (const auto& [name, unit] : documented) EXPECT_EQ(summary["units"][name], unit) << name;
 }
 
+// The campaign as one job (docs/tank-impact.md#the-campaign): a sweep over the seed's specimens, each
+// row with the seed's measurements beside ours (coarse and 20 µs here: the columns, not the physics).
+TEST(TankImpactHttp, CampaignSweptOverSpecimensCarriesTheSeedsMeasurements) {
+  LiveServer live;
+  auto client = live.client();
+  const Json inputs = {{"plate", {{"spacing", 0.004}}}, {"resolution", {{"spacing", 0.01}}}, {"run", {{"end_time", 2e-5}}}};
+  const Json body = {{"inputs", inputs}, {"sweep", {{"specimen", {"E14A5", "E20A2", "FUA5", "TF14A5"}}}}};
+  auto res = test::postJson(*client, "/processes/tank-impact/execution", body);
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  const std::string id = Json::parse(res->body)["jobID"].get<std::string>();
+  const Json done = test::waitForJob(*client, std::stoll(id), {"successful", "failed", "dismissed"}, 180);
+  ASSERT_EQ(done["status"], "successful") << done.dump();
+  const Json summary = getJson(*client, "/jobs/" + id + "/summary");
+  ASSERT_EQ(summary["rows"].size(), 4u) << summary.dump().substr(0, 500);
+  std::map<std::string, Json> bySpecimen;
+  for (const Json& row : summary["rows"]) {
+    const Json& values = row.contains("summary") ? row["summary"] : row;
+    bySpecimen[values["specimen"].get<std::string>()] = values;
+  }
+  ASSERT_EQ(bySpecimen.size(), 4u);
+  EXPECT_DOUBLE_EQ(bySpecimen["E14A5"]["seed_first_peak_low"].get<double>(), 210e5);   // §3.1.1
+  EXPECT_DOUBLE_EQ(bySpecimen["E14A5"]["seed_first_peak_high"].get<double>(), 277e5);
+  EXPECT_TRUE(bySpecimen["E14A5"]["seed_jet_speed"].is_null());
+  EXPECT_DOUBLE_EQ(bySpecimen["E20A2"]["seed_jet_speed"].get<double>(), 45.0);         // §5.1
+  EXPECT_NEAR(bySpecimen["FUA5"]["seed_tongue_angle"].get<double>(), 50.0 * 3.14159265358979 / 180, 1e-12);
+  EXPECT_DOUBLE_EQ(bySpecimen["TF14A5"]["seed_time_to_fracture"].get<double>(), 1.5e-3); // §5.3.2
+  EXPECT_NE(bySpecimen["TF14A5"]["seed_outcome"].get<std::string>().find("rim"), std::string::npos);
+  EXPECT_DOUBLE_EQ(bySpecimen["E20A2"]["carriage_initial_speed"].get<double>(), 2.0);  // the specimen's speed
+  EXPECT_EQ(summary["units"]["seed_first_peak_low"], "Pa");
+  EXPECT_EQ(summary["units"]["seed_tongue_angle"], "rad");
+}
+
 }  // namespace
 }  // namespace rupture::server

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "fsi/piston_drive.hpp"
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
 #include "scenarios/fluid/fluid_run_loop.hpp"
@@ -27,16 +28,26 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
 
   sph::SphSystem s;
   RunOutcome cancelled;
-  const std::optional<ColumnLattice> built = setUpFluidRun(
-      s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] { return buildPistonColumn(s, spec); });
+  std::optional<fsi::PistonDrive> drive;  // the impactor's column, when the spec has one
+  const std::optional<ColumnLattice> built =
+      setUpFluidRun(s, control, resultPath, "piston-column", toJson(spec), json, wallStart, cancelled, [&] {
+        ColumnLattice column = buildPistonColumn(s, spec);
+        // The column carries real masses: the fluid's force on the lattice's section scales to the bore.
+        if (spec.impactor)
+          drive.emplace(s, kColumnPiston, *spec.impactor, 0.25 * std::numbers::pi * spec.diameter * spec.diameter / column.area);
+        return column;
+      });
   if (!built) return cancelled;
   const ColumnLattice& g = *built;
   const std::size_t fluidCount = fluidParticleCount(s);
   const sph::RigidBody& piston = s.bodies[kColumnPiston];
-  const double v0 = piston.speed, rho0 = s.model.eos.referenceDensity;
+  // The impact speed: the carriage's with an impactor (the piston starts at rest), else the piston's.
+  const double v0 = spec.impactor ? spec.impactor->speed : piston.speed, rho0 = s.model.eos.referenceDensity;
   logStage(control, "piston column: " + std::to_string(fluidCount) + " fluid and " +
                         std::to_string(s.particles.size() - fluidCount) + " boundary particles, piston " +
-                        sph::toString(piston.motion) + " at " + formatNumber(v0) + " m/s");
+                        (spec.impactor ? "struck by a carriage (" + fsi::toString(spec.impactor->model) + ")"
+                                       : sph::toString(piston.motion)) +
+                        " at " + formatNumber(v0) + " m/s");
 
   io::FluidRecorder recorder =
       openFluidRecorder(resultPath, "piston-column", pistonColumnSeriesFields(), dim, spec.probes,
@@ -58,7 +69,7 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
   double peakProbe = 0, maxDensityError = 0;
   std::int64_t outsideMax = 0;
   std::vector<double> probes(spec.probes.size());
-  double lastStep = 0;
+  double lastStep = 0, maxFaceSpeed = piston.speed;
   auto row = [&] {
     const sph::FluidParticles& p = s.particles;
     double densityError = 0;
@@ -85,17 +96,24 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
   auto afterStep = [&](double dt) {
     lastStep = dt;
     bottomPeaks.observe(s.time, bottomPressure());
+    maxFaceSpeed = std::max(maxFaceSpeed, piston.speed);
+  };
+  auto advance = [&](double dt) {
+    if (drive) drive->beforeFluidStep(dt);
+    s.step(dt);
   };
   auto snapshot = [&](const std::string& trigger) { recorder.writeSnapshot(s, trigger); };
   auto state = [&](StateArchive& a) {
     recorder.exchangeState(a);
+    if (drive) drive->exchangeState(a);
     StateGroup observed(a, "observed");
     a.record("bottom_peaks", bottomPeaks);
     a.value("peak_probe", peakProbe), a.value("max_density_error", maxDensityError);
     a.value("outside_max", outsideMax), a.value("last_step", lastStep);
+    a.value("max_face_speed", maxFaceSpeed);
   };
   const FluidLoopOutcome loop =
-      runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep);
+      runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep, advance);
   // A cancelled run ends at once: no final snapshot of millions of particles (seconds to write).
   if (loop.stopReason != "cancelled") recorder.writeSnapshot(s, "final");
 
@@ -107,12 +125,17 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
       {"time_of_first_peak", bottomPeaks.firstTime},
       {"acoustic_pressure", rho0 * spec.soundSpeed * v0},
       {"shock_pressure", v0 > 0 ? nlohmann::json(shock.pressure) : nlohmann::json(0.0)},
-      {"piston_initial_speed", v0},
+      {"piston_initial_speed", spec.impactor ? 0.0 : v0},
+      {"max_piston_speed", maxFaceSpeed},
+      {"impactor_model", spec.impactor ? nlohmann::json(fsi::toString(spec.impactor->model)) : nlohmann::json(nullptr)},
+      {"carriage_final_speed",
+       drive ? nlohmann::json(drive->column().carriageSpeed()) : nlohmann::json(nullptr)},
       {"piston_final_speed", piston.speed},
       {"piston_final_position", piston.displacement},
       {"piston_impulse", -(piston.impulse[0] * piston.axis[0] + piston.impulse[1] * piston.axis[1] +
                            piston.impulse[2] * piston.axis[2])},
-      {"piston_mass", piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
+      {"piston_mass", drive ? nlohmann::json(drive->column().pistonMass())
+                      : piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
       {"section_area", g.area}};
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, fluidCount, spec.soundSpeed},
                         std::move(summary), pistonColumnSummaryFields(), dim, control, wallStart, checkpoints);

@@ -65,6 +65,20 @@ PistonColumnSpec parsePistonColumnSpec(const nlohmann::json& json) {
     s.piston.history.speed = {s.piston.speed};
   }
   s.run = io::parseFluidRun(root, 1e-3);
+  if (const auto imp = root.optionalObject("impactor")) {
+    if (root.has("piston"))
+      root.fail("impactor", "either piston or impactor, not both (the impactor drives the piston)");
+    if (s.dimension != 3)
+      root.fail("impactor", "an impactor in 3D only (dimension 3): its piston is a bar of real section");
+    s.impactor = parseImpactor(*imp, s.diameter, s.run.endTime);
+    if (s.impactor->model == fsi::ImpactorModel::Rigid) {  // the free piston of mass M
+      s.piston.motion = sph::BodyMotion::Free;
+      s.piston.mass = s.impactor->mass;
+      s.piston.speed = s.impactor->speed;
+      s.piston.history = {{0.0}, {s.piston.speed}};
+      s.impactor.reset();
+    }
+  }
   root.finish();
   s.probes = io::parseProbes(json, s.dimension);
 
@@ -110,7 +124,8 @@ nlohmann::json toJson(const PistonColumnSpec& s) {
   } else {
     piston["speed_history"] = {{"time", s.piston.history.time}, {"speed", s.piston.history.speed}};
   }
-  j["piston"] = piston;
+  if (s.impactor) j["impactor"] = toJson(*s.impactor);
+  else j["piston"] = piston;
   j["probes"] = io::probesJson(s.probes, s.dimension);
   j["run"] = io::toJson(s.run);
   return j;

@@ -3,11 +3,13 @@
 // closed by a rigid bottom and hit by a piston (prescribed speed, or a free body of mass M and
 // initial speed V, as in Caleyron et al. 2013 §2). Contract: api/schemas/piston-column.schema.json, docs/sph.md.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "scenarios/fluid/impactor_spec.hpp"
 #include "sph/fluid_spec.hpp"
 #include "sph/rigid_body.hpp"
 
@@ -30,6 +32,9 @@ struct PistonColumnSpec {
   double soundSpeed = 1450.0;   ///< c0 resolved (m/s)
   double gravity = 9.81;        ///< m/s², along −y (2D) or −z (3D)
   PistonSpec piston;
+  /// The carriage striking a piston of its own (`impactor`, 3D only; fsi/impactor_column.hpp):
+  /// the piston body is then driven by the impactor column. Absent: `piston` alone.
+  std::optional<fsi::ImpactorSpec> impactor;
   std::vector<std::array<double, 3>> probes;
   io::FluidRunSpec run;
   double estimatedParticles = 0;  ///< fluid and wall particles the run will hold

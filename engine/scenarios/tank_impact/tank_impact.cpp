@@ -1,8 +1,8 @@
 // The tank-impact scenario (Caleyron et al. 2013 §2, issue 11): the piston-column set-up with its rigid bottom
 // replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
-// fluid–shell contact of engine/fsi (pinball or master–slave). The carriage and piston are one
-// free rigid body of mass M hitting the column at V; the water goes through the hole or the
-// opened cracks. Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md; contact:
+// fluid–shell contact of engine/fsi (pinball or master–slave). The carriage strikes the piston
+// at V (fsi/impactor_column.hpp: an elastic or a rigid piston, or carriage and piston one rigid
+// body of mass M); the water goes through the hole or the opened cracks. Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md; contact:
 // docs/fsi-contact.md.
 #include <algorithm>
 #include <chrono>
@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "fsi/fluid_shell_coupling.hpp"
+#include "fsi/piston_drive.hpp"
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid/fluid_run_loop.hpp"
 #include "scenarios/fluid/pressure_peaks.hpp"
@@ -20,6 +21,7 @@
 #include "scenarios/tank_impact/plate_observables.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
 #include "scenarios/tank_impact/tank_impact_results.hpp"
+#include "scenarios/tank_impact/seed_specimens.hpp"
 #include "scenarios/tank_impact/tank_impact_spec.hpp"
 #include "scenarios/tank_impact/tank_lattice.hpp"
 
@@ -97,11 +99,15 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   lattice.gravity = spec.gravity;
   // The plate is built inside the cancellable set-up too: at fine spacings it holds a million nodes.
   std::optional<SphShell> plateBuilt;
+  std::optional<fsi::PistonDrive> drive;  // the carriage and piston as two bodies (not `rigid`)
   const PlateGeometry geometry = plateGeometry(spec.plate);
   RunOutcome cancelled;
   const std::optional<TankLattice> built =
       setUpFluidRun(s, control, resultPath, "tank-impact", toJson(spec), json, wallStart, cancelled, [&] {
         TankLattice tank = buildTankLattice(s, lattice);
+        // The column carries real masses: the fluid's force on the lattice's section scales to the bore.
+        if (spec.impactor.model != fsi::ImpactorModel::Rigid)
+          drive.emplace(s, kTankPiston, spec.impactor, std::numbers::pi * lattice.radius * lattice.radius / tank.area);
         s.cancel.throwIfRequested();
         plateBuilt.emplace(buildPlate(spec.plate, geometry));
         return tank;
@@ -125,7 +131,12 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
                         std::to_string(s.particles.size() - g.fluidParticles) + " boundary particles, " +
                         std::to_string(plate.size()) + " plate nodes, " + contactMethodName(spec.contact.method) +
                         " contact, carriage " + formatNumber(spec.impactor.mass) + " kg at " +
-                        formatNumber(spec.impactor.speed) + " m/s");
+                        formatNumber(spec.impactor.speed) + " m/s, impactor " + fsi::toString(spec.impactor.model));
+  // Carriage and piston face: the column's points, or the one rigid body.
+  auto carriageDisplacement = [&] { return drive ? drive->column().carriageDisplacement() : piston.displacement; };
+  auto carriageSpeed = [&] { return drive ? drive->column().carriageSpeed() : piston.speed; };
+  auto faceSpeed = [&] { return drive ? drive->column().faceSpeed() : piston.speed; };
+  double maxFaceSpeed = faceSpeed();
 
   io::FluidRecorder recorder = openFluidRecorder(resultPath, "tank-impact", tankImpactSeriesFields(), 3, spec.probes,
                                                  checkpoints.continueFrom());
@@ -184,7 +195,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     outsideMax = std::max(outsideMax, outside);
     const double deflection = deflectionAtRadius(plate, geometry, deflectionRadius);
     maxDeflection = std::max(maxDeflection, deflection);
-    recorder.appendRow({s.time, gauge(), piston.displacement, piston.speed, jet, deflection,
+    recorder.appendRow({s.time, gauge(), carriageDisplacement(), carriageSpeed(), faceSpeed(),
+                        drive ? drive->column().contactForce() : 0.0, jet, deflection,
                         uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0, crackedLength(plate, geometry),
                         static_cast<double>(below), -coupling.plateForce()[2], s.fluidMass(), densityError, lastStep},
                        probes);
@@ -192,15 +204,20 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   auto afterStep = [&](double dt) {
     lastStep = dt;
     gaugePeaks.observe(s.time, gauge());
+    maxFaceSpeed = std::max(maxFaceSpeed, faceSpeed());
     if (std::isnan(timeToFracture) && plate.fracturedCount() > initiallyFractured) timeToFracture = s.time;
   };
   auto snapshot = [&](const std::string& trigger) {
     recorder.writeSnapshot(s, trigger, plateSnapshot(plate, spec.plate.shell.density));
   };
-  auto advance = [&](double dt) { coupling.step(dt); };
+  auto advance = [&](double dt) {
+    if (drive) drive->beforeFluidStep(dt);
+    coupling.step(dt);
+  };
   auto state = [&](StateArchive& a) {
     plate.exchangeState(a);
     coupling.exchangeState(a);
+    if (drive) drive->exchangeState(a);
     recorder.exchangeState(a);
     StateGroup observed(a, "observed");
     a.record("gauge_peaks", gaugePeaks);
@@ -208,6 +225,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     a.value("max_jet", maxJet), a.value("last_jet", lastJet), a.value("max_deflection", maxDeflection);
     a.value("last_step", lastStep), a.value("time_to_fracture", timeToFracture), a.value("any_jet", anyJet);
     a.value("outside_max", outsideMax), a.value("below_count", belowCount);
+    a.value("max_face_speed", maxFaceSpeed);
   };
   const FluidLoopOutcome loop =
       runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep, advance);
@@ -237,15 +255,32 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"fractured_nodes", static_cast<std::int64_t>(plate.fracturedCount() - initiallyFractured)},
       {"fluid_below_final", belowCount},
       {"carriage_initial_speed", spec.impactor.speed},
-      {"carriage_final_speed", piston.speed},
-      {"carriage_final_displacement", piston.displacement},
+      {"carriage_final_speed", carriageSpeed()},
+      {"carriage_final_displacement", carriageDisplacement()},
       {"carriage_mass", spec.impactor.mass},
+      {"impactor_model", fsi::toString(spec.impactor.model)},
+      {"piston_mass", nullUnless(drive.has_value(), drive ? drive->column().pistonMass() : 0.0)},
+      {"max_piston_face_speed", maxFaceSpeed},
+      {"piston_final_speed", nullUnless(drive.has_value(), drive ? drive->column().pistonSpeed() : 0.0)},
       {"plate_nodes", static_cast<std::int64_t>(plate.size())},
       {"shell_steps", static_cast<std::int64_t>(coupling.shellSteps())},
       {"fluid_time_s", coupling.timings().fluid},
       {"shell_time_s", coupling.timings().shell},
       {"contact_time_s", coupling.timings().contact},
       {"contact_method", contactMethodName(spec.contact.method)}};
+  // The seed's measurements on this specimen, beside ours (null where the seed gives none).
+  const SeedSpecimen* seed = spec.specimen.empty() ? nullptr : findSeedSpecimen(spec.specimen);
+  auto seedValue = [&](double SeedSpecimen::*field) {
+    return seed && !std::isnan(seed->*field) ? nlohmann::json(seed->*field) : nlohmann::json(nullptr);
+  };
+  summary["specimen"] = seed ? nlohmann::json(seed->name) : nlohmann::json(nullptr);
+  summary["seed_first_peak_low"] = seedValue(&SeedSpecimen::firstPeakLow);
+  summary["seed_first_peak_high"] = seedValue(&SeedSpecimen::firstPeakHigh);
+  summary["seed_jet_speed"] = seedValue(&SeedSpecimen::jetSpeed);
+  summary["seed_simulated_jet_speed"] = seedValue(&SeedSpecimen::simulatedJetSpeed);
+  summary["seed_tongue_angle"] = seedValue(&SeedSpecimen::tongueAngle);
+  summary["seed_time_to_fracture"] = seedValue(&SeedSpecimen::timeToFracture);
+  summary["seed_outcome"] = seed ? nlohmann::json(seed->outcome) : nlohmann::json(nullptr);
   return finishFluidRun(recorder, s, loop, {mass0, maxDensityError, outsideMax, g.fluidParticles, spec.soundSpeed},
                         std::move(summary), tankImpactSummaryFields(), 3, control, wallStart, checkpoints);
 }

@@ -7,6 +7,7 @@
 #include "core/format_number.hpp"
 #include "plasticity/material_presets.hpp"
 #include "scenarios/tank_impact/plate_geometry.hpp"
+#include "scenarios/tank_impact/seed_specimens.hpp"
 
 namespace rupture {
 
@@ -133,6 +134,25 @@ void requireInsideWater(const std::array<double, 3>& p, const std::string& field
                         "] m (the tank axis is z, the plate's mid-surface z = 0, its upper face z = thickness/2)");
 }
 
+/// The user's spec over the specimen's: objects merge key by key, the user's values win, and a
+/// pre-crack the user gives replaces the specimen's whole (its sizes belong to its shape).
+nlohmann::json overSpecimen(nlohmann::json base, const nlohmann::json& user, const std::string& path) {
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string at = path.empty() ? it.key() : path + "." + it.key();
+    if (at != "plate.precrack" && base.contains(it.key()) && base[it.key()].is_object() && it.value().is_object())
+      base[it.key()] = overSpecimen(base[it.key()], it.value(), at);
+    else
+      base[it.key()] = it.value();
+  }
+  return base;
+}
+
+std::string specimenList() {
+  std::string out;
+  for (const std::string& name : seedSpecimenNames()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
 }  // namespace
 
 std::string toString(PrecrackShape shape) {
@@ -149,11 +169,21 @@ std::string toString(PrecrackShape shape) {
 
 std::string toString(ContactMethod method) { return method == ContactMethod::Pinball ? "pinball" : "master_slave"; }
 
-TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
+TankImpactSpec parseTankImpactSpec(const nlohmann::json& input) {
+  // A seed specimen (Table 4) fills in its plate and speed under what the spec gives.
+  nlohmann::json json = input;
+  const SeedSpecimen* specimen = nullptr;
+  if (input.is_object() && input.contains("specimen")) {
+    const nlohmann::json& name = input["specimen"];
+    if (!name.is_string() || !(specimen = findSeedSpecimen(name.get<std::string>())))
+      throw SpecError("specimen", io::describeValue(name), "one of the seed's specimens (Table 4): " + specimenList());
+    json = overSpecimen(specimen->spec, input, "");
+  }
   const nlohmann::json rest = io::withoutPointArrays(json, {"probes", "gauge"});  // the reader holds a reference
   const SpecReader root(rest, "");
   root.choice("scenario", {kScenarioName});
   TankImpactSpec s;
+  if (specimen) s.specimen = root.choice("specimen", seedSpecimenNames());
   s.description = root.string("description", "");
   s.resolution = io::parseResolution(root);
   const auto tank = root.optionalObject("tank");
@@ -168,11 +198,6 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
   if (!(s.waterHeight > 0.0))
     throw SpecError("tank.water_height", "(default) " + formatNumber(s.waterHeight),
                     "a height > 0 (m): the default 0.205 m − plate.thickness is not, give tank.water_height");
-  if (const auto imp = root.optionalObject("impactor")) {
-    s.impactor.mass = imp->number("mass", Range::positive(), "kg", s.impactor.mass);
-    s.impactor.speed = imp->number("speed", Range::nonNegative(), "m/s", s.impactor.speed);
-    imp->finish();
-  }
   if (const auto contact = root.optionalObject("contact")) {
     s.contact.method = contact->choice("method", {"pinball", "master_slave"}, "pinball") == "pinball"
                            ? ContactMethod::Pinball
@@ -185,6 +210,8 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& json) {
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 1450.0;  // seed Table 3: water c = 1450 m/s
   s.gravity = root.number("gravity", Range::nonNegative(), "m/s^2", s.gravity);
   s.run = io::parseFluidRun(root, 3e-3);  // the seed's figures end at 2.5–3.5 ms
+  s.impactor.pistonDiameter = s.innerDiameter;
+  if (const auto imp = root.optionalObject("impactor")) s.impactor = parseImpactor(*imp, s.innerDiameter, s.run.endTime);
   root.finish();
 
   // Geometry against the resolution.
@@ -229,7 +256,8 @@ nlohmann::json toJson(const TankImpactSpec& s) {
   nlohmann::json j = {{"scenario", kScenarioName}};
   if (!s.description.empty()) j["description"] = s.description;
   j["tank"] = {{"inner_diameter", s.innerDiameter}, {"water_height", s.waterHeight}};
-  j["impactor"] = {{"mass", s.impactor.mass}, {"speed", s.impactor.speed}};
+  if (!s.specimen.empty()) j["specimen"] = s.specimen;
+  j["impactor"] = toJson(s.impactor);
   const PlateSpec& p = s.plate;
   const ShellParameters& sh = p.shell;
   const auto& h = sh.material.hardening;

@@ -1,8 +1,8 @@
 #pragma once
 // The tank-impact scenario's spec (Caleyron et al. 2013 §2): a water column in the steel cylinder (inner
 // diameter D, rigid wall), closed at the bottom by the AU4G plate clamped on the rim of its Ø D spot
-// face (SPH shell), hit through the piston by the carriage (one rigid body of mass M, initial speed
-// V). The plate has a thickness, and optionally a central hole and pre-cracks (U, X, I, radial).
+// face (SPH shell), hit through the piston by the carriage (mass M, initial speed V; the piston
+// elastic, rigid, or one body with the carriage: fsi/impactor_column.hpp). The plate has a thickness, and optionally a central hole and pre-cracks (U, X, I, radial).
 // Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md. SI units.
 //
 // Frame: the tank axis is z; the plate's mid-surface is the plane z = 0 (its reference frame is
@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fsi/contact_method.hpp"  // ContactMethod (engine/fsi owns it: the contact code selects on it)
+#include "scenarios/fluid/impactor_spec.hpp"   // ImpactorSpec: the carriage, the piston and their contact
 #include "sph/fluid_spec.hpp"
 #include "shell/shell_parameters.hpp"
 
@@ -50,21 +51,18 @@ struct ContactSpec {
   ContactMethod method = ContactMethod::Pinball;
 };
 
-/// Carriage + piston: one rigid body driving the water column from its top face.
-struct ImpactorSpec {
-  double mass = 245.0;  ///< M (kg)
-  double speed = 5.0;   ///< V (m/s), downwards, at t = 0
-};
-
 struct TankImpactSpec {
   std::string description;
+  /// A seed specimen (Table 4: "E14A5", …; seed_specimens.hpp) whose plate and speed the spec
+  /// starts from, and whose measurements the summary reports beside ours; empty: none.
+  std::string specimen;
   double innerDiameter = 0.08;   ///< D (m)
   double waterHeight = 0.180;    ///< H (m); default 0.205 − plate thickness (seed: H = 205 mm − e_p)
   io::ResolutionSpec resolution; ///< fluid spacing dx, h/dx, wall layers
   io::FluidSpec fluid;
   double soundSpeed = 1450.0;    ///< c0 resolved (m/s)
   double gravity = 9.81;         ///< m/s² along −z
-  ImpactorSpec impactor;
+  fsi::ImpactorSpec impactor;
   PlateSpec plate;
   ContactSpec contact;
   /// Pressure gauge position (m). Default: the seed's sensor on the cylinder's underside, read in
