@@ -10,7 +10,7 @@
 // strike again); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
 // lumped masses ρ A ℓ (half at the two faces). A rigid piston (`two_body`) is one point of mass
 // ρ A L. The water pushes the wetted face back with the force the fluid gives the SPH piston
-// (FluidPistonDrive). Velocity Verlet, sub-cycled within the fluid's step at the column's own stable
+// (piston_drive.hpp). Velocity Verlet, sub-cycled within the fluid's step at the column's own stable
 // step. Docs: docs/tank-impact.md#impactor; the bar-impact solution it is tested against:
 // docs/references.md#eq-bar-impact.
 #include <cstddef>
