@@ -14,6 +14,8 @@
 
 #include "io/hdf5_file.hpp"
 #include "rupture/run.hpp"
+#include "rupture/spec_error.hpp"
+#include "scenarios/piston_column/piston_column_spec.hpp"
 #include "support/test_support.hpp"
 
 namespace rupture {
@@ -93,6 +95,39 @@ TEST(PistonImpactor, RigidImpactorIsTheFreePiston) {
   // The incident plateau: ρ0 c0 V within 5 % (docs/sph.md).
   const double incident = meanBetween(s, s.gauge, 1.2e-4, 1.9e-4);
   EXPECT_NEAR(incident, 1000.0 * kSoundSpeed * 5.0, 0.05 * 1000.0 * kSoundSpeed * 5.0);
+}
+
+// The impactor in the piston-column spec: 3D only, instead of `piston`, `rigid` is the free piston,
+// and the resolved spec reads back to itself.
+TEST(PistonImpactor, SpecTakesTheImpactorInsteadOfThePiston) {
+  auto fieldOf = [](const nlohmann::json& spec) {
+    try {
+      parsePistonColumnSpec(spec);
+    } catch (const SpecError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  nlohmann::json spec = column({{"model", "elastic_piston"}});
+  const PistonColumnSpec parsed = parsePistonColumnSpec(spec);
+  ASSERT_TRUE(parsed.impactor.has_value());
+  EXPECT_DOUBLE_EQ(parsed.impactor->pistonDiameter, 0.08);  // the tube's bore
+  const nlohmann::json resolved = toJson(parsed);
+  EXPECT_EQ(toJson(parsePistonColumnSpec(resolved)), resolved);
+  nlohmann::json flat = spec;
+  flat["dimension"] = 2;
+  flat["probes"] = {{0.0, 0.1}};
+  EXPECT_EQ(fieldOf(flat), "impactor");
+  nlohmann::json both = spec;
+  both["piston"] = {{"motion", "free"}};
+  EXPECT_EQ(fieldOf(both), "impactor");
+  const PistonColumnSpec rigid = parsePistonColumnSpec(column({{"model", "rigid"}, {"mass", 100.0}, {"speed", 3.0}}));
+  EXPECT_FALSE(rigid.impactor.has_value());
+  EXPECT_EQ(rigid.piston.motion, sph::BodyMotion::Free);
+  EXPECT_DOUBLE_EQ(rigid.piston.mass, 100.0);
+  EXPECT_DOUBLE_EQ(rigid.piston.speed, 3.0);
+  spec["impactor"]["piston"] = {{"elements", 0}};
+  EXPECT_EQ(fieldOf(spec), "impactor.piston.elements");
 }
 
 }  // namespace
