@@ -83,7 +83,6 @@ void ImpactorColumn::advance(double dt, double faceForce) {
     for (std::size_t i = 0; i < m_mass.size(); ++i) m_v[i] += 0.5 * h * m_f[i] / m_mass[i];
   }
   m_faceWork += faceForce * (m_u.back() - faceStart);
-  m_subSteps += static_cast<std::size_t>(n);
 }
 
 double ImpactorColumn::pistonMass() const {
@@ -126,7 +125,6 @@ void ImpactorColumn::exchangeState(StateArchive& archive) {
   archive.array("displacement", m_u);
   archive.array("speed", m_v);
   archive.value("face_work", m_faceWork);
-  archive.value("sub_steps", m_subSteps);
 }
 
 }  // namespace rupture::fsi

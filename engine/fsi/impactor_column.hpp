@@ -71,17 +71,15 @@ public:
   /// The piston's mean speed Σ m_i v_i / Σ m_i (m/s) and its mass (kg).
   double pistonSpeed() const;
   double pistonMass() const;
-  double carriageMass() const { return m_mass.front(); }
   /// Momentum Σ m v (kg m/s) and energy: kinetic, and elastic in the bar and the contact (J).
   double momentum() const;
   double kineticEnergy() const;
   double elasticEnergy() const;
   /// Work the face force has done on the column since t = 0 (J).
   double faceWork() const { return m_faceWork; }
-  std::size_t subSteps() const { return m_subSteps; }
   std::size_t nodes() const { return m_u.size(); }
 
-  /// The points' displacements and speeds, the face work and the step count (docs/checkpoints.md).
+  /// The points' displacements and speeds and the face work (docs/checkpoints.md).
   void exchangeState(StateArchive& archive);
 
 private:
@@ -93,7 +91,6 @@ private:
   double m_gravity = 0;           ///< m/s² along the motion
   double m_stableStep = 0;        ///< s
   double m_faceWork = 0;          ///< J
-  std::size_t m_subSteps = 0;
 };
 
 }  // namespace rupture::fsi

@@ -2,21 +2,9 @@
 
 namespace rupture::fsi {
 
-namespace {
-
-double axialGravity(const sph::SphSystem& fluid, const sph::RigidBody& b) {
-  return fluid.model.gravity[0] * b.axis[0] + fluid.model.gravity[1] * b.axis[1] + fluid.model.gravity[2] * b.axis[2];
-}
-
-double axialImpulse(const sph::RigidBody& b) {
-  return b.impulse[0] * b.axis[0] + b.impulse[1] * b.axis[1] + b.impulse[2] * b.axis[2];
-}
-
-}  // namespace
-
 PistonDrive::PistonDrive(sph::SphSystem& fluid, std::int32_t body, const ImpactorSpec& spec, double areaScale)
     : m_fluid(fluid), m_body(body), m_areaScale(areaScale),
-      m_column(spec, axialGravity(fluid, fluid.bodies[body])) {
+      m_column(spec, fluid.bodies[body].along(fluid.model.gravity)) {
   sph::RigidBody& b = fluid.bodies[body];
   b.motion = sph::BodyMotion::Driven;
   b.speed = m_column.faceSpeed();  // the piston is at rest when the carriage strikes it
@@ -26,12 +14,12 @@ void PistonDrive::beforeFluidStep(double dt) {
   sph::RigidBody& b = m_fluid.bodies[m_body];
   // The fluid's mean force over the last step: its impulse then (trapezoidal in the body's forces
   // at the step's two ends); before the first step, the force of the initial state.
-  const double impulse = axialImpulse(b), elapsed = m_fluid.time - m_lastTime;
-  m_faceForce = m_areaScale * (elapsed > 0 ? (impulse - m_lastImpulse) / elapsed : b.axialForce());
+  const double impulse = b.along(b.impulse), elapsed = m_fluid.time - m_lastTime;
+  const double faceForce = m_areaScale * (elapsed > 0 ? (impulse - m_lastImpulse) / elapsed : b.axialForce());
   m_lastImpulse = impulse;
   m_lastTime = m_fluid.time;
   const double start = m_column.faceDisplacement();
-  m_column.advance(dt, m_faceForce);
+  m_column.advance(dt, faceForce);
   b.speed = (m_column.faceDisplacement() - start) / dt;
 }
 
@@ -40,7 +28,6 @@ void PistonDrive::exchangeState(StateArchive& archive) {
   m_column.exchangeState(archive);
   archive.value("last_impulse", m_lastImpulse);
   archive.value("last_time", m_lastTime);
-  archive.value("face_force", m_faceForce);
 }
 
 }  // namespace rupture::fsi

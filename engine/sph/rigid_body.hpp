@@ -57,7 +57,9 @@ struct RigidBody {
   /// Indices of its particles in the store (refreshed whenever the store is reordered).
   std::vector<std::int32_t> members;
 
-  double axialForce() const { return force[0] * axis[0] + force[1] * axis[1] + force[2] * axis[2]; }
+  /// A vector's component along the axis (the force's, the impulse's, gravity's).
+  double along(const std::array<double, 3>& v) const { return v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2]; }
+  double axialForce() const { return along(force); }
 };
 
 }  // namespace rupture::sph

@@ -13,8 +13,7 @@ namespace {
 
 double bodyAcceleration(const RigidBody& b, const FluidModel& m) {
   if (b.motion != BodyMotion::Free) return 0.0;
-  const double g = m.gravity[0] * b.axis[0] + m.gravity[1] * b.axis[1] + m.gravity[2] * b.axis[2];
-  return b.axialForce() / b.mass + g;
+  return b.axialForce() / b.mass + b.along(m.gravity);
 }
 
 }  // namespace

@@ -195,6 +195,10 @@ TEST(TankImpactSpec, ImpactorModelAndPiston) {
   EXPECT_EQ(fieldOf(spec), "impactor.piston");
   spec["impactor"] = {{"piston", {{"length", 0.0}}}};
   EXPECT_EQ(fieldOf(spec), "impactor.piston.length");
+  // The default impactor is checked as a given one: a run it could not finish names the run's length.
+  spec = minimal();
+  spec["run"] = {{"end_time", 1e4}};
+  EXPECT_EQ(fieldOf(spec), "run.end_time");
 }
 
 TEST(TankImpactSpec, ResolvedSpecReadsBackToItself) {

@@ -48,12 +48,16 @@ ImpactorSpec parseImpactor(const io::SpecReader& r, double bore, double endTime)
   // The column must finish: its sub-steps over the run, times its points, are bounded.
   const ImpactorColumn column(s, 0.0);
   const double pointSteps = std::ceil(endTime / column.stableTimeStep()) * static_cast<double>(column.nodes());
-  if (pointSteps > 1e9)
-    throw SpecError(r.pathOf("contact_stiffness"), formatNumber(s.contactStiffness),
-                    "a column that steps at most 1e9 point-steps over run.end_time (this one: stable step " +
-                        formatNumber(column.stableTimeStep()) + " s, " + std::to_string(column.nodes()) +
-                        " points, " + formatNumber(pointSteps) +
-                        "): a softer contact, fewer piston.elements or a longer piston");
+  if (pointSteps > 1e9) {
+    const std::string cost = "a column that steps at most 1e9 point-steps over run.end_time (this one: stable step " +
+                             formatNumber(column.stableTimeStep()) + " s, " + std::to_string(column.nodes()) +
+                             " points, " + formatNumber(pointSteps) + " point-steps)";
+    // Name what the user chose: the contact and piston they gave, else the run's length.
+    if (r.has("contact_stiffness") || r.has("piston"))
+      throw SpecError(r.pathOf("contact_stiffness"), formatNumber(s.contactStiffness),
+                      cost + ": a softer contact, fewer piston.elements or a longer piston");
+    throw SpecError("run.end_time", formatNumber(endTime), cost + ": a shorter run");
+  }
   return s;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The `impactor` object of the tank-impact and piston-column specs (schema part
-// api/schemas/tank-impact.schema.json#/$defs/impactor, docs/tank-impact.md#impactor): the model,
-// the carriage, the piston and their contact. SI units.
+// api/schemas/parts/impactor.schema.json, docs/tank-impact.md#impactor): the model, the carriage,
+// the piston and their contact. SI units.
 #include <nlohmann/json.hpp>
 
 #include "fsi/impactor_column.hpp"

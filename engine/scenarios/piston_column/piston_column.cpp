@@ -132,8 +132,7 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
        drive ? nlohmann::json(drive->column().carriageSpeed()) : nlohmann::json(nullptr)},
       {"piston_final_speed", piston.speed},
       {"piston_final_position", piston.displacement},
-      {"piston_impulse", -(piston.impulse[0] * piston.axis[0] + piston.impulse[1] * piston.axis[1] +
-                           piston.impulse[2] * piston.axis[2])},
+      {"piston_impulse", -piston.along(piston.impulse)},
       {"piston_mass", drive ? nlohmann::json(drive->column().pistonMass())
                       : piston.motion == sph::BodyMotion::Free ? nlohmann::json(piston.mass) : nlohmann::json(nullptr)},
       {"section_area", g.area}};

@@ -12,7 +12,6 @@ namespace rupture {
 
 struct SeedSpecimen {
   std::string name;            ///< Table 4's code: "E14A5", "FUA2", …
-  int testNumber = 0;          ///< Table 4's first test number with this specimen and speed
   /// The spec the specimen stands for: plate thickness and pre-crack, impact speed, and the plate
   /// spacing where the pre-crack needs a finer one (F14E3A5's 3 mm cracks).
   nlohmann::json spec;

@@ -2,8 +2,8 @@
 // replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
 // fluid–shell contact of engine/fsi (pinball or master–slave). The carriage strikes the piston
 // at V (fsi/impactor_column.hpp: an elastic or a rigid piston, or carriage and piston one rigid
-// body of mass M); the water goes through the hole or the opened cracks. Contract: api/schemas/tank-impact.schema.json, docs/tank-impact.md; contact:
-// docs/fsi-contact.md.
+// body of mass M); the water goes through the hole or the opened cracks. Contract:
+// api/schemas/tank-impact.schema.json, docs/tank-impact.md; contact: docs/fsi-contact.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

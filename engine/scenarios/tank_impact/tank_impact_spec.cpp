@@ -210,8 +210,10 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& input) {
   s.soundSpeed = s.fluid.soundSpeed ? *s.fluid.soundSpeed : 1450.0;  // seed Table 3: water c = 1450 m/s
   s.gravity = root.number("gravity", Range::nonNegative(), "m/s^2", s.gravity);
   s.run = io::parseFluidRun(root, 3e-3);  // the seed's figures end at 2.5–3.5 ms
-  s.impactor.pistonDiameter = s.innerDiameter;
-  if (const auto imp = root.optionalObject("impactor")) s.impactor = parseImpactor(*imp, s.innerDiameter, s.run.endTime);
+  // An absent impactor is the default one, checked as a given one is (its cost over run.end_time).
+  const nlohmann::json noImpactor = nlohmann::json::object();
+  const auto imp = root.optionalObject("impactor");
+  s.impactor = parseImpactor(imp ? *imp : SpecReader(noImpactor, root.pathOf("impactor")), s.innerDiameter, s.run.endTime);
   root.finish();
 
   // Geometry against the resolution.
