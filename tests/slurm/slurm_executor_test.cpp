@@ -219,7 +219,7 @@ TEST(SlurmExecutor, ARunLongerThanItsTimeLimitFinishesThroughSeveralAllocations)
   });
   auto client = server.client();
   Json inputs = test::smallInputs();
-  inputs["loading"]["strain_rate"] = 6e3;
+  inputs["loading"]["strain_rate"] = 3e3;  // about two minutes of one core: past any allocation (6e3 once fit in one)
   const auto id = test::submit(*client, Json{{"inputs", inputs}});
   // The same spec uninterrupted, on the other core meanwhile.
   Json spec = inputs;
