@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "core/scratch_vector.hpp"
 #include "sph/fluid_model.hpp"
 #include "sph/fluid_particles.hpp"
 #include "sph/neighbour_list.hpp"
@@ -37,14 +38,15 @@ struct RateWorkspace {
   struct alignas(64) Packed {
     double x, y, z, pressureOverRho2, vx, vy, vz, inverseRho;
   };
-  std::vector<Packed> packed;
-  std::vector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
+  ScratchVector<Packed> packed;
+  ScratchVector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
   std::vector<double> spanForces;  ///< the bodies' forces summed over each span of the last pass
   /// The vector width of the pair loops, 4 or 8 doubles; 0: this processor's (simd_lanes.hpp).
   /// Both give bitwise the same rates; only the speed differs. Ignored without AVX-512.
   int laneWidth = 0;
-  /// Polled before each chunk of the pair loop (a pass over millions of particles takes over a
-  /// second): when set, the remaining chunks are skipped and the rates are not for use.
+  /// Polled between blocks of the first pass, before the pair loop and before each of its chunks
+  /// (a pass over millions of particles takes over a second): when set, the rest is skipped and
+  /// the rates are not for use.
   Cancellation cancel;
 };
 

@@ -277,7 +277,7 @@ void NeighbourList::build(const FluidParticles& p, int dimension, double cutoff,
                   rows.scan<ScanMode::Forward>(batch, last, s1);
                 }
               }
-            std::vector<std::int32_t>& buffer = fluidBatch ? mine.fluid : mine.walls;
+            ScratchVector<std::int32_t>& buffer = fluidBatch ? mine.fluid : mine.walls;
             std::size_t& used = fluidBatch ? mine.fluidUsed : mine.wallsUsed;
             for (int q = 0; q < k; ++q) {
               const int nf = batch.nf[q], nb = batch.nb[q], total = nf + nb;

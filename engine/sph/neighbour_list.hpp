@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "core/scratch_vector.hpp"
 #include "sph/fluid_particles.hpp"
 
 namespace rupture::sph {
@@ -73,7 +74,7 @@ private:
   // and nothing is copied after the search (a list goes once from the cell's scratch, in L1, to its
   // buffer). The buffers live from build to build (no allocation once they have grown).
   struct ThreadLists {
-    std::vector<std::int32_t> fluid, walls;
+    ScratchVector<std::int32_t> fluid, walls;  // grown by doubling; every entry written before read
     std::size_t fluidUsed = 0, wallsUsed = 0;
   };
   struct Where {
