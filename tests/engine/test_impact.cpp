@@ -42,6 +42,7 @@ nlohmann::json notchedPlate(const std::string& model) {
 TEST(ImpactSpec, ExamplesAndTheContractKeys) {
   EXPECT_EQ(rejectedField(readJson(examplePath("impact-branching-pmb.json"))), "");
   EXPECT_EQ(rejectedField(readJson(examplePath("impact-branching-born.json"))), "");
+  EXPECT_EQ(rejectedField(readJson(examplePath("impact-kalthoff-winkler-pmb.json"))), "");
   nlohmann::json spec = notchedPlate("pmb");
   spec["loading"]["projectile"] = {{"radius", 1e-3}, {"mass", 1e-3}, {"position", {0.01, 0.012}}, {"velocity", {0.0, -50.0}}};
   spec["loading"]["tractions"] = {{{"min", {0.0, 0.0}}, {"max", {0.001, 0.01}}, {"traction", {-1e6, 0.0}}}};
@@ -153,6 +154,34 @@ TEST(CrackTracking, AZoneJoiningAheadIsAJumpNotASpeed) {
   EXPECT_NEAR(fast.maxSpeed(), 3000.0, 1e-6);
 }
 
+TEST(CrackTracking, TheAngleIsTheTipsDirectionFromTheNotch) {
+  // A notch along +x ending at the origin; a straight crack kinked by θ (the tracker finds its far
+  // end): the angle is θ, signed in 2D, unsigned in 3D, whatever the notch's own direction.
+  const double h = 1e-3;
+  for (double theta : {1.22, -1.22, 0.0, 0.3, 2.5}) {
+    for (double notchDirection : {0.0, 0.7}) {
+      ParticleStore p;
+      p.dimension = 2;
+      std::vector<double> damage;
+      const double phi = notchDirection + theta;
+      for (int k = 0; k <= 20; ++k) {
+        p.add(k * h * std::cos(phi), k * h * std::sin(phi), 0, 0.4 * h);
+        damage.push_back(0.5);
+      }
+      CrackTracker tracker({0, 0, 0}, 0.25, h, 1);
+      tracker.observe(0.0, p, damage);
+      const std::array<double, 3> start{-0.05 * std::cos(notchDirection), -0.05 * std::sin(notchDirection), 0};
+      const auto angle2d = crackAngle(tracker.tip(), {0, 0, 0}, start, {0, 0, 0}, 2);
+      ASSERT_TRUE(angle2d);
+      EXPECT_NEAR(*angle2d, theta, 1e-9) << theta << " " << notchDirection;
+      EXPECT_NEAR(*crackAngle(tracker.tip(), {0, 0, 0}, start, {0, 0, 0}, 3), std::abs(theta), 1e-9);
+    }
+  }
+  // No crack, or a notch of no length: no angle.
+  EXPECT_FALSE(crackAngle(CrackTip{}, {0, 0, 0}, {-1, 0, 0}, {0, 0, 0}, 2));
+  EXPECT_FALSE(crackAngle(CrackTip{1, 1, 0, 1.4, true}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 2));
+}
+
 class ImpactEveryModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ImpactEveryModel, ANotchedPlateCracksFromItsNotchTip) {
@@ -164,6 +193,8 @@ TEST_P(ImpactEveryModel, ANotchedPlateCracksFromItsNotchTip) {
   EXPECT_GT(s["broken_bonds"].get<double>(), 0) << s.dump();
   EXPECT_GT(s["crack_length"].get<double>(), 0) << s.dump();
   EXPECT_GE(s["branches"].get<int>(), 1);
+  // Opened in tension (mode I), the crack runs on in the notch's direction.
+  EXPECT_LT(std::abs(s["crack_angle"].get<double>()), 0.35) << GetParam();
   // The crack runs ahead of the notch: its tip lies right of the notch end, near mid-height.
   io::Hdf5File file = io::Hdf5File::openReadOnly((dir / "impact.h5").string());
   const std::vector<double> tipX = file.readDatasetDouble("/series/crack_tip_x");

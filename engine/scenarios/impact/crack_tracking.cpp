@@ -63,6 +63,19 @@ double CrackTracker::observe(double t, const ParticleStore& p, const std::vector
   return speed;
 }
 
+std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> origin, std::array<double, 3> from,
+                                 std::array<double, 3> to, int dimension) {
+  const std::array<double, 3> notch{to[0] - from[0], to[1] - from[1], to[2] - from[2]};
+  const std::array<double, 3> crack{tip.x - origin[0], tip.y - origin[1], tip.z - origin[2]};
+  const double notchLength = std::hypot(notch[0], notch[1], notch[2]);
+  if (!tip.found || tip.distance == 0 || notchLength == 0) return std::nullopt;
+  const double dot = notch[0] * crack[0] + notch[1] * crack[1] + notch[2] * crack[2];
+  if (dimension == 2) return std::atan2(notch[0] * crack[1] - notch[1] * crack[0], dot);
+  const double cx = notch[1] * crack[2] - notch[2] * crack[1], cy = notch[2] * crack[0] - notch[0] * crack[2],
+               cz = notch[0] * crack[1] - notch[1] * crack[0];
+  return std::atan2(std::hypot(cx, cy, cz), dot);
+}
+
 int countCrackBranches(const ParticleStore& p, const std::vector<double>& damage, double threshold,
                        std::array<double, 3> origin, double spacing) {
   std::vector<std::size_t> cracked;

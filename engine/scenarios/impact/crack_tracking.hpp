@@ -13,6 +13,10 @@
 //        bar wave speed sqrt(E/rho) twice over, plus two spacings per output row); such a gain is a
 //        jump, reported as an event (jump()) and kept out of the speed, so that crack_speed_max is
 //        the speed of a crack and never that of two zones joining.
+//   angle: the direction of the tip from the origin, measured from the first notch's direction
+//        (end − start): in 2D signed, counter-clockwise positive in the x–y plane, in (−π, π]; in 3D
+//        the angle between the two directions, in [0, π]. A notch loaded in shear (Kalthoff and
+//        Winkler's plate) kinks by about 70° (Kalthoff 2000); one opened in tension runs straight on (0).
 //   branches: cracked particles are cut into annuli (shells in 3D) around the origin, 4 spacings
 //        wide; in each annulus past 6 spacings the cracked particles are clustered (linked when
 //        closer than 2.5 spacings, clusters of at least 3); the branch count is the largest number
@@ -20,6 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/particle_store.hpp"
@@ -74,6 +79,11 @@ private:
   bool m_lastFound = false;
   int m_jumps = 0;
 };
+
+/// The crack's angle (rad, see above) from its origin to `tip`, measured from the notch direction
+/// `from` → `to`; nullopt when no crack was found or the notch has no length.
+std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> origin, std::array<double, 3> from,
+                                 std::array<double, 3> to, int dimension);
 
 /// Number of crack branches (see above); `spacing` is the particle spacing (m).
 int countCrackBranches(const ParticleStore& p, const std::vector<double>& damage, double threshold,
