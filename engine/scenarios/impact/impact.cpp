@@ -163,11 +163,11 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   else if (!spec.velocityRegions.empty())
     for (int a = 0; a < 3; ++a) origin[a] = 0.5 * (spec.velocityRegions.front().box.min[a] + spec.velocityRegions.front().box.max[a]);
   if (d == 2) origin[2] = 0;
+  // The crack's angle is measured from the first notch's direction.
+  const Notch* notch = spec.sample.notches.empty() ? nullptr : &spec.sample.notches.front();
   // A tip gaining faster than twice the bar wave speed sqrt(E/rho) of the model's E has joined a
   // zone that cracked apart from it: a crack runs below the Rayleigh speed, about 0.57 sqrt(E/rho)
   // in glass.
-  // The crack's angle is measured from the first notch's direction.
-  const Notch* notch = spec.sample.notches.empty() ? nullptr : &spec.sample.notches.front();
   CrackTracker tracker(origin, spec.damageThreshold, spacing, 5, 2 * spec.material.dampingWaveSpeed);
 
   // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
