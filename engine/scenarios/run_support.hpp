@@ -3,6 +3,7 @@
 // into messages.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -10,6 +11,9 @@
 #include "rupture/run.hpp"
 
 namespace rupture {
+
+/// A summary scalar that may be unknown: NaN (and ±inf) are written as null.
+inline nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 /// A stage message for the watcher (progress line, server log), if it listens.
 inline void logStage(const RunControl& control, const std::string& message) {

@@ -431,6 +431,9 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
     else chunkLoop.template operator()<L, false>();
   });
 
+  // Skipped chunks left their buffers unwritten (scratch): nothing below may read them.
+  if (ws.cancel.requested()) return {};
+
   // The chunks' buffers added in chunk order: the same sums for any thread count. By spans of
   // particles, each chunk's overlap with the span added as one contiguous (vectorised) run.
   const double massScale = uniform ? k.uniformMass : 1.0;

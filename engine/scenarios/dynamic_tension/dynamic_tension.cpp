@@ -168,8 +168,6 @@ void applyInitialField(BondedSystem& system, InitialVelocityField field, const T
   }
 }
 
-nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 /// A run cancelled while its sample was being built: no sample exists, so the file holds the spec
 /// and a summary saying so (layout otherwise as any incomplete result, with no rows or snapshots).
 RunOutcome cancelledDuringBuild(const DynamicTensionSpec& spec, const nlohmann::json& input,

@@ -1,4 +1,5 @@
 #include "scenarios/dynamic_tension/tension_observables.hpp"
+#include "scenarios/run_support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +7,6 @@
 namespace rupture {
 
 namespace {
-nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 constexpr std::size_t kMaxCheckpoints = 4096;
 }  // namespace
 

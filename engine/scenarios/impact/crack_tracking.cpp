@@ -63,10 +63,10 @@ double CrackTracker::observe(double t, const ParticleStore& p, const std::vector
   return speed;
 }
 
-std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> origin, std::array<double, 3> from,
-                                 std::array<double, 3> to, int dimension) {
+std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> from, std::array<double, 3> to,
+                                 int dimension) {
   const std::array<double, 3> notch{to[0] - from[0], to[1] - from[1], to[2] - from[2]};
-  const std::array<double, 3> crack{tip.x - origin[0], tip.y - origin[1], tip.z - origin[2]};
+  const std::array<double, 3> crack{tip.x - to[0], tip.y - to[1], tip.z - to[2]};
   const double notchLength = std::hypot(notch[0], notch[1], notch[2]);
   if (!tip.found || tip.distance == 0 || notchLength == 0) return std::nullopt;
   const double dot = notch[0] * crack[0] + notch[1] * crack[1] + notch[2] * crack[2];

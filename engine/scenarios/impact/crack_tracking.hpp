@@ -80,10 +80,10 @@ private:
   int m_jumps = 0;
 };
 
-/// The crack's angle (rad, see above) from its origin to `tip`, measured from the notch direction
-/// `from` → `to`; nullopt when no crack was found or the notch has no length.
-std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> origin, std::array<double, 3> from,
-                                 std::array<double, 3> to, int dimension);
+/// The crack's angle (rad, see above): the direction of `tip` from the notch's end `to`, measured
+/// from the notch's direction `from` → `to`; nullopt when no crack was found or the notch has no length.
+std::optional<double> crackAngle(const CrackTip& tip, std::array<double, 3> from, std::array<double, 3> to,
+                                 int dimension);
 
 /// Number of crack branches (see above); `spacing` is the particle spacing (m).
 int countCrackBranches(const ParticleStore& p, const std::vector<double>& damage, double threshold,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "samples/sample_builder.hpp"
@@ -163,12 +165,17 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   else if (!spec.velocityRegions.empty())
     for (int a = 0; a < 3; ++a) origin[a] = 0.5 * (spec.velocityRegions.front().box.min[a] + spec.velocityRegions.front().box.max[a]);
   if (d == 2) origin[2] = 0;
-  // The crack's angle is measured from the first notch's direction.
+  // The crack's angle is measured from the first notch's direction, from its end (the origin);
+  // NaN without a notch or a crack.
   const Notch* notch = spec.sample.notches.empty() ? nullptr : &spec.sample.notches.front();
   // A tip gaining faster than twice the bar wave speed sqrt(E/rho) of the model's E has joined a
   // zone that cracked apart from it: a crack runs below the Rayleigh speed, about 0.57 sqrt(E/rho)
   // in glass.
   CrackTracker tracker(origin, spec.damageThreshold, spacing, 5, 2 * spec.material.dampingWaveSpeed);
+  auto crackAngleNow = [&] {
+    const std::optional<double> angle = notch ? crackAngle(tracker.tip(), notch->start, notch->end, d) : std::nullopt;
+    return angle.value_or(std::numeric_limits<double>::quiet_NaN());
+  };
 
   // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
   io::ResultFile result(resultPath, "impact", checkpoints.continueFrom());
@@ -221,9 +228,8 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     const double speed = tracker.observe(system.time, p, damage);
     const CrackTip& tip = tracker.tip();
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double angle = notch ? crackAngle(tip, origin, notch->start, notch->end, d).value_or(nan) : nan;
     const double row[] = {system.time, tip.found ? tip.x : nan, tip.found ? tip.y : nan, tip.found ? tip.z : nan,
-                          tip.distance, speed, tracker.jump(), angle, system.kineticEnergy(), system.elasticEnergy(),
+                          tip.distance, speed, tracker.jump(), crackAngleNow(), system.kineticEnergy(), system.elasticEnergy(),
                           projectileEnergy(), static_cast<double>(broken) / bondCount};
     for (std::size_t c = 0; c < columns.size(); ++c) series[c].push_back(row[c]);
   };
@@ -294,9 +300,6 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
 
   const bool completed = stopReason != "cancelled";
   const double* v = projectile ? projectile->v : nullptr;
-  const std::optional<double> angle =
-      notch ? crackAngle(tracker.tip(), origin, notch->start, notch->end, d) : std::nullopt;
-  auto nullable = [](std::optional<double> x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
   nlohmann::json summary = {
       {"completed", completed ? 1 : 0},
       {"stop_reason", stopReason},
@@ -304,7 +307,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       {"crack_length", tracker.tip().distance},
       {"crack_jumps", tracker.jumps()},
       {"crack_jumped_length", tracker.jumpedLength()},
-      {"crack_angle", nullable(angle)},
+      {"crack_angle", nullIfNaN(crackAngleNow())},
       {"branches", countCrackBranches(p, damage, spec.damageThreshold, origin, spacing)},
       {"fragments", static_cast<std::int64_t>(countFragments(system.bonds, n))},
       {"broken_bonds", static_cast<std::int64_t>(system.bonds.size() - system.bonds.intactCount())},
