@@ -105,6 +105,11 @@ public:
         fail(field + ".max_over", "must be [x_from, x_to] on a series source");
       out.maxOver = std::pair{number(w[0], field + ".max_over[0]"), number(w[1], field + ".max_over[1]")};
     }
+    if (s.contains("first_reaching")) {
+      if (out.seriesX.empty() || out.maxOver)
+        fail(field + ".first_reaching", "must be a level of y on a series source without max_over");
+      out.firstReaching = number(s["first_reaching"], field + ".first_reaching");
+    }
     return out;
   }
   const std::string& file() const { return m_file; }
@@ -188,8 +193,9 @@ void parseQuantity(const CaseReader& r, const Json& j, const std::string& field,
   const Json& ref = r.at(j, "reference", field + ".");
   if (ref.is_object() && ref.contains("points")) {
     // A published curve: one quantity per point, ours read from the series at the point's x.
-    if (q.ours.seriesX.empty() || q.ours.maxOver)
-      r.fail(field + ".ours", "a reference with points needs a series read at each point's x (series_x, series_y, no max_over)");
+    if (q.ours.seriesX.empty() || q.ours.maxOver || q.ours.firstReaching)
+      r.fail(field + ".ours",
+             "a reference with points needs a series read at each point's x (series_x, series_y, no max_over nor first_reaching)");
     const Json& points = ref["points"];
     if (!points.is_array() || points.empty()) r.fail(field + ".reference.points", "must be a list of [x, y, uncertainty]");
     for (std::size_t k = 0; k < points.size(); ++k) {
@@ -207,7 +213,7 @@ void parseQuantity(const CaseReader& r, const Json& j, const std::string& field,
     }
     return;
   }
-  if (!q.ours.seriesX.empty() && !q.ours.maxOver) {
+  if (!q.ours.seriesX.empty() && !q.ours.maxOver && !q.ours.firstReaching) {
     if (!j.contains("at")) r.fail(field + ".at", "missing: a series quantity is read at an x");
     q.at = r.number(j["at"], field + ".at");
   }
@@ -232,12 +238,13 @@ CaseFigure parseFigure(const CaseReader& r, const Json& j, const std::vector<Qua
       if (q.name.rfind(prefix, 0) == 0) f.points.push_back({*q.at, *q.reference.value, q.reference.uncertainty});
     if (f.points.empty()) r.fail("figure.points_from", "names no quantity with reference points");
   }
-  if (j.contains("lines")) {
-    for (const Json& l : j["lines"]) {
+  for (const auto& [key, names] : {std::pair{"lines", &f.lineQuantities}, std::pair{"vertical_lines", &f.verticalLineQuantities}}) {
+    if (!j.contains(key)) continue;
+    for (const Json& l : j[key]) {
       if (!l.is_string() || std::none_of(quantities.begin(), quantities.end(),
                                          [&](const Quantity& q) { return q.name == l.get<std::string>(); }))
-        r.fail("figure.lines", "must name quantities of this case");
-      f.lineQuantities.push_back(l.get<std::string>());
+        r.fail(std::string("figure.") + key, "must name quantities of this case");
+      names->push_back(l.get<std::string>());
     }
   }
   return f;

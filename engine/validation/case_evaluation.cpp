@@ -37,6 +37,19 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
   return kNaN;
 }
 
+/// The first x at which y reaches `level`, interpolated between the rows that straddle it; NaN if
+/// y never reaches it.
+double firstReaching(const std::vector<double>& xs, const std::vector<double>& ys, double level) {
+  const std::size_t n = std::min(xs.size(), ys.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(ys[k] >= level)) continue;
+    if (k == 0 || !std::isfinite(ys[k - 1])) return xs[k];
+    const double t = (level - ys[k - 1]) / (ys[k] - ys[k - 1]);
+    return xs[k - 1] + t * (xs[k] - xs[k - 1]);
+  }
+  return kNaN;
+}
+
 /// The source's value: the mean over the run's members (NaN if any member lacks it).
 double valueOf(const ValueSource& s, std::optional<double> at, const CaseRunData& data) {
   const std::vector<RunData>* members = membersOf(data, s.run);
@@ -55,6 +68,10 @@ double valueOf(const ValueSource& s, std::optional<double> at, const CaseRunData
           for (std::size_t k = 0; k < std::min(scaled.size(), ys->size()); ++k)
             if (scaled[k] >= s.maxOver->first && scaled[k] <= s.maxOver->second && std::isfinite((*ys)[k]))
               v = std::isfinite(v) ? std::max(v, (*ys)[k] * s.factor) : (*ys)[k] * s.factor;
+        } else if (s.firstReaching) {
+          std::vector<double> y(ys->begin(), ys->end());
+          for (double& value : y) value *= s.factor;
+          v = firstReaching(scaled, y, *s.firstReaching);
         } else if (at) {
           v = interpolate(scaled, *ys, *at) * s.factor;
         }
@@ -178,19 +195,28 @@ Json evaluateCase(const ValidationCase& c, const std::string& level, const CaseR
           if (std::isfinite((*x)[k]) && std::isfinite((*y)[k])) xs.push_back((*x)[k] * f.xFactor), ys.push_back((*y)[k] * f.yFactor);
       }
     }
-    Json lines = Json::array();
-    for (const std::string& name : f.lineQuantities) {
-      auto it = referenceBand.find(name);
-      if (it == referenceBand.end()) continue;  // a full-level quantity in a quick run
-      std::string label;
-      for (const Quantity& q : c.quantities)
-        if (q.name == name) label = q.label;
-      lines.push_back({{"label", label},
-                       {"low", numberOrNull(it->second.first * f.yFactor)},
-                       {"high", numberOrNull(it->second.second * f.yFactor)}});
-    }
-    result["figure"] = {{"x_label", f.xLabel}, {"y_label", f.yLabel}, {"ours", {{"x", xs}, {"y", ys}}},
-                        {"points", f.points}, {"points_label", f.pointsLabel}, {"lines", lines}};
+    // Reference lines: horizontal ones on y, vertical ones on x (scaled as the axis).
+    auto linesOf = [&](const std::vector<std::string>& names, double scale) {
+      Json lines = Json::array();
+      for (const std::string& name : names) {
+        auto it = referenceBand.find(name);
+        if (it == referenceBand.end()) continue;  // a full-level quantity in a quick run
+        std::string label;
+        for (const Quantity& q : c.quantities)
+          if (q.name == name) label = q.label;
+        lines.push_back({{"label", label},
+                         {"low", numberOrNull(it->second.first * scale)},
+                         {"high", numberOrNull(it->second.second * scale)}});
+      }
+      return lines;
+    };
+    result["figure"] = {{"x_label", f.xLabel},
+                        {"y_label", f.yLabel},
+                        {"ours", {{"x", xs}, {"y", ys}}},
+                        {"points", f.points},
+                        {"points_label", f.pointsLabel},
+                        {"lines", linesOf(f.lineQuantities, f.yFactor)},
+                        {"vertical_lines", linesOf(f.verticalLineQuantities, f.xFactor)}};
   }
   return result;
 }

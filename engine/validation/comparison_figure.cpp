@@ -92,6 +92,7 @@ public:
     return m_svg.str();
   }
   const Range& xRange() const { return m_x; }
+  const Range& yRange() const { return m_y; }
 
 private:
   std::vector<double> m_xTicks, m_yTicks;
@@ -113,6 +114,8 @@ std::string curveFigure(const Json& result, const Json& f) {
     y.add(p[1].get<double>() + p[2].get<double>());
   }
   for (const Json& l : f["lines"]) y.add(numberOr(l["low"], NAN)), y.add(numberOr(l["high"], NAN));
+  const Json verticals = f.value("vertical_lines", Json::array());
+  for (const Json& l : verticals) x.add(numberOr(l["low"], NAN)), x.add(numberOr(l["high"], NAN));
   Canvas canvas(x, y, result.value("title", ""), f.value("x_label", ""), f.value("y_label", ""));
   auto& svg = canvas.out();
   const char* palette[] = {"#d62728", "#2ca02c", "#9467bd", "#8c564b"};
@@ -127,6 +130,15 @@ std::string curveFigure(const Json& result, const Json& f) {
     for (double v : {lo, hi})
       if (std::isfinite(v))
         svg << "<line x1=\"" << x0 << "\" y1=\"" << canvas.py(v) << "\" x2=\"" << x1 << "\" y2=\"" << canvas.py(v)
+            << "\" stroke=\"" << colour << "\" stroke-width=\"1.5\" stroke-dasharray=\"6 3\"/>\n";
+    canvas.legend(colour, "reference: " + l.value("label", ""), true);
+  }
+  for (const Json& l : verticals) {
+    const std::string colour = palette[line++ % 4];
+    const double y0 = canvas.py(canvas.yRange().lo), y1 = canvas.py(canvas.yRange().hi);
+    for (double v : {numberOr(l["low"], NAN), numberOr(l["high"], NAN)})
+      if (std::isfinite(v))
+        svg << "<line x1=\"" << canvas.px(v) << "\" y1=\"" << y0 << "\" x2=\"" << canvas.px(v) << "\" y2=\"" << y1
             << "\" stroke=\"" << colour << "\" stroke-width=\"1.5\" stroke-dasharray=\"6 3\"/>\n";
     canvas.legend(colour, "reference: " + l.value("label", ""), true);
   }

@@ -38,6 +38,9 @@ struct ValueSource {
   double xFactor = 1;                     ///< series: x × xFactor is compared with the point's x
   /// Series: instead of y at one x, the largest y over x × xFactor in [first, second] (a first peak).
   std::optional<std::pair<double, double>> maxOver;
+  /// Series: instead of y at one x, the first x × xFactor at which y × factor reaches this level,
+  /// interpolated between rows (the arrival of a wave front: a time of flight).
+  std::optional<double> firstReaching;
   /// Summary sources: divided by another run's summary scalar (a ratio between runs: a trend).
   std::optional<std::pair<std::string, std::string>> per;  ///< (run, summary key)
 };
@@ -65,8 +68,9 @@ struct Quantity {
   bool inQuick = true;
 };
 
-/// Our curve over the reference: a run's series (scaled), the published points (x, y, uncertainty)
-/// and horizontal lines at reference quantities.
+/// Our curve over the reference: a run's series (scaled), the published points (x, y, uncertainty),
+/// horizontal lines at reference quantities read on y and vertical ones at those read on x (an
+/// arrival time).
 struct CaseFigure {
   std::string run, x, y;
   double xFactor = 1, yFactor = 1;
@@ -74,6 +78,7 @@ struct CaseFigure {
   std::vector<std::array<double, 3>> points;
   std::string pointsLabel;
   std::vector<std::string> lineQuantities;
+  std::vector<std::string> verticalLineQuantities;  ///< reference values × xFactor, drawn at that x
 };
 
 struct ValidationCase {

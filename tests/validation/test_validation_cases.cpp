@@ -2,6 +2,7 @@
 // cases parse and agree with the scenario's schema; the comparison passes inside a tolerance and
 // fails outside it (a perturbed reference fails); known failures and ranges; the report's HTML,
 // JSON and CSV tables agree.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -128,6 +129,53 @@ TEST(ValidationCases, KnownFailuresRangesAndMissingValues) {
   EXPECT_EQ(quantityNamed(result, "at_least")["verdict"], "fail");  // no value: never a pass
   EXPECT_TRUE(quantityNamed(result, "at_least")["ours"].is_null());
   EXPECT_EQ(result["verdict"], "fail");
+}
+
+TEST(ValidationCases, AnArrivalTimeIsTheFirstCrossingOfTheLevelAndTellsThePWaveFromTheBarWave) {
+  const ValidationCase* c = findValidationCase("lattice-wave-speed");
+  ASSERT_NE(c, nullptr);
+  const double gauge = 0.99e-6;
+  const double cL = std::sqrt(220e9 / (6060 * (1 - 1.0 / 9))), cBorn = std::sqrt(220e9 / (6060 * 0.96));
+  // A held face whose stress rises linearly from 0 to 76 MPa over 10 ps from `start` (rows every
+  // 0.3 ps): it crosses the Hookean level, 38 MPa, at start + 5 ps whatever the rows.
+  auto front = [&](double start, double plateau) {
+    std::vector<double> t, s;
+    for (int k = 0; k <= 1000; ++k) {
+      t.push_back(0.3e-12 * k);
+      s.push_back(std::clamp((t.back() - start) / 10e-12, 0.0, 1.0) * plateau);
+    }
+    return RunData{{{"gauge_length", gauge}}, {{"time", t}, {"stress_xmin", s}}};
+  };
+  auto data = [&](double hookeanArrival, double plateau) {
+    return CaseRunData{{"hookean", {front(hookeanArrival - 5e-12, plateau)}}, {"born", {front(gauge / cBorn - 5e-12, 74e6)}}};
+  };
+  const json onTime = evaluateCase(*c, "quick", data(1.02 * gauge / cL, 76e6));
+  EXPECT_EQ(onTime["verdict"], "pass");
+  EXPECT_NEAR(quantityNamed(onTime, "hookean_arrival")["ours"].get<double>(), 1.02 * gauge / cL, 1e-18);
+  EXPECT_NEAR(quantityNamed(onTime, "hookean_arrival")["reference"]["value"].get<double>(), gauge / cL, 1e-16);
+  EXPECT_NEAR(quantityNamed(onTime, "hookean_arrival")["off"].get<double>(), 0.02, 1e-6);
+  EXPECT_NEAR(quantityNamed(onTime, "born_arrival")["off"].get<double>(), 0.0, 1e-6);
+  // The figure marks the reference arrival on its time axis (ps).
+  ASSERT_EQ(onTime["figure"]["vertical_lines"].size(), 1u);
+  EXPECT_NEAR(onTime["figure"]["vertical_lines"][0]["low"].get<double>(), gauge / cL * 1e12, 1e-6);
+
+  // A front at the bar speed sqrt(E/rho), 6 % slower than the plane-stress P wave, fails.
+  const json bar = evaluateCase(*c, "quick", data(gauge / std::sqrt(220e9 / 6060), 76e6));
+  EXPECT_EQ(quantityNamed(bar, "hookean_arrival")["verdict"], "fail");
+  // A face that never reaches the level has no arrival: not a pass.
+  const json never = evaluateCase(*c, "quick", data(gauge / cL, 30e6));
+  EXPECT_TRUE(quantityNamed(never, "hookean_arrival")["ours"].is_null());
+  EXPECT_EQ(never["verdict"], "fail");
+
+  // first_reaching is a level on a series, not with max_over.
+  json text = json::parse(std::ifstream(fs::path(RUPTURE_SOURCE_DIR) / "validation/lattice-wave-speed/case.json"));
+  text["quantities"][0]["ours"]["max_over"] = {0, 1};
+  try {
+    parseValidationCase("lattice-wave-speed", text);
+    FAIL() << "accepted first_reaching with max_over";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("quantities[0].ours.first_reaching"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ValidationCases, AMalformedCaseIsRefusedNamingTheFileAndField) {
