@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The study of docs/tank-impact.md#what-sets-the-first-peak: seed 002's tests E14A5, E14A2 and
 E20A5 (and, for the plate's spacing, FUA5, TF14A5 and FXA5) run from their example files with one
-thing changed at a time (impactor model, piston length, contact stiffness, fluid and plate
-resolution, gauge position, contact method), and the table of the first pressure peak, the largest
+thing changed at a time (impactor model, piston length, contact stiffness, the plate's clamp, fluid
+and plate resolution, gauge position, contact method), and the table of the first pressure peak, the largest
 jet speed, the piston face's largest speed, the tongue, the fracture and the deflection.
 
     python3 docs/studies/tank_first_peak.py build/engine/rupture [--jobs 2] [--only NAME ...]
@@ -44,6 +44,8 @@ def variants():
     add("rigid", tests, "carriage and piston one rigid body (before issue #27)", {"impactor": {"model": "rigid"}})
     add("two_body", tests, "carriage and a rigid 100 mm steel piston, contact", {"impactor": {"model": "two_body"}})
     add("elastic", tests + ["FUA5", "TF14A5", "FXA5"], "carriage and an elastic 100 mm steel piston, contact (default)", {})
+    add("rim clamp", tests + ["FUA5", "TF14A5", "FXA5"], "spot face clamped at its rim (Calculation 1) instead of its thick bottom held at 140 mm",
+        {"plate": {"clamp": "rim"}})
     add("piston 50 mm", ["E14A5", "E14A2"], "elastic piston 50 mm long", {"impactor": {"piston": {"length": 0.05}}})
     add("piston 200 mm", ["E14A5", "E14A2"], "elastic piston 200 mm long", {"impactor": {"piston": {"length": 0.2}}})
     add("soft contact", ["E14A5"], "contact stiffness / 10 (E A / 50 mm)",

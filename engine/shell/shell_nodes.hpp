@@ -14,6 +14,9 @@ struct ShellNodes {
   std::vector<double> kernelVolume;      ///< V (m²)
   std::vector<double> integrationArea;   ///< ω (m²)
   std::vector<std::uint8_t> clamped;     ///< 1: position and normal held
+  /// t per node (m), for a plate whose thickness steps (a thin spot face in a thick bottom);
+  /// empty: the shell's uniform ShellParameters::thickness.
+  std::vector<double> thickness;
   double spacing = 0.0;                  ///< nominal node spacing Δ (m)
 
   std::size_t size() const { return x.size(); }

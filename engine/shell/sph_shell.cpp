@@ -47,8 +47,14 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
     throw std::invalid_argument("SphShell: the node arrays must be non-empty and of equal length");
   if (!(nodes.spacing > 0.0)) throw std::invalid_argument("SphShell: the node spacing must be > 0");
   m_spacing = nodes.spacing;
+  // The rule of the uniform thickness; node i's points and weights are t_i / t times these.
   m_rule = gaussLegendreThickness(m_params.thicknessPoints, m_params.thickness);
-  const double t = m_params.thickness, rho = m_params.density;
+  const double rho = m_params.density;
+  if (!nodes.thickness.empty() && nodes.thickness.size() != n)
+    throw std::invalid_argument("SphShell: the node thicknesses must be absent or one per node");
+  m_thickness = nodes.thickness.empty() ? std::vector<double>(n, m_params.thickness) : nodes.thickness;
+  for (double t : m_thickness)
+    if (!(t > 0.0)) throw std::invalid_argument("SphShell: node thicknesses must be > 0");
 
   m_reference.resize(n);
   m_volume = nodes.kernelVolume;
@@ -62,6 +68,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
       throw std::invalid_argument("SphShell: node volumes must be > 0 and areas >= 0");
     if (!m_clamped[i] && !(m_area[i] > 0.0))
       throw std::invalid_argument("SphShell: a free node needs an integration area > 0");
+    const double t = m_thickness[i];
     m_mass[i] = rho * t * m_area[i];
     m_inertia[i] = m_params.rotaryInertiaScale * rho * t * t * t / 12.0 * m_area[i];
   }
@@ -78,6 +85,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   m_stressP.assign(n, {});
   m_stressR.assign(n, {});
   m_shearQ.assign(n, {0.0, 0.0});
+  m_moment.assign(n, {0.0, 0.0, 0.0});
   m_fractured.assign(n, 0);
   m_fractureTime.assign(n, std::numeric_limits<double>::quiet_NaN());
   m_hasGradient.assign(n, 0);
@@ -89,15 +97,32 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   buildNeighbours();
   buildCorrections();
 
+  // Where the thickness steps, a node's motion strains the stress points of thicker neighbours
+  // (their kernels reach it): its translation sees their stiffness E t_j against its own mass
+  // ρ t_i, and its rotation their bending stiffness ∝ t_j³. The rotary inertia of such a node is
+  // that of the thickest stress point its motion strains (rotary-inertia scaling: the static
+  // solution and the translational inertia are unchanged; only the director's own, fastest
+  // oscillation is slowed), and the time step below takes the translation's ratio t_j / t_i.
+  double stiffnessRatio = 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double thickest = m_thickness[i];
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) thickest = std::max(thickest, m_thickness[m_neighbour[p]]);
+    if (thickest > m_thickness[i]) {
+      m_inertia[i] = m_params.rotaryInertiaScale * rho * thickest * thickest * thickest / 12.0 * m_area[i];
+      if (!m_clamped[i]) stiffnessRatio = std::max(stiffnessRatio, thickest / m_thickness[i]);
+    }
+  }
+
   // Time step: the central-difference limit 2/ω_max with ω_max from the stiffest translation
   // (membrane P-wave, wave number k = 2.5/Δ, which bounds the corrected-kernel gradient operator
-  // with its hourglass term) and the stiffest rotation (transverse shear κGt and bending D k²
-  // against the rotary inertia s_I ρ t³/12).
+  // with its hourglass term; × √(t_j / t_i) at a step) and the stiffest rotation (transverse shear
+  // κGt and bending D k² against the rotary inertia s_I ρ t³/12; the thinnest node's is the fastest).
+  const double t = *std::min_element(m_thickness.begin(), m_thickness.end());
   const ElasticPlasticMaterial& m = m_params.material;
   const double nu = m.poissonRatio;
   const double cp2 = m.youngModulus / (rho * (1.0 - nu * nu));
   const double k = 2.5 / m_spacing;
-  const double omegaTranslation = std::sqrt(cp2) * k * (1.0 + m_params.hourglassCoefficient);
+  const double omegaTranslation = std::sqrt(cp2) * k * (1.0 + m_params.hourglassCoefficient) * std::sqrt(stiffnessRatio);
   const double omegaRotation = std::sqrt((12.0 * m_params.shearCorrection * m.shearModulus() / (rho * t * t) +
                                           cp2 * k * k) / m_params.rotaryInertiaScale);
   m_stableStep = m_params.courantFactor * 2.0 / std::max(omegaTranslation, omegaRotation);
@@ -224,8 +249,7 @@ void SphShell::computeForces(double dt) {
   const std::size_t n = m_position.size();
   const std::size_t layers = m_rule.xi.size();
   const ElasticPlasticMaterial& mat = m_params.material;
-  const double t = m_params.thickness;
-  const double shearStiffness = m_params.shearCorrection * mat.shearModulus() * t;
+  const double shearModulus = m_params.shearCorrection * mat.shearModulus();  // κ_s G
   const bool plastic = m_params.plasticity, damaging = m_params.damage && m_params.plasticity;
   std::vector<std::uint8_t> newlyFractured(n, 0);
 
@@ -252,6 +276,7 @@ void SphShell::computeForces(double dt) {
     m_gradN[i] = G;
     std::array<double, 6> P{}, R{};
     std::array<double, 2> Qout{0.0, 0.0};
+    PlaneTensor Mout{0.0, 0.0, 0.0};
     const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
     if (stressPoint) {
       const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
@@ -270,10 +295,11 @@ void SphShell::computeForces(double dt) {
         gam1 += sp * m_shearCoeff[p][1];
       }
       PlaneTensor N{0.0, 0.0, 0.0}, M{0.0, 0.0, 0.0};
+      const double t = m_thickness[i], scale = t / m_params.thickness;
       double intact = 0.0;
       int broken = 0;
       for (std::size_t k = 0; k < layers; ++k) {
-        const double z = m_rule.xi[k], w = m_rule.weight[k];
+        const double z = scale * m_rule.xi[k], w = scale * m_rule.weight[k];
         const PlaneTensor E = {eps[0] + z * kap[0], eps[1] + z * kap[1], eps[2] + z * kap[2]};
         const std::size_t idx = i * layers + k;
         PlaneTensor sig;
@@ -296,7 +322,10 @@ void SphShell::computeForces(double dt) {
         }
       }
       if (broken == static_cast<int>(layers)) newlyFractured[i] = 1;
+      Mout = M;
       const double om = m_area[i];
+      // κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
+      const double shearStiffness = shearModulus * t;
       const double Q0 = om * shearStiffness * gam0 * intact / t, Q1 = om * shearStiffness * gam1 * intact / t;
       Qout = {Q0, Q1};
       // P_α = Σ_β (N_αβ A_β + M_αβ G_β);  R_α = Σ_β M_αβ A_β (× ω_i); Q = ω_i κ_s G t γ.
@@ -309,14 +338,15 @@ void SphShell::computeForces(double dt) {
     }
     m_stressP[i] = P;
     m_stressR[i] = R;
+    m_moment[i] = stressPoint ? std::array<double, 3>{Mout[0], Mout[1], Mout[2]} : std::array<double, 3>{0.0, 0.0, 0.0};
     m_shearQ[i] = Qout;
   }
 
   // Pass 2: gather the forces on the free nodes (no scatter, no atomics).
+  // Hourglass stiffnesses per unit thickness: a pair takes its thinner node's t (symmetric, and a
+  // thin plate next to a thick step is not stiffened by its neighbour).
   const double nu = mat.poissonRatio;
-  const double kx = m_params.hourglassCoefficient * mat.youngModulus * t;
-  const double kn = m_params.hourglassCoefficient * mat.youngModulus * t * t * t / (12.0 * (1.0 - nu * nu));
-  const double ks = m_params.hourglassCoefficient * shearStiffness;
+  const double kxUnit = m_params.hourglassCoefficient * mat.youngModulus;
   const double pressure = m_pressure;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -337,6 +367,9 @@ void SphShell::computeForces(double dt) {
       const auto& Gj = m_gradN[j];
       const auto& X = m_separation[p];
       const double hw = m_kernel[p] * m_volume[i] * m_volume[j] / (X[0] * X[0] + X[1] * X[1]);
+      const double t = std::min(m_thickness[i], m_thickness[j]);
+      const double kx = kxUnit * t, kn = kxUnit * t * t * t / (12.0 * (1.0 - nu * nu));
+      const double ks = m_params.hourglassCoefficient * (shearModulus * t);
       // Hourglass control. Tangential: error of the separation predicted by the mean gradient
       // (exact for quadratic fields). Normal: the separation along the mean director, a pair
       // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even

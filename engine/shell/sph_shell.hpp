@@ -82,8 +82,13 @@ public:
   /// Largest damage over the layers of a node.
   double maxDamage(std::size_t i) const;
   bool fractured(std::size_t i) const { return m_fractured[i] != 0; }
-  /// Translational mass of node i (kg): ρ t ω_i (0 for clamped nodes outside the plate).
+  /// Translational mass of node i (kg): ρ t_i ω_i (0 for clamped nodes outside the plate).
   double mass(std::size_t i) const { return m_mass[i]; }
+  /// Thickness t_i of node i (m): ShellNodes::thickness, or the uniform ShellParameters::thickness.
+  double thickness(std::size_t i) const { return m_thickness[i]; }
+  /// Bending moment per unit length at node i as of the last step, (M_11, M_22, M_12) in the
+  /// reference axes (N m/m, Σ_k w_k ξ_k (1 − D_k) S_k); zero where i is not a stress point.
+  const std::array<double, 3>& bendingMoment(std::size_t i) const { return m_moment[i]; }
   /// Clamped nodes keep their position: a contact on them loads the clamp, not the plate.
   bool clamped(std::size_t i) const { return m_clamped[i] != 0; }
   std::size_t fracturedCount() const;
@@ -125,7 +130,7 @@ private:
 
   // Per node (structure of arrays).
   std::vector<std::array<double, 2>> m_reference;
-  std::vector<double> m_volume, m_area, m_mass, m_inertia;
+  std::vector<double> m_volume, m_area, m_mass, m_inertia, m_thickness;
   std::vector<std::uint8_t> m_clamped, m_fractured, m_hasGradient;
   std::vector<double> m_fractureTime;
   std::vector<std::size_t> m_fractureOrder;
@@ -133,6 +138,7 @@ private:
   std::vector<std::array<double, 6>> m_gradX, m_gradN;  ///< A_α, G_α (α-major: a0,a1,a2, b0,b1,b2)
   std::vector<std::array<double, 6>> m_stressP, m_stressR;  ///< conjugates of A_α and G_α
   std::vector<std::array<double, 2>> m_shearQ;              ///< ω_i Q_i (transverse shear)
+  std::vector<std::array<double, 3>> m_moment;              ///< M per unit length (output only)
 
   // Per node and layer (node-major, m_rule.xi.size() layers).
   std::vector<std::array<double, 3>> m_plasticStrainTensor;

@@ -119,6 +119,10 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
   EXPECT_EQ(fieldOf(with({{"plate", {{"plasticity", false}}}})), "plate.damage");
   EXPECT_EQ(fieldOf(with({{"plate", {{"diameter", 0.1}}}})), "plate.diameter");
   EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.02}}}})), "plate.spacing");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"clamp", "edge"}}}})), "plate.clamp");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"clamp", "rim"}, {"bottom", {{"thickness", 0.025}}}}}})), "plate.bottom");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"bottom", {{"thickness", 0.001}}}}}})), "plate.bottom.thickness");  // below e_p
+  EXPECT_EQ(fieldOf(with({{"plate", {{"bottom", {{"clamp_diameter", 0.085}}}}}})), "plate.bottom.clamp_diameter");
   EXPECT_EQ(fieldOf(with({{"resolution", {{"spacing", 0.0003}}}})), "resolution.spacing");  // ~1e8 particles
   EXPECT_EQ(fieldOf(with({{"gauge", {0.05, 0.0, 0.01}}})), "gauge");                        // in the wall
   EXPECT_EQ(fieldOf(with({{"probes", {{0.0, 0.0, 0.5}}}})), "probes[0]");                   // above the water

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Dense>
+
 #include "rupture/spec_error.hpp"
 #include "shell/sph_shell.hpp"
 
@@ -55,6 +57,88 @@ TEST(SphShell, ClampedPlateDeflectsAsKirchhoff) {
   const double w = staticCentreDeflection(nodes, p, pressure);
   const double w0 = PlateTheory(p).centreDeflection(pressure);
   EXPECT_NEAR(w / w0, 1.0, 0.05) << "w = " << w << " m, Kirchhoff " << w0 << " m";
+}
+
+/// A spot face of radius a and thickness t1 in a bottom of thickness t2, clamped at b, under a
+/// uniform pressure p: Kirchhoff's axisymmetric solution in each part (w = p r⁴/(64 D) + C1 r² +
+/// C2 ln r + C3, regular at the centre), joined at the step by w, w' and M_r, clamped at b; plus
+/// the Mindlin shear deflection ∫ Q/(κ_s G t) dr with Q = p r/2.
+struct SteppedPlateTheory {
+  double a, b, t1, t2, p, nu, D1, D2, kappaG;
+  double A1 = 0, A2 = 0, B1 = 0, B2 = 0, B3 = 0;
+  SteppedPlateTheory(const ShellParameters& params, double a_, double b_, double t2_, double p_)
+      : a(a_), b(b_), t1(params.thickness), t2(t2_), p(p_), nu(params.material.poissonRatio) {
+    const double E = params.material.youngModulus;
+    D1 = E * t1 * t1 * t1 / (12.0 * (1.0 - nu * nu));
+    D2 = E * t2 * t2 * t2 / (12.0 * (1.0 - nu * nu));
+    kappaG = params.shearCorrection * params.material.shearModulus();
+    Eigen::Matrix<double, 5, 5> m;
+    Eigen::Matrix<double, 5, 1> r;
+    m << 0, 0, b * b, std::log(b), 1,                    // w2(b) = 0
+        0, 0, 2 * b, 1 / b, 0,                           // w2'(b) = 0
+        a * a, 1, -a * a, -std::log(a), -1,              // w1(a) = w2(a)
+        2 * a, 0, -2 * a, -1 / a, 0,                     // w1'(a) = w2'(a)
+        2 * D1 * (1 + nu), 0, -2 * D2 * (1 + nu), D2 * (1 - nu) / (a * a), 0;  // M_r continuous
+    r << -p * std::pow(b, 4) / (64 * D2), -p * std::pow(b, 3) / (16 * D2),
+        p * std::pow(a, 4) / 64 * (1 / D2 - 1 / D1), p * std::pow(a, 3) / 16 * (1 / D2 - 1 / D1), 0.0;
+    const Eigen::Matrix<double, 5, 1> c = m.fullPivLu().solve(r);
+    A1 = c[0], A2 = c[1], B1 = c[2], B2 = c[3], B3 = c[4];
+  }
+  double centreDeflection() const { return A2 + p / (4 * kappaG) * (a * a / t1 + (b * b - a * a) / t2); }
+  /// Radial bending moment per unit length (N m/m), sagging positive.
+  double radialMoment(double r) const {
+    if (r < a) return -(p * r * r * (3 + nu) / 16 + 2 * D1 * A1 * (1 + nu));
+    return -(p * r * r * (3 + nu) / 16 + D2 * (2 * B1 * (1 + nu) - B2 * (1 - nu) / (r * r)));
+  }
+};
+
+TEST(SphShell, SteppedPlateDeflectsAsTheJoinedKirchhoffPlatesAndBendsMostAtTheStep) {
+  const double a = kRadius, b = 0.06, pressure = 1.0e4;
+  const ShellParameters p = elasticPlate();
+  // Rings at k Δ with Δ = a / 19.5: the step r = a lies midway between rings 19 and 20.
+  const double d = a / 19.5;
+  for (const double t2 : {4.0e-3, 25.0e-3}) {
+    ShellNodes nodes = clampedDiskNodes(d * std::round(b / d), d, 0);
+    nodes.thickness.resize(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) nodes.thickness[i] = std::hypot(nodes.x[i], nodes.y[i]) < a ? p.thickness : t2;
+    const SteppedPlateTheory theory(p, a, d * std::round(b / d), t2, pressure);
+    // Dynamic relaxation, damped near the first mode, whose frequency the spot face clamped at
+    // its rim bounds from above (Rayleigh: scaled by the square root of the compliance ratio).
+    const PlateTheory spot(p);
+    const double omega = spot.omega1 * std::sqrt(spot.centreDeflection(pressure) / theory.centreDeflection());
+    ShellParameters damped = p;
+    damped.dampingRate = 2.0 * omega;
+    SphShell shell(nodes, damped);
+    EXPECT_EQ(shell.thickness(0), p.thickness);
+    shell.setPressure(pressure);
+    const double dt = shell.stableTimeStep();
+    shell.advance(static_cast<int>(12.0 / omega / dt), dt, {});
+    EXPECT_NEAR(shell.deflection(0) / theory.centreDeflection(), 1.0, 0.05)
+        << "t2 = " << t2 << ": w = " << shell.deflection(0) << " m, joined plates " << theory.centreDeflection() << " m";
+
+    // The bending stress 6 |M_r| / t² over the free nodes: largest on the spot face's two rings
+    // next to the step, as the solution says for the seed's 25 mm bottom. Nodal integration leaves
+    // the moment alternating from ring to ring by about ±10 %, so the two rings' mean is compared.
+    double largest = 0.0, largestRadius = 0.0, ours = 0.0, expected = 0.0;
+    for (std::size_t i = 0; i < shell.size(); ++i) {
+      if (shell.clamped(i)) continue;
+      const double r = std::hypot(nodes.x[i], nodes.y[i]);
+      if (r < 0.5 * d) continue;
+      const double c = nodes.x[i] / r, s = nodes.y[i] / r;
+      const auto& M = shell.bendingMoment(i);
+      const double mr = M[0] * c * c + M[1] * s * s + 2.0 * M[2] * s * c;
+      const double stress = 6.0 * std::fabs(mr) / (nodes.thickness[i] * nodes.thickness[i]);
+      if (stress > largest) largest = stress, largestRadius = r;
+      if (r > a - 2.0 * d && r < a) ours += stress, expected += 6.0 * std::fabs(theory.radialMoment(r)) / (p.thickness * p.thickness);
+    }
+    if (t2 == 25.0e-3) {
+      const double atStep = 6.0 * std::fabs(theory.radialMoment(a - 0.5 * d)) / (p.thickness * p.thickness);
+      ASSERT_GT(atStep, 6.0 * std::fabs(theory.radialMoment(0.0)) / (p.thickness * p.thickness));
+      ASSERT_GT(atStep, 6.0 * std::fabs(theory.radialMoment(theory.b)) / (t2 * t2));
+      EXPECT_GT(largestRadius, a - 2.0 * d) << "the bending stress peaks at r = " << largestRadius << " m";
+      EXPECT_NEAR(ours / expected, 1.0, 0.05) << "the two rings next to the step";
+    }
+  }
 }
 
 TEST(SphShell, ClampedPlateFirstFrequency) {

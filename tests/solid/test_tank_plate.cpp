@@ -71,6 +71,40 @@ TEST(TankPlate, PrecracksCutEveryCrossingLinkAndOnlyThose) {
   }
 }
 
+// The thick bottom (plate.clamp "bottom"): the step r = R falls midway between two rings, the
+// nodes outside it carry the bottom's thickness, the outer ring at the clamp diameter is held, the
+// areas sum to the annulus inside the clamp, and the shell's step shrinks by √(t_bottom / e_p).
+TEST(TankPlate, ThickBottomStepsMidwayBetweenRingsAndIsHeldAtItsClamp) {
+  for (double spacing : {0.002, 0.0013}) {
+    SCOPED_TRACE("spacing " + std::to_string(spacing));
+    PlateSpec plate = plateWith(PrecrackShape::Hole, spacing);
+    plate.shell.thickness = 0.002;
+    plate.bottom = PlateBottomSpec{};
+    const PlateGeometry g = plateGeometry(plate);
+    const double d = g.nodes.spacing, R = 0.04, Rc = 0.5 * plate.bottom->clampDiameter;
+    double area = 0.0, heldRadius = 0.0;
+    for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+      const double r = std::hypot(g.nodes.x[i], g.nodes.y[i]);
+      EXPECT_GT(std::fabs(r - R), 0.49 * d) << "node at r = " << r;
+      EXPECT_EQ(g.nodes.thickness[i], r < R ? 0.002 : 0.025);
+      if (g.nodes.clamped[i]) heldRadius = std::max(heldRadius, r);
+      EXPECT_EQ(g.nodes.clamped[i] != 0, r > Rc - 0.5 * d) << "node at r = " << r;
+      area += g.nodes.integrationArea[i];
+    }
+    EXPECT_NEAR(heldRadius, Rc, 0.5 * d);
+    EXPECT_NEAR(area, kPi * (heldRadius * heldRadius - 0.01 * 0.01), 1e-9);
+    // The same nodes all 25 mm thick: their membrane estimate sets the step (the rotation of so
+    // thick a plate is slower); at the step the 2 mm nodes see it √(25/2) times faster.
+    const SphShell stepped = buildPlate(plate, g);
+    ShellNodes thickNodes = g.nodes;
+    thickNodes.thickness.clear();
+    ShellParameters thick = plate.shell;
+    thick.thickness = 0.025;
+    const SphShell uniform(thickNodes, thick);
+    EXPECT_NEAR(uniform.stableTimeStep() / stepped.stableTimeStep(), std::sqrt(0.025 / 0.002), 1e-9);
+  }
+}
+
 // The crack lines are where the spec puts them, up to the documented shift of at most Δ/2.
 TEST(TankPlate, PrecracksLieWithinHalfASpacingOfTheNominalLines) {
   const PlateSpec plate = plateWith(PrecrackShape::U, 0.0015);

@@ -17,10 +17,20 @@ constexpr double kMaxPlateNodes = 1e6;
 
 using Point = std::array<double, 2>;
 
-/// The node spacing clampedDiskNodes will use: R / round(R / Δ).
+/// The node spacing of the plate's rings: R / round(R / Δ) for a spot face clamped at its rim; with
+/// a thick bottom, R / (m + ½) so that the step r = R falls midway between ring m and the next (each
+/// node then lies wholly on one side of it).
 double resolvedSpacing(const PlateSpec& plate) {
   const double R = 0.5 * plate.diameter;
+  if (plate.bottom) return R / (std::max(1.0, std::round(R / plate.spacing - 0.5)) + 0.5);
   return R / std::max(1.0, std::round(R / plate.spacing));
+}
+
+/// The radius of the held ring: the clamp diameter's, rounded to a whole number of spacings.
+double clampRadius(const PlateSpec& plate) {
+  if (!plate.bottom) return 0.5 * plate.diameter;
+  const double d = resolvedSpacing(plate);
+  return d * std::round(0.5 * plate.bottom->clampDiameter / d);
 }
 
 /// Sideways shift δ ∈ [−Δ/2, Δ/2] of the segment [a, b] (along its left normal) that keeps every
@@ -83,6 +93,7 @@ void cutHole(ShellNodes& nodes, double holeRadius) {
     kept.kernelVolume.push_back(nodes.kernelVolume[i]);
     kept.integrationArea.push_back(nodes.integrationArea[i]);
     kept.clamped.push_back(nodes.clamped[i]);
+    if (!nodes.thickness.empty()) kept.thickness.push_back(nodes.thickness[i]);
   }
   std::size_t ringSize = 0;
   for (std::size_t i = 0; i < kept.size(); ++i)
@@ -113,6 +124,21 @@ void validatePlateGeometry(const PlateSpec& plate) {
     refuse("spacing", plate.spacing, "a node spacing giving at most 1e6 plate nodes (>= " +
                                          formatNumber(R * std::sqrt(std::numbers::pi / kMaxPlateNodes)) + " m)");
   if (t > R) refuse("thickness", t, "a thickness <= the spot-face radius " + formatNumber(R) + " m (a shell)");
+  if (plate.bottom) {
+    const PlateBottomSpec& b = *plate.bottom;
+    const double d = resolvedSpacing(plate);
+    if (!(b.thickness >= t && b.thickness <= R))
+      refuse("bottom.thickness", b.thickness,
+             "a thickness in [plate.thickness, spot-face radius] = [" + formatNumber(t) + ", " + formatNumber(R) + "] m (the step goes up from the spot face)");
+    if (!(b.clampDiameter >= plate.diameter + 4.0 * d && b.clampDiameter <= 1.0))
+      refuse("bottom.clamp_diameter", b.clampDiameter,
+             "a diameter in [plate.diameter + 4 spacings, 1] = [" + formatNumber(plate.diameter + 4.0 * d) +
+                 ", 1] m: at least two rings of the thick bottom between the step and the clamp");
+    const double Rc = 0.5 * b.clampDiameter;
+    if (std::numbers::pi * Rc * Rc / (d * d) > kMaxPlateNodes)
+      refuse("spacing", plate.spacing, "a node spacing giving at most 1e6 plate nodes out to the clamp (>= " +
+                                           formatNumber(Rc * std::sqrt(std::numbers::pi / kMaxPlateNodes)) + " m)");
+  }
 
   const PrecrackSpec& c = plate.precrack;
   const double d = resolvedSpacing(plate), room = R - 2.0 * d;  // 2 spacings of plate before the clamp
@@ -155,7 +181,15 @@ PlateGeometry plateGeometry(const PlateSpec& plate) {
   validatePlateGeometry(plate);
   PlateGeometry g;
   const double R = 0.5 * plate.diameter;
-  g.nodes = clampedDiskNodes(R, plate.spacing, 0);
+  if (plate.bottom) {
+    // Rings out to the clamp; the nodes beyond the step (r > R, none lies on it) carry the bottom's thickness.
+    g.nodes = clampedDiskNodes(clampRadius(plate), resolvedSpacing(plate), 0);
+    g.nodes.thickness.resize(g.nodes.size());
+    for (std::size_t i = 0; i < g.nodes.size(); ++i)
+      g.nodes.thickness[i] = std::hypot(g.nodes.x[i], g.nodes.y[i]) < R ? plate.shell.thickness : plate.bottom->thickness;
+  } else {
+    g.nodes = clampedDiskNodes(R, plate.spacing, 0);
+  }
   const PrecrackSpec& c = plate.precrack;
   const double pi = std::numbers::pi;
   if (c.shape == PrecrackShape::Hole || c.shape == PrecrackShape::HoleAndCracks) {

@@ -239,6 +239,13 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   recorder.file().writeDataset("/crack_path", flat, {path.size(), 2}, "m");
 
   auto nullUnless = [](bool known, double v) { return known ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  // Where the impact tore the plate first: the rim (the seed's TF14A5) or elsewhere.
+  auto firstFractureRadius = [&] {
+    const std::vector<std::size_t>& order = plate.fractureOrder();
+    if (order.size() <= initiallyFractured) return nlohmann::json(nullptr);
+    const std::size_t i = order[initiallyFractured];
+    return nlohmann::json(std::hypot(geometry.nodes.x[i], geometry.nodes.y[i]));
+  };
   nlohmann::json summary = {
       {"first_pressure_peak", gaugePeaks.first},
       {"time_of_first_peak", gaugePeaks.firstTime},
@@ -251,6 +258,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"deflection_radius", deflectionRadius},
       {"final_tongue_angle", nullUnless(uShape, uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0)},
       {"time_to_fracture", nullUnless(!std::isnan(timeToFracture), timeToFracture)},
+      {"fracture_radius", firstFractureRadius()},
       {"cracked_length", crackedLength(plate, geometry)},
       {"fractured_nodes", static_cast<std::int64_t>(plate.fracturedCount() - initiallyFractured)},
       {"fluid_below_final", belowCount},

@@ -18,6 +18,7 @@ const ResultFields& tankImpactSummaryFields() {
       {"deflection_radius", "m", "Deflection radius", "(D + d)/4: where the deflection is read (d: hole diameter, 0 without)"},
       {"final_tongue_angle", "rad", "Final tongue angle", "Opening angle of the U tongue at the end (null for other pre-cracks)"},
       {"time_to_fracture", "s", "Time to fracture", "First fracture of a stress point beyond the pre-cracks (null if none)"},
+      {"fracture_radius", "m", "Fracture radius", "Distance from the axis of the first stress point the impact fractured (null if none): the spot face's rim is D/2"},
       {"cracked_length", "m", "Cracked length", "Length of the cracks the impact opened beyond the pre-cracks, at the end"},
       {"fractured_nodes", "1", "Fractured nodes", "Plate nodes fractured by the impact at the end"},
       {"fluid_below_final", "1", "Fluid below the plate", "Fluid particles below the plate at the end"},

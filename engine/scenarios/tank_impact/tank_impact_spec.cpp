@@ -95,6 +95,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.diameter = innerDiameter;
   p.spacing = fluidSpacing;
   p.shell.damage = true;
+  p.bottom = PlateBottomSpec{};  // the seed's Calculation 2, in all its simulations after E20A5's first (§5.1)
   const auto node = root.optionalObject("plate");
   if (!node) {
     applyPreset(p.materialPreset, "plate.material.preset", p);
@@ -111,6 +112,14 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
   p.precrack = parsePrecrack(*node);
+  const bool atRim = node->choice("clamp", {"bottom", "rim"}, "bottom") == "rim";
+  if (const auto bottom = node->optionalObject("bottom")) {
+    if (atRim) throw SpecError("plate.bottom", "an object", "absent when plate.clamp is \"rim\" (the spot face alone, clamped at its rim)");
+    p.bottom->thickness = bottom->number("thickness", Range::positive(), "m", p.bottom->thickness);
+    p.bottom->clampDiameter = bottom->number("clamp_diameter", Range::positive(), "m", p.bottom->clampDiameter);
+    bottom->finish();
+  }
+  if (atRim) p.bottom.reset();
   node->finish();
   if (p.shell.damage && !p.shell.plasticity)
     throw SpecError("plate.damage", "true", "false when plate.plasticity is false (the damage grows with the plastic strain)");
@@ -294,6 +303,8 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"hourglass_coefficient", sh.hourglassCoefficient},
                 {"courant_factor", sh.courantFactor},
                 {"precrack", precrack}};
+  j["plate"]["clamp"] = p.bottom ? "bottom" : "rim";
+  if (p.bottom) j["plate"]["bottom"] = {{"thickness", p.bottom->thickness}, {"clamp_diameter", p.bottom->clampDiameter}};
   j["contact"] = {{"method", toString(s.contact.method)}};
   j["resolution"] = io::toJson(s.resolution);
   j["fluid"] = io::toJson(s.fluid, s.soundSpeed);

@@ -9,6 +9,7 @@
 // the shell's: x, y in the plane, normal +z); the water fills t/2 <= z <= t/2 + water_height,
 // from the plate's upper face (t its thickness) to the piston; the jet leaves downwards (z < 0).
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,12 +40,21 @@ struct PrecrackSpec {
   int crackCount = 2;         ///< radial cracks (hole+cracks), evenly spaced
 };
 
+/// The thick bottom around the spot face ("Calculation 2" of the seed, §5.1, `plate.clamp:
+/// "bottom"`, the default): the block's full thickness from the spot face's rim out to where it is
+/// held. `plate.clamp: "rim"` ("Calculation 1"): the spot face alone, clamped at its rim.
+struct PlateBottomSpec {
+  double thickness = 0.025;      ///< the block's thickness (m): seed §2.2, 200 × 200 × 25 mm
+  double clampDiameter = 0.14;   ///< where the block is held (m): an assumption (the seed gives no screw circle)
+};
+
 struct PlateSpec {
   std::string materialPreset = "au4g_2024_t351_seed";  ///< seed Tables 1 and 6 (material_presets.hpp)
   ShellParameters shell;      ///< thickness, density, material, damage law, layers … (preset, then overrides)
   double diameter = 0.08;     ///< clamped spot-face diameter (m); defaults to the tank's inner diameter
   double spacing = 0.0;       ///< node spacing Δ (m); default: the fluid spacing
   PrecrackSpec precrack;
+  std::optional<PlateBottomSpec> bottom;  ///< the step to the thick bottom and its clamp; empty: clamped at the rim
 };
 
 struct ContactSpec {
