@@ -127,14 +127,15 @@ void validatePlateGeometry(const PlateSpec& plate) {
   if (plate.bottom) {
     const PlateBottomSpec& b = *plate.bottom;
     const double d = resolvedSpacing(plate);
-    if (!(b.thickness >= t && b.thickness <= R))
-      refuse("bottom.thickness", b.thickness,
-             "a thickness in [plate.thickness, spot-face radius] = [" + formatNumber(t) + ", " + formatNumber(R) + "] m (the step goes up from the spot face)");
-    if (!(b.clampDiameter >= plate.diameter + 4.0 * d && b.clampDiameter <= 1.0))
-      refuse("bottom.clamp_diameter", b.clampDiameter,
-             "a diameter in [plate.diameter + 4 spacings, 1] = [" + formatNumber(plate.diameter + 4.0 * d) +
-                 ", 1] m: at least two rings of the thick bottom between the step and the clamp");
     const double Rc = 0.5 * b.clampDiameter;
+    if (!(b.thickness >= t && b.thickness <= Rc))
+      refuse("bottom.thickness", b.thickness,
+             "a thickness in [plate.thickness, clamp radius] = [" + formatNumber(t) + ", " + formatNumber(Rc) +
+                 "] m (the step goes up from the spot face; a shell)");
+    if (!(b.clampDiameter >= plate.diameter + 4.0 * d))
+      refuse("bottom.clamp_diameter", b.clampDiameter,
+             "a diameter >= plate.diameter + 4 spacings = " + formatNumber(plate.diameter + 4.0 * d) +
+                 " m: at least two rings of the thick bottom between the step and the clamp");
     if (std::numbers::pi * Rc * Rc / (d * d) > kMaxPlateNodes)
       refuse("spacing", plate.spacing, "a node spacing giving at most 1e6 plate nodes out to the clamp (>= " +
                                            formatNumber(Rc * std::sqrt(std::numbers::pi / kMaxPlateNodes)) + " m)");

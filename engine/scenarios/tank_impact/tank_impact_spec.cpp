@@ -96,6 +96,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.spacing = fluidSpacing;
   p.shell.damage = true;
   p.bottom = PlateBottomSpec{};  // the seed's Calculation 2, in all its simulations after E20A5's first (§5.1)
+  p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
   const auto node = root.optionalObject("plate");
   if (!node) {
     applyPreset(p.materialPreset, "plate.material.preset", p);
@@ -112,6 +113,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
   p.precrack = parsePrecrack(*node);
+  p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
   const bool atRim = node->choice("clamp", {"bottom", "rim"}, "bottom") == "rim";
   if (const auto bottom = node->optionalObject("bottom")) {
     if (atRim) throw SpecError("plate.bottom", "an object", "absent when plate.clamp is \"rim\" (the spot face alone, clamped at its rim)");

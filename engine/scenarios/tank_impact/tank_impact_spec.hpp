@@ -45,8 +45,13 @@ struct PrecrackSpec {
 /// held. `plate.clamp: "rim"` ("Calculation 1"): the spot face alone, clamped at its rim.
 struct PlateBottomSpec {
   double thickness = 0.025;      ///< the block's thickness (m): seed §2.2, 200 × 200 × 25 mm
-  double clampDiameter = 0.14;   ///< where the block is held (m): an assumption (the seed gives no screw circle)
+  /// Where the block is held (m): by default 1.75 spot-face diameters, 140 mm for the seed's 80 mm,
+  /// an assumption (the seed gives no screw circle).
+  double clampDiameter = 0.14;
 };
+
+/// The default clamp diameter over the spot face's (140 mm / 80 mm).
+inline constexpr double kClampDiameterRatio = 1.75;
 
 struct PlateSpec {
   std::string materialPreset = "au4g_2024_t351_seed";  ///< seed Tables 1 and 6 (material_presets.hpp)
