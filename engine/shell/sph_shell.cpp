@@ -113,6 +113,17 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
     }
   }
 
+  // Hourglass stiffnesses of each node's thickness (membrane α E t, bending α E t³/(12(1 − ν²)),
+  // transverse shear α κ_s G t), read per pair in the force loop.
+  m_hourglass.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ti = m_thickness[i], alpha = m_params.hourglassCoefficient, nu = m_params.material.poissonRatio;
+    const double shearModulus = m_params.shearCorrection * m_params.material.shearModulus();
+    m_hourglass[i] = {alpha * m_params.material.youngModulus * ti,
+                      alpha * m_params.material.youngModulus * ti * ti * ti / (12.0 * (1.0 - nu * nu)),
+                      alpha * (shearModulus * ti)};
+  }
+
   // Time step: the central-difference limit 2/ω_max with ω_max from the stiffest translation
   // (membrane P-wave, wave number k = 2.5/Δ, which bounds the corrected-kernel gradient operator
   // with its hourglass term; × √(t_j / t_i) at a step) and the stiffest rotation (transverse shear
@@ -343,10 +354,6 @@ void SphShell::computeForces(double dt) {
   }
 
   // Pass 2: gather the forces on the free nodes (no scatter, no atomics).
-  // Hourglass stiffnesses per unit thickness: a pair takes its thinner node's t (symmetric, and a
-  // thin plate next to a thick step is not stiffened by its neighbour).
-  const double nu = mat.poissonRatio;
-  const double kxUnit = m_params.hourglassCoefficient * mat.youngModulus;
   const double pressure = m_pressure;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -367,9 +374,9 @@ void SphShell::computeForces(double dt) {
       const auto& Gj = m_gradN[j];
       const auto& X = m_separation[p];
       const double hw = m_kernel[p] * m_volume[i] * m_volume[j] / (X[0] * X[0] + X[1] * X[1]);
-      const double t = std::min(m_thickness[i], m_thickness[j]);
-      const double kx = kxUnit * t, kn = kxUnit * t * t * t / (12.0 * (1.0 - nu * nu));
-      const double ks = m_params.hourglassCoefficient * (shearModulus * t);
+      // A pair's hourglass stiffnesses are its thinner node's (symmetric, and a thin plate next to
+      // a thick step is not stiffened by its neighbour).
+      const auto& [kx, kn, ks] = m_hourglass[m_thickness[j] < m_thickness[i] ? j : i];
       // Hourglass control. Tangential: error of the separation predicted by the mean gradient
       // (exact for quadratic fields). Normal: the separation along the mean director, a pair
       // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even

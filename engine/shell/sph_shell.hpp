@@ -139,6 +139,7 @@ private:
   std::vector<std::array<double, 6>> m_stressP, m_stressR;  ///< conjugates of A_α and G_α
   std::vector<std::array<double, 2>> m_shearQ;              ///< ω_i Q_i (transverse shear)
   std::vector<std::array<double, 3>> m_moment;              ///< M per unit length (output only)
+  std::vector<std::array<double, 3>> m_hourglass;           ///< k_x, k_n, k_s of the node's thickness
 
   // Per node and layer (node-major, m_rule.xi.size() layers).
   std::vector<std::array<double, 3>> m_plasticStrainTensor;

@@ -1,5 +1,6 @@
 // The tank-impact scenario (Caleyron et al. 2013 §2, issue 11): the piston-column set-up with its rigid bottom
-// replaced by the AU4G plate, an SPH shell clamped at its rim, coupled to the water through the
+// replaced by the AU4G plate, an SPH shell (the spot face in its thick bottom, or clamped at its
+// rim: plate.clamp), coupled to the water through the
 // fluid–shell contact of engine/fsi (pinball or master–slave). The carriage strikes the piston
 // at V (fsi/impactor_column.hpp: an elastic or a rigid piston, or carriage and piston one rigid
 // body of mass M); the water goes through the hole or the opened cracks. Contract:
