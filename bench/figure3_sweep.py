@@ -10,7 +10,8 @@ average at start and end (the machine may be shared: say so when quoting the fig
 
 usage: bench/figure3_sweep.py BUILD_DIR [--workers N] [--threads-per-run N] [--spec FILE] [--element-radius R]
   --spec takes another dynamic-tension spec (default examples/dynamic-tension-seed.json), e.g.
-  examples/dynamic-tension-seed-triangular.json; --element-radius overrides sample.element_radius
+  examples/dynamic-tension-seed-random.json (the figures of bench/README.md up to 2026-11-29
+  were measured on it, then the default); --element-radius overrides sample.element_radius
   (m) of a random packing for a quick check on a coarser sample.
 Debian's python3 only (no third-party modules).
 """

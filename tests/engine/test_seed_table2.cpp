@@ -1,49 +1,30 @@
-// Seed 000 (Longchamp et al., CSMA 2024), Table 2 from Table 1 and Table 3 (issue 13): the seed's
-// porous sample on the close-packed (triangular) arrangement its element count implies, with
-// Table 3's beams and S = L × R_DE (eq. 4), measured by the quasi-static strength test
-// (calibration/strength_test.hpp). docs/dynamic-tension.md, "Reproducing the seed's Table 2": over five
-// sample seeds the mean ν and σ_R / E and the median crack-onset strain are within 10 % of the
-// seed's; E and σ_R are within 10 % of twice the seed's (the documented residual: the seed's
-// stresses correspond to a 2D thickness of 2 R_DE). The onset is a median because one weak site
-// makes a sample break early (sample seed 1: 1.5e-4; the four others 4.4–4.6e-4, documented).
-// Reduced sample: R_DE = 12 nm instead of 3.3 nm (same 1 µm box, pores and porosity), about 1,750
-// elements.
+// Seed 000 (Longchamp et al., CSMA 2024), Table 2 on the seed's own sample, out of the box (issue
+// #28 item 1): examples/dynamic-tension-seed.json as shipped (Table 1's 1 µm sample at R_DE = 3.3 nm,
+// 11 % porosity, pores 0.05–0.15 µm, on the close-packed arrangement its element count implies;
+// Table 3's beams; eq. 1's bending from the elements' relative rotation; stresses over 2 R_DE),
+// measured by the quasi-static strength test (calibration/strength_test.hpp) on sample seeds 1–5.
+// The means of ν, σ_R and the crack-onset strain are within 10 % of Table 2's porous row. E is the
+// documented residual (docs/dynamic-tension.md, "Reproducing the seed's Table 2"): the close-packed
+// matrix is 10 % stiffer than the seed's (242 against 220 GPa), so E is checked through what the
+// pores do to it, the porous over the dense modulus, against Table 2's 150 / 220.
+// About 6 minutes of CPU (five 23,518-element samples and one dense sample).
 #include <gtest/gtest.h>
 
-#include <algorithm>
+#include <cmath>
 #include <vector>
 
-#include "samples/sample_builder.hpp"
+#include "calibration/calibration.hpp"
 #include "calibration/strength_test.hpp"
+#include "samples/sample_builder.hpp"
+#include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
+#include "test_dynamic_tension_support.hpp"
 
-namespace rupture {
+namespace rupture::test {
 namespace {
 
+// Table 2 (porous and dense rows) and the crack onset of the seed's §4 ("0,045 %").
 constexpr double kSeedYoung = 150e9, kSeedPoisson = 0.32, kSeedStrength = 70e6, kSeedOnset = 4.5e-4;
-constexpr double kThicknessResidual = 2.0;  // docs/dynamic-tension.md, "Residual"
-
-SampleSpec seedSample(std::uint64_t seed) {
-  SampleSpec s;
-  s.dimension = 2;
-  s.lattice = "triangular";
-  s.size = {1e-6, 1e-6, 0};
-  s.spacing = 2.4e-8;          // 2 R_DE
-  s.thickness = 1.2e-8;        // R_DE: S = L × R_DE (seed eq. 4)
-  s.elementRadius = 1.2e-8;
-  s.porosity = 0.11;
-  s.poreRadius = {5e-8, 1.5e-7};
-  s.seed = seed;
-  return s;
-}
-
-MaterialSpec table3() {
-  MaterialSpec m;
-  m.model = "beam";
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9 * 0.09;
-  return m;
-}
+constexpr double kSeedDenseYoung = 220e9, kSeedDensePoisson = 0.30;
 
 double mean(const std::vector<double>& v) {
   double s = 0;
@@ -51,33 +32,39 @@ double mean(const std::vector<double>& v) {
   return s / static_cast<double>(v.size());
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+TEST(SeedTable2, TheShippedSeedSampleOverFiveSampleSeeds) {
+  const DynamicTensionSpec example = parseDynamicTensionSpec(readJson(examplePath("dynamic-tension-seed.json")));
+  ASSERT_EQ(example.sample.spacing, 6.6e-9) << "the example is the seed's R_DE = 3.3 nm sample";
 
-TEST(SeedTable2, PorousSampleOverFiveSampleSeeds) {
-  std::vector<double> young, poisson, strength, onset, ratio;
+  SampleSpec dense = example.sample;
+  dense.porosity = 0;
+  BondedSystem denseSample;
+  buildSample(dense, example.material, denseSample);
+  const ElasticProperties matrix = measureElasticProperties(denseSample, dense);
+  ASSERT_TRUE(matrix.converged);
+  EXPECT_NEAR(matrix.poissonRatio, kSeedDensePoisson, 0.1 * kSeedDensePoisson);
+
+  std::vector<double> young, poisson, strength, onset;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const SampleSpec spec = seedSample(seed);
+    SampleSpec spec = example.sample;
+    spec.seed = seed;
     BondedSystem sample;
-    buildSample(spec, table3(), sample);
+    buildSample(spec, example.material, sample);
     const StrengthResult r = measureTensileStrength(sample, spec);
     ASSERT_TRUE(r.completed) << "sample seed " << seed;
     young.push_back(r.elastic.youngModulus);
     poisson.push_back(r.elastic.poissonRatio);
     strength.push_back(r.tensileStrength);
     onset.push_back(r.crackOnsetStrain);
-    ratio.push_back(r.tensileStrength / r.elastic.youngModulus);
     // Linear before the first break: the peak is at least E × onset strain.
     EXPECT_GE(r.tensileStrength, 0.97 * r.elastic.youngModulus * r.crackOnsetStrain) << "sample seed " << seed;
   }
   EXPECT_NEAR(mean(poisson), kSeedPoisson, 0.1 * kSeedPoisson);
-  EXPECT_NEAR(median(onset), kSeedOnset, 0.1 * kSeedOnset);
-  EXPECT_NEAR(mean(ratio), kSeedStrength / kSeedYoung, 0.1 * kSeedStrength / kSeedYoung);
-  EXPECT_NEAR(mean(young), kThicknessResidual * kSeedYoung, 0.1 * kThicknessResidual * kSeedYoung);
-  EXPECT_NEAR(mean(strength), kThicknessResidual * kSeedStrength, 0.1 * kThicknessResidual * kSeedStrength);
+  EXPECT_NEAR(mean(strength), kSeedStrength, 0.1 * kSeedStrength);
+  EXPECT_NEAR(mean(onset), kSeedOnset, 0.1 * kSeedOnset);
+  const double softening = mean(young) / matrix.youngModulus, seedSoftening = kSeedYoung / kSeedDenseYoung;
+  EXPECT_NEAR(softening, seedSoftening, 0.1 * seedSoftening);
 }
 
 }  // namespace
-}  // namespace rupture
+}  // namespace rupture::test
