@@ -17,11 +17,12 @@ import concurrent.futures
 import copy
 import json
 import os
-import platform
 import subprocess
 import sys
 import tempfile
 import time
+
+from host import host_processor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SEED = {  # the seed's measurements (Caleyron et al. 2013, §3.1.1, §5.1-5.3)
@@ -94,17 +95,6 @@ def angle(s):
 def fracture(s):
     t = s.get("time_to_fracture")
     return "none" if t is None else f"{t * 1e3:.2f} ({s['fractured_nodes']} nodes)"
-
-
-def host_processor():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def main():
