@@ -55,9 +55,12 @@ public:
     }
   }
 
-  bool below(double x, double y, double z) const {
+  bool below(double x, double y, double z) const { return depth(x, y, z) > 0; }
+
+  /// How far below the plate's lower face (and the contact's stand-off) the point is: > 0 below.
+  double depth(double x, double y, double z) const {
     const std::size_t b = std::min(m_level.size() - 1, static_cast<std::size_t>(std::hypot(x, y) / m_band));
-    return z < m_level[b] - m_standOff;
+    return m_level[b] - m_standOff - z;
   }
 
 private:
@@ -160,6 +163,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   PressurePeaks gaugePeaks(firstTransitWindow(g.H(), spec.soundSpeed), gauge());
   double peakProbe = 0, maxDensityError = 0;
   double maxJet = 0, lastJet = 0, maxDeflection = 0, lastStep = 0;
+  double frontSpeed = 0, outflowSpeed = 0;  // the jet's leading water and the water leaving the plate, at the last row
+  std::vector<std::size_t> jetParticles;
   double timeToFracture = std::numeric_limits<double>::quiet_NaN();
   bool anyJet = false;
   std::int64_t outsideMax = 0, belowCount = 0;
@@ -170,13 +175,18 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     double densityError = 0, momentum = 0, mass = 0;
     std::int64_t below = 0, outside = 0;
     const double R = g.R() + 0.5 * dx, top = g.bottom + g.H() - piston.displacement + 0.5 * dx;
+    jetParticles.clear();
+    double frontDepth = 0;
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (!p.isFluid(k)) continue;
       densityError = std::max(densityError, std::fabs(p.rho[k] / rho0 - 1.0));
-      if (belowPlate.below(p.x[k], p.y[k], p.z[k])) {
+      const double depth = belowPlate.depth(p.x[k], p.y[k], p.z[k]);
+      if (depth > 0) {
         ++below;
         momentum -= p.mass[k] * p.vz[k];
         mass += p.mass[k];
+        jetParticles.push_back(k);
+        frontDepth = std::max(frontDepth, depth);
       } else if (std::hypot(p.x[k], p.y[k]) > R || p.z[k] > top) {
         ++outside;  // through the cylinder or the piston
       }
@@ -187,6 +197,17 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       maxJet = std::max(maxJet, jet);
       lastJet = jet;
     }
+    // A film sees the jet's front, and the flow leaves the plate at the exit: the mean downward
+    // speed of the water within one smoothing length of the lowest water, and of the plate's face.
+    const double h = s.model.h();
+    double frontMomentum = 0, frontMass = 0, exitMomentum = 0, exitMass = 0;
+    for (const std::size_t k : jetParticles) {
+      const double depth = belowPlate.depth(p.x[k], p.y[k], p.z[k]);
+      if (depth >= frontDepth - h) frontMomentum -= p.mass[k] * p.vz[k], frontMass += p.mass[k];
+      if (depth <= h) exitMomentum -= p.mass[k] * p.vz[k], exitMass += p.mass[k];
+    }
+    frontSpeed = frontMass > 0 ? frontMomentum / frontMass : 0.0;
+    outflowSpeed = exitMass > 0 ? exitMomentum / exitMass : 0.0;
     belowCount = below;
     for (std::size_t k = 0; k < probes.size(); ++k) {
       probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
@@ -197,7 +218,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     const double deflection = deflectionAtRadius(plate, geometry, deflectionRadius);
     maxDeflection = std::max(maxDeflection, deflection);
     recorder.appendRow({s.time, gauge(), carriageDisplacement(), carriageSpeed(), faceSpeed(),
-                        drive ? drive->column().contactForce() : 0.0, jet, deflection,
+                        drive ? drive->column().contactForce() : 0.0, jet, frontSpeed, outflowSpeed, deflection,
                         uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0, crackedLength(plate, geometry),
                         static_cast<double>(below), -coupling.plateForce()[2], s.fluidMass(), densityError, lastStep},
                        probes);
@@ -227,6 +248,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     a.value("last_step", lastStep), a.value("time_to_fracture", timeToFracture), a.value("any_jet", anyJet);
     a.value("outside_max", outsideMax), a.value("below_count", belowCount);
     a.value("max_face_speed", maxFaceSpeed);
+    a.value("front_speed", frontSpeed), a.value("outflow_speed", outflowSpeed);
   };
   const FluidLoopOutcome loop =
       runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep, advance);
@@ -255,6 +277,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"acoustic_pressure", rho0 * spec.soundSpeed * spec.impactor.speed},
       {"max_jet_speed", nullUnless(anyJet, maxJet)},
       {"final_jet_speed", nullUnless(anyJet && belowCount > 0, lastJet)},
+      {"jet_front_speed", nullUnless(belowCount > 0, frontSpeed)},
+      {"final_outflow_speed", nullUnless(belowCount > 0, outflowSpeed)},
       {"max_deflection", maxDeflection},
       {"deflection_radius", deflectionRadius},
       {"final_tongue_angle", nullUnless(uShape, uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0)},
