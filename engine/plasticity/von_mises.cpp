@@ -41,8 +41,10 @@ double vonMisesStress(const SymTensor3& s) {
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
-double vonMisesStress(const PlaneTensor& s) {
-  return std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3.0 * s[2] * s[2]));
+double vonMisesStress(const PlaneTensor& s) { return vonMisesStress(s, {0.0, 0.0}); }
+
+double vonMisesStress(const PlaneTensor& s, const TransverseShear& q) {
+  return std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3.0 * (s[2] * s[2] + q[0] * q[0] + q[1] * q[1])));
 }
 
 double hydrostaticStress(const SymTensor3& s) { return (s[0] + s[1] + s[2]) / 3.0; }
@@ -72,20 +74,22 @@ PlaneTensor planeStressElastic(const ElasticPlasticMaterial& m, const PlaneTenso
   return {c * (e[0] + nu * e[1]), c * (e[1] + nu * e[0]), 2.0 * m.shearModulus() * e[2]};
 }
 
-ReturnMapping planeStressReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, double p) {
+ReturnMapping shellReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, TransverseShear& shear, double p) {
   const IsotropicHardening& h = m.hardening;
-  if (vonMisesStress(stress) <= h.yieldStress(p)) return {};
+  if (vonMisesStress(stress, shear) <= h.yieldStress(p)) return {};
   const double E = m.youngModulus, nu = m.poissonRatio, G = m.shearModulus();
   // Components in the common eigenbasis of C and P (de Souza Neto et al. 2008, eq. 9.43):
-  // a1 = (σ11+σ22)/√2 (P: 1/3, C: E/(1−ν)), a2 = (σ22−σ11)/√2 (P: 1, C: 2G), σ12 (P: 2, C: 2G).
+  // a1 = (σ11+σ22)/√2 (P: 1/3, C: E/(1−ν)), a2 = (σ22−σ11)/√2 (P: 1, C: 2G), σ12 (P: 2, C: 2G);
+  // the transverse shears σ13, σ23 are shears like σ12 (P: 2, C: 2G): they scale with it.
   const double a1 = (stress[0] + stress[1]) / std::sqrt(2.0);
   const double a2 = (stress[1] - stress[0]) / std::sqrt(2.0);
   const double a3 = stress[2];
+  const double shears = a3 * a3 + shear[0] * shear[0] + shear[1] * shear[1];
   const double c1 = E / (3.0 * (1.0 - nu)), c2 = 2.0 * G;
   // ξ(Δγ) = σᵀPσ = 2 J2 with σ(Δγ) = (I + Δγ C P)⁻¹ σ^tr.
   auto xi = [&](double g, double& dxi) {
     const double d1 = 1.0 + c1 * g, d2 = 1.0 + c2 * g;
-    const double t1 = a1 * a1 / 3.0, t2 = a2 * a2 + 2.0 * a3 * a3;
+    const double t1 = a1 * a1 / 3.0, t2 = a2 * a2 + 2.0 * shears;
     dxi = -2.0 * c1 * t1 / (d1 * d1 * d1) - 2.0 * c2 * t2 / (d2 * d2 * d2);
     return t1 / (d1 * d1) + t2 / (d2 * d2);
   };
@@ -107,28 +111,44 @@ ReturnMapping planeStressReturn(const ElasticPlasticMaterial& m, PlaneTensor& st
   const double d1 = 1.0 + c1 * g, d2 = 1.0 + c2 * g;
   const double b1 = a1 / d1, b2 = a2 / d2;
   stress = {(b1 - b2) / std::sqrt(2.0), (b1 + b2) / std::sqrt(2.0), a3 / d2};
+  shear = {shear[0] / d2, shear[1] / d2};
   double dxi = 0.0;
   const double dp = g * std::sqrt(2.0 * xi(g, dxi) / 3.0);
   return {dp, g, true};
 }
 
-ReturnMapping planeStressPointUpdate(const ElasticPlasticMaterial& m, const PlaneTensor& totalStrain,
-                                     PlaneTensor& plasticStrainTensor, double& plasticStrain,
-                                     PlaneTensor& stress) {
-  const PlaneTensor elastic = {totalStrain[0] - plasticStrainTensor[0],
-                               totalStrain[1] - plasticStrainTensor[1],
-                               totalStrain[2] - plasticStrainTensor[2]};
-  stress = planeStressElastic(m, elastic);
-  const ReturnMapping r = planeStressReturn(m, stress, plasticStrain);
+ReturnMapping planeStressReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, double p) {
+  TransverseShear none{0.0, 0.0};
+  return shellReturn(m, stress, none, p);
+}
+
+ReturnMapping shellPointUpdate(const ElasticPlasticMaterial& m, const PlaneTensor& totalStrain,
+                               const TransverseShear& transverseStrain, PlaneTensor& plasticStrainTensor,
+                               TransverseShear& plasticShear, double& plasticStrain, PlaneTensor& stress,
+                               TransverseShear& shear) {
+  const double G = m.shearModulus();
+  stress = planeStressElastic(m, {totalStrain[0] - plasticStrainTensor[0], totalStrain[1] - plasticStrainTensor[1],
+                                  totalStrain[2] - plasticStrainTensor[2]});
+  shear = {2.0 * G * (transverseStrain[0] - plasticShear[0]), 2.0 * G * (transverseStrain[1] - plasticShear[1])};
+  const ReturnMapping r = shellReturn(m, stress, shear, plasticStrain);
   if (r.plastic) {
-    // Flow ε^p += Δγ P σ (tensor shear: Δε^p_12 = Δγ σ12).
+    // Flow ε^p += Δγ P σ (tensor shears: Δε^p_α3 = Δγ σ_α3, as Δε^p_12 = Δγ σ12).
     const double g = r.plasticMultiplier;
     plasticStrainTensor[0] += g * (2.0 * stress[0] - stress[1]) / 3.0;
     plasticStrainTensor[1] += g * (2.0 * stress[1] - stress[0]) / 3.0;
     plasticStrainTensor[2] += g * stress[2];
+    plasticShear[0] += g * shear[0];
+    plasticShear[1] += g * shear[1];
     plasticStrain += r.plasticStrainIncrement;
   }
   return r;
+}
+
+ReturnMapping planeStressPointUpdate(const ElasticPlasticMaterial& m, const PlaneTensor& totalStrain,
+                                     PlaneTensor& plasticStrainTensor, double& plasticStrain,
+                                     PlaneTensor& stress) {
+  TransverseShear plasticShear{0.0, 0.0}, shear{0.0, 0.0};
+  return shellPointUpdate(m, totalStrain, {0.0, 0.0}, plasticStrainTensor, plasticShear, plasticStrain, stress, shear);
 }
 
 void updateStress3D(const ElasticPlasticMaterial& m, std::span<const SymTensor3> strainIncrement,

@@ -26,6 +26,8 @@ namespace rupture {
 using SymTensor3 = std::array<double, 6>;
 /// In-plane symmetric tensor (11, 22, 12), tensor shear component; σ33 = σ13 = σ23 = 0.
 using PlaneTensor = std::array<double, 3>;
+/// The transverse shears (13, 23) of a shell's layer, tensor components, beside its PlaneTensor.
+using TransverseShear = std::array<double, 2>;
 
 struct ElasticPlasticMaterial {
   double youngModulus = 73.1e9;  ///< E (Pa)
@@ -41,6 +43,8 @@ void validateElasticPlastic(const ElasticPlasticMaterial& m, const std::string& 
 
 double vonMisesStress(const SymTensor3& s);
 double vonMisesStress(const PlaneTensor& s);
+/// A shell layer's: σ_eq² = σ11² − σ11 σ22 + σ22² + 3 (σ12² + σ13² + σ23²) (σ33 = 0).
+double vonMisesStress(const PlaneTensor& s, const TransverseShear& q);
 double hydrostaticStress(const SymTensor3& s);
 inline double hydrostaticStress(const PlaneTensor& s) { return (s[0] + s[1]) / 3.0; }
 
@@ -57,6 +61,10 @@ ReturnMapping radialReturn3D(const ElasticPlasticMaterial& m, SymTensor3& stress
 /// Plane-stress projected return (Simo–Taylor): corrects the in-plane trial stress (in/out).
 ReturnMapping planeStressReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, double p);
 
+/// The same with a shell layer's transverse shears σ13, σ23 (in/out) in the yield function: they
+/// are shears like σ12 in the eigenbasis of C and P, so the one scalar equation stays.
+ReturnMapping shellReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, TransverseShear& shear, double p);
+
 /// Plane-stress Hooke's law σ = C ε for the in-plane tensor strain ε.
 PlaneTensor planeStressElastic(const ElasticPlasticMaterial& m, const PlaneTensor& strain);
 
@@ -70,6 +78,13 @@ void updateStress3D(const ElasticPlasticMaterial& m, std::span<const SymTensor3>
 void updateStressPlaneStress(const ElasticPlasticMaterial& m, std::span<const PlaneTensor> totalStrain,
                              std::span<PlaneTensor> plasticStrainTensor,
                              std::span<double> plasticStrain, std::span<PlaneTensor> stress);
+
+/// A shell layer's total-strain update with its transverse tensor shear strains ε13, ε23: σ13 =
+/// 2G (ε13 − ε^p_13), shellReturn, then ε^p (in-plane and transverse) and p updated in place.
+ReturnMapping shellPointUpdate(const ElasticPlasticMaterial& m, const PlaneTensor& totalStrain,
+                               const TransverseShear& transverseStrain, PlaneTensor& plasticStrainTensor,
+                               TransverseShear& plasticShear, double& plasticStrain, PlaneTensor& stress,
+                               TransverseShear& shear);
 
 /// One point of updateStressPlaneStress (the shell calls this inside its own loop).
 ReturnMapping planeStressPointUpdate(const ElasticPlasticMaterial& m, const PlaneTensor& totalStrain,

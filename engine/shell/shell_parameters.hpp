@@ -17,6 +17,10 @@ struct ShellParameters {
   LemaitreChabocheDamage damageLaw;      ///< its ν is taken from `material`
   int thicknessPoints = 5;               ///< Gauss points through the thickness, [2, 7]
   double shearCorrection = 5.0 / 6.0;    ///< κ_s of the transverse shear resultant
+  /// true: each layer's transverse shear (parabolic through the thickness) enters its yield,
+  /// flow and damage; false (the seed's shells): the layers yield in plane stress and the
+  /// transverse shear stays elastic.
+  bool transverseShearYield = false;
   double smoothingRatio = 1.3;           ///< h / Δ (support radius 2h)
   double hourglassCoefficient = 0.05;    ///< α of the pair-wise hourglass control, [0, 1]
   double rotaryInertiaScale = 1.0;       ///< s_I >= 1: I = s_I ρ t³/12 per unit area

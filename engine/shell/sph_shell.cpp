@@ -92,6 +92,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   const std::size_t layers = m_rule.xi.size();
   m_plasticStrainTensor.assign(n * layers, {0.0, 0.0, 0.0});
   m_plasticStrain.assign(n * layers, 0.0);
+  m_plasticShear.assign(n * layers, {0.0, 0.0});
   m_damage.assign(n * layers, DamageState{});
 
   buildNeighbours();
@@ -262,6 +263,7 @@ void SphShell::computeForces(double dt) {
   const ElasticPlasticMaterial& mat = m_params.material;
   const double shearModulus = m_params.shearCorrection * mat.shearModulus();  // κ_s G
   const bool plastic = m_params.plasticity, damaging = m_params.damage && m_params.plasticity;
+  const bool shearYield = plastic && m_params.transverseShearYield;
   std::vector<std::uint8_t> newlyFractured(n, 0);
 
   // Pass 1: gradients, strains, layer stresses, resultants at every stress point.
@@ -308,13 +310,27 @@ void SphShell::computeForces(double dt) {
       PlaneTensor N{0.0, 0.0, 0.0}, M{0.0, 0.0, 0.0};
       const double t = m_thickness[i], scale = t / m_params.thickness;
       double intact = 0.0;
+      TransverseShear Q{0.0, 0.0};  // Σ w_k (1 − D_k) σ_k3 when the layers yield in shear
       int broken = 0;
       for (std::size_t k = 0; k < layers; ++k) {
         const double z = scale * m_rule.xi[k], w = scale * m_rule.weight[k];
         const PlaneTensor E = {eps[0] + z * kap[0], eps[1] + z * kap[1], eps[2] + z * kap[2]};
         const std::size_t idx = i * layers + k;
         PlaneTensor sig;
-        if (plastic) {
+        TransverseShear tau{0.0, 0.0};
+        if (shearYield) {
+          // The layer's share of the mean shear strain: parabolic, zero at the faces, with mean κ_s γ
+          // (the resultant κ_s G t γ when elastic: Gauss integrates the parabola exactly).
+          const double zeta = z / t, profile = 1.5 * (1.0 - 4.0 * zeta * zeta) * m_params.shearCorrection;
+          const TransverseShear epsT = {0.5 * profile * gam0, 0.5 * profile * gam1};
+          const double pBefore = m_plasticStrain[idx];
+          const ReturnMapping r = shellPointUpdate(mat, E, epsT, m_plasticStrainTensor[idx], m_plasticShear[idx],
+                                                   m_plasticStrain[idx], sig, tau);
+          if (damaging) {
+            const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
+            advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, dt);
+          }
+        } else if (plastic) {
           const double pBefore = m_plasticStrain[idx];
           const ReturnMapping r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
           if (damaging) {
@@ -327,6 +343,8 @@ void SphShell::computeForces(double dt) {
         const double f = stressFactor(m_damage[idx]);
         if (m_damage[idx].fractured) ++broken;
         intact += w * f;
+        Q[0] += w * f * tau[0];
+        Q[1] += w * f * tau[1];
         for (int c = 0; c < 3; ++c) {
           N[c] += w * f * sig[c];
           M[c] += w * z * f * sig[c];
@@ -335,9 +353,10 @@ void SphShell::computeForces(double dt) {
       if (broken == static_cast<int>(layers)) newlyFractured[i] = 1;
       Mout = M;
       const double om = m_area[i];
-      // κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
+      // Elastic shear: κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
       const double shearStiffness = shearModulus * t;
-      const double Q0 = om * shearStiffness * gam0 * intact / t, Q1 = om * shearStiffness * gam1 * intact / t;
+      const double Q0 = om * (shearYield ? Q[0] : shearStiffness * gam0 * intact / t);
+      const double Q1 = om * (shearYield ? Q[1] : shearStiffness * gam1 * intact / t);
       Qout = {Q0, Q1};
       // P_α = Σ_β (N_αβ A_β + M_αβ G_β);  R_α = Σ_β M_αβ A_β (× ω_i); Q = ω_i κ_s G t γ.
       for (int c = 0; c < 3; ++c) {
@@ -610,6 +629,7 @@ void SphShell::exchangeState(StateArchive& archive) {
   archive.records("shear_q", m_shearQ);
   archive.records("plastic_strain_tensor", m_plasticStrainTensor);
   archive.array("plastic_strain", m_plasticStrain);
+  archive.records("plastic_shear", m_plasticShear);
   archive.records("damage", m_damage);
   archive.array("offset", m_offset), archive.array("neighbour", m_neighbour), archive.array("reverse", m_reverse);
   archive.array("active", m_active);

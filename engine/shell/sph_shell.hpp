@@ -144,6 +144,7 @@ private:
   // Per node and layer (node-major, m_rule.xi.size() layers).
   std::vector<std::array<double, 3>> m_plasticStrainTensor;
   std::vector<double> m_plasticStrain;
+  std::vector<TransverseShear> m_plasticShear;  ///< per layer: transverse plastic tensor shears ε^p_13, ε^p_23
   std::vector<DamageState> m_damage;
 
   // Pairs in CSR order (i's neighbours j), both directions stored.

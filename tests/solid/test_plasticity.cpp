@@ -110,6 +110,51 @@ TEST(Plasticity, ReturnMappingLandsOnTheYieldSurface) {
   }
 }
 
+// A shell layer's return with its transverse shears σ13, σ23: on a pure-shear state (σ12, σ13,
+// σ23; σ11 = σ22 = σ33 = 0) the 3D radial return keeps the normal stresses zero, so the shell's
+// plane-stress return must give the 3D answer exactly; on any state it lands on the yield surface.
+TEST(Plasticity, ShellReturnWithTransverseShearMatchesThe3DReturnInPureShear) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), up(0.0, 0.3);
+  for (const HardeningKind kind : {HardeningKind::linear, HardeningKind::johnsonCook}) {
+    ElasticPlasticMaterial m;
+    if (kind == HardeningKind::linear) m = linearMaterial();
+    for (int trial = 0; trial < 300; ++trial) {
+      const double p = up(rng), scale = 1.0e9;
+      PlaneTensor s = {0.0, 0.0, scale * u(rng)};
+      TransverseShear q = {scale * u(rng), scale * u(rng)};
+      SymTensor3 s3 = {0.0, 0.0, 0.0, q[1], q[0], s[2]};  // (xx, yy, zz, yz, xz, xy)
+      const ReturnMapping r = shellReturn(m, s, q, p);
+      const ReturnMapping r3 = radialReturn3D(m, s3, p);
+      ASSERT_EQ(r.plastic, r3.plastic);
+      EXPECT_NEAR(r.plasticStrainIncrement, r3.plasticStrainIncrement, 1e-12);
+      EXPECT_NEAR(s[2], s3[5], 1e-9 * scale);
+      EXPECT_NEAR(q[0], s3[4], 1e-9 * scale);
+      EXPECT_NEAR(q[1], s3[3], 1e-9 * scale);
+      EXPECT_NEAR(s[0], 0.0, 1e-9 * scale);
+
+      PlaneTensor g = {scale * u(rng), scale * u(rng), scale * u(rng)};
+      TransverseShear gq = {scale * u(rng), scale * u(rng)};
+      const double before = vonMisesStress(g, gq);
+      const ReturnMapping rg = shellReturn(m, g, gq, p);
+      if (before > m.hardening.yieldStress(p)) {
+        ASSERT_TRUE(rg.plastic);
+        EXPECT_NEAR(vonMisesStress(g, gq), m.hardening.yieldStress(p + rg.plasticStrainIncrement), 1e-12 * before);
+      }
+    }
+  }
+  // A layer in pure transverse shear of a perfectly plastic material yields at τ = σ_y/√3.
+  ElasticPlasticMaterial perfect;
+  perfect.hardening = {HardeningKind::linear, 300.0e6, 0.0, 1.0};
+  PlaneTensor plastic{0.0, 0.0, 0.0}, stress{};
+  TransverseShear plasticShear{0.0, 0.0}, shear{};
+  double pAcc = 0.0;
+  shellPointUpdate(perfect, {0.0, 0.0, 0.0}, {0.01, 0.0}, plastic, plasticShear, pAcc, stress, shear);
+  EXPECT_NEAR(shear[0], 300.0e6 / std::sqrt(3.0), 1e-6 * 300.0e6);
+  EXPECT_GT(plasticShear[0], 0.0);
+  EXPECT_NEAR(2.0 * perfect.shearModulus() * (0.01 - plasticShear[0]), shear[0], 1e-6 * 300.0e6);
+}
+
 // Linear hardening in 3D has the closed form Δp = (σ_eq^tr − σ_y(p_n)) / (3G + H).
 TEST(Plasticity, PlasticIncrementOfAKnownStep) {
   const ElasticPlasticMaterial m = linearMaterial();

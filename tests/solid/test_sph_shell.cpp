@@ -59,6 +59,24 @@ TEST(SphShell, ClampedPlateDeflectsAsKirchhoff) {
   EXPECT_NEAR(w / w0, 1.0, 0.05) << "w = " << w << " m, Kirchhoff " << w0 << " m";
 }
 
+// The layers' transverse-shear yield (ShellParameters::transverseShearYield) distributes Mindlin's
+// shear over the layers as a parabola whose Gauss integral is the resultant κ_s G t γ: below yield
+// the plate is the same plate, with or without it (here a thick one, t/a = 0.2, whose shear
+// deflection is 8 % of the bending's).
+TEST(SphShell, TransverseShearYieldLeavesTheElasticPlateUnchanged) {
+  const ShellNodes nodes = clampedDiskNodes(kRadius, 2.0e-3, 0);
+  ShellParameters p = elasticPlate();
+  p.thickness = 0.2 * kRadius;
+  p.plasticity = true;  // the layers' return mappings run, and stay elastic at this pressure
+  const double pressure = 1.0e5;
+  p.transverseShearYield = false;
+  const double planeStress = staticCentreDeflection(nodes, p, pressure);
+  p.transverseShearYield = true;
+  const double withShear = staticCentreDeflection(nodes, p, pressure);
+  EXPECT_NEAR(withShear, planeStress, 1e-9 * planeStress);
+  EXPECT_GT(planeStress, 0.0);
+}
+
 /// A spot face of radius a and thickness t1 in a bottom of thickness t2, clamped at b, under a
 /// uniform pressure p: Kirchhoff's axisymmetric solution in each part (w = p r⁴/(64 D) + C1 r² +
 /// C2 ln r + C3, regular at the centre), joined at the step by w, w' and M_r, clamped at b; plus

@@ -108,6 +108,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   parseMaterial(*node, p);
   p.shell.plasticity = node->boolean("plasticity", true);
   p.shell.damage = node->boolean("damage", true);
+  p.shell.transverseShearYield = node->boolean("transverse_shear_yield", p.shell.transverseShearYield);
   p.shell.thicknessPoints = static_cast<int>(node->integer("layers", 2, 7, p.shell.thicknessPoints));
   p.shell.smoothingRatio = node->number("smoothing_ratio", Range::closed(1.0, 2.5), "1", p.shell.smoothingRatio);
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
@@ -300,6 +301,7 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                   {"delay_sharpness", d.delaySharpness}}},
                 {"plasticity", sh.plasticity},
                 {"damage", sh.damage},
+                {"transverse_shear_yield", sh.transverseShearYield},
                 {"layers", sh.thicknessPoints},
                 {"smoothing_ratio", sh.smoothingRatio},
                 {"hourglass_coefficient", sh.hourglassCoefficient},
