@@ -63,16 +63,17 @@ def main():
         f"{prov.get('threads_per_run', '?')} thread per run, wall time of the job {status.get('elapsed_s', 0):.0f} s "
         f"(started {status.get('started', '?')}).",
         "",
-        "| specimen | first peak (bar): ours / seed | max jet (m/s): ours / seed film / seed sim | final jet (m/s) | tongue (°): ours / seed | fracture (ms): ours / seed | fractured nodes | max deflection (mm) | seed's outcome |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| specimen | first peak (bar): ours / seed | jet front at the end (m/s): ours / seed film / seed sim | outflow at the end (m/s) | largest mean jet (m/s) | tongue (°): ours / seed | fracture (ms): ours / seed | fractured nodes | max deflection (mm) | seed's outcome |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in summary["rows"]:
         seed_peak = "–" if r.get("seed_first_peak_low") is None else \
             f"{r['seed_first_peak_low'] / 1e5:.0f}–{r['seed_first_peak_high'] / 1e5:.0f}"
         lines.append(
             f"| {r['specimen']} | {fmt(r.get('first_pressure_peak'), 1e-5)} / {seed_peak} | "
-            f"{fmt(r.get('max_jet_speed'), 1, 1)} / {fmt(r.get('seed_jet_speed'))} / {fmt(r.get('seed_simulated_jet_speed'))} | "
-            f"{fmt(r.get('final_jet_speed'), 1, 1)} | {fmt(r.get('final_tongue_angle'), deg, 1)} / {fmt(r.get('seed_tongue_angle'), deg)} | "
+            f"{fmt(r.get('jet_front_speed'), 1, 1)} / {fmt(r.get('seed_jet_speed'))} / {fmt(r.get('seed_simulated_jet_speed'))} | "
+            f"{fmt(r.get('final_outflow_speed'), 1, 1)} | {fmt(r.get('max_jet_speed'), 1, 1)} | "
+            f"{fmt(r.get('final_tongue_angle'), deg, 1)} / {fmt(r.get('seed_tongue_angle'), deg)} | "
             f"{fmt(r.get('time_to_fracture'), 1e3, 2)} / {fmt(r.get('seed_time_to_fracture'), 1e3, 1)} | "
             f"{r.get('fractured_nodes')} | {fmt(r.get('max_deflection'), 1e3, 3)} | {r.get('seed_outcome') or '–'} |")
     with open(a.out, "w") as f:

@@ -32,7 +32,8 @@ TEST(CliTankImpact, RunsAndWritesWaterAndPlateSnapshots) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["completed"], 1);
-  for (const char* name : {"first_pressure_peak", "max_jet_speed", "max_deflection", "time_to_fracture", "cracked_length"})
+  for (const char* name : {"first_pressure_peak", "max_jet_speed", "jet_front_speed", "final_outflow_speed",
+                           "max_deflection", "time_to_fracture", "cracked_length"})
     EXPECT_TRUE(summary.contains(name)) << name;
   EXPECT_TRUE(summary["time_to_fracture"].is_null());  // 20 µs at 2 m/s tears nothing
   EXPECT_EQ(summary["contact_method"], "pinball");
@@ -48,6 +49,9 @@ TEST(CliTankImpact, RunsAndWritesWaterAndPlateSnapshots) {
   EXPECT_TRUE(file.exists("/snapshots/000000/damage"));
   EXPECT_TRUE(file.exists("/snapshots/000000/fractured"));
   EXPECT_EQ(file.readAttributeString("/summary", "max_jet_speed_unit"), "m/s");
+  EXPECT_EQ(file.readAttributeString("/summary", "jet_front_speed_unit"), "m/s");
+  EXPECT_EQ(file.readAttributeString("/series/jet_front_speed", "unit"), "m/s");
+  EXPECT_EQ(file.readAttributeString("/series/outflow_speed", "unit"), "m/s");
 }
 
 TEST(CliTankImpact, BadFieldExitsTwoNamingIt) {
