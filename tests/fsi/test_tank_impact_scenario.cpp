@@ -75,6 +75,12 @@ TEST(TankImpactScenario, E20A5ReportsAJetAndAFirstPressurePeak) {
   EXPECT_GT(outflow, 5.0);
   EXPECT_GT(front, outflow);
   EXPECT_LT(front, bernoulli);
+  // The steady jet leaves the plate no faster than the piston's displacement can feed it
+  // (continuity through the hole, 1/16 of the bore, at the carriage's initial speed at most).
+  ASSERT_FALSE(s["mean_outflow_speed"].is_null());
+  const double steady = s["mean_outflow_speed"];
+  EXPECT_GT(steady, 5.0);
+  EXPECT_LT(steady, 1.05 * 16.0 * 5.0);
   // The front's speed is the rate at which the water's lowest point went down: its depth below the
   // plate's face in the last snapshot over the time since the first water came through agrees with
   // it (within 15 %: the front slows a little as it flies, by pressure within the jet).

@@ -164,6 +164,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   double peakProbe = 0, maxDensityError = 0;
   double maxJet = 0, lastJet = 0, maxDeflection = 0, lastStep = 0;
   double frontSpeed = 0, outflowSpeed = 0;  // the jet's leading water and the water leaving the plate, at the last row
+  double outflowSum = 0;                     // the outflow speed summed over the rows of the run's second half
+  std::int64_t outflowRows = 0;              // with water below the plate
   std::vector<std::size_t> jetParticles;
   double timeToFracture = std::numeric_limits<double>::quiet_NaN();
   bool anyJet = false;
@@ -208,6 +210,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     }
     frontSpeed = frontMass > 0 ? frontMomentum / frontMass : 0.0;
     outflowSpeed = exitMass > 0 ? exitMomentum / exitMass : 0.0;
+    // The steady jet: the outflow averaged over the run's second half, past the first burst.
+    if (exitMass > 0 && s.time >= 0.5 * spec.run.endTime) outflowSum += outflowSpeed, ++outflowRows;
     belowCount = below;
     for (std::size_t k = 0; k < probes.size(); ++k) {
       probes[k] = s.probePressure(spec.probes[k][0], spec.probes[k][1], spec.probes[k][2]);
@@ -249,6 +253,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
     a.value("outside_max", outsideMax), a.value("below_count", belowCount);
     a.value("max_face_speed", maxFaceSpeed);
     a.value("front_speed", frontSpeed), a.value("outflow_speed", outflowSpeed);
+    a.value("outflow_sum", outflowSum), a.value("outflow_rows", outflowRows);
   };
   const FluidLoopOutcome loop =
       runFluidLoop(s, spec.run, control, {checkpoints, recorder.result(), state}, row, snapshot, afterStep, advance);
@@ -279,6 +284,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"final_jet_speed", nullUnless(anyJet && belowCount > 0, lastJet)},
       {"jet_front_speed", nullUnless(belowCount > 0, frontSpeed)},
       {"final_outflow_speed", nullUnless(belowCount > 0, outflowSpeed)},
+      {"mean_outflow_speed", nullUnless(outflowRows > 0, outflowRows > 0 ? outflowSum / outflowRows : 0.0)},
       {"max_deflection", maxDeflection},
       {"deflection_radius", deflectionRadius},
       {"final_tongue_angle", nullUnless(uShape, uShape ? tongueOpeningAngle(plate, geometry, spec.plate) : 0.0)},

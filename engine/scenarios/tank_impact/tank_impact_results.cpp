@@ -16,6 +16,7 @@ const ResultFields& tankImpactSummaryFields() {
       {"final_jet_speed", "m/s", "Final jet speed", "Mean axial speed of the water below the plate at the end (null if none)"},
       {"jet_front_speed", "m/s", "Jet front speed", "Mean axial speed of the jet's front at the end: the water within one smoothing length of the lowest water below the plate, what a film tracks (null if none)"},
       {"final_outflow_speed", "m/s", "Final outflow speed", "Mean axial speed at the end of the water within one smoothing length below the plate's face: the speed at which the flow leaves it (null if none below)"},
+      {"mean_outflow_speed", "m/s", "Mean outflow speed", "The outflow speed averaged over the output rows of the run's second half that have water leaving the plate: the steady jet, past the first burst (null if none)"},
       {"max_deflection", "m", "Max deflection", "Largest downward deflection of the plate at (D + d)/4 from the centre"},
       {"deflection_radius", "m", "Deflection radius", "(D + d)/4: where the deflection is read (d: hole diameter, 0 without)"},
       {"final_tongue_angle", "rad", "Final tongue angle", "Opening angle of the U tongue at the end (null for other pre-cracks)"},
