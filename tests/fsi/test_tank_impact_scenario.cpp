@@ -107,7 +107,9 @@ TEST(TankImpactScenario, E20A5ReportsAJetAndAFirstPressurePeak) {
 // E14A5 and E14A2 as given (fluid 4 mm, plate 2 mm, the elastic piston), to 0.35 ms: past the
 // first peak's window t <= 2.5 H/c0 = 0.31 ms, so the first peak is the full run's. The seed
 // measured 210-277 bar (four repeats) and 58-83 bar (three): ours must lie within those ranges
-// widened by 20 % (issue #27's acceptance). The one-body rigid impactor stays below them: the
+// widened by 20 % (issue #27's acceptance); at this 4 mm fluid the peaks are 5.7 % and 6.1 % below
+// those at the seed's 2 mm (docs/studies/tank-resolution.md), inside the acceptance at either
+// resolution (the validation cases run 2 mm). The one-body rigid impactor stays below them: the
 // piston's own bounce off the carriage is what makes the peak (docs/tank-impact.md#impactor).
 TEST(TankImpactScenario, E14FirstPeaksLieInTheMeasuredRanges) {
   struct Case { const char* name; double low, high; };
