@@ -61,8 +61,8 @@ TEST(SphShell, ClampedPlateDeflectsAsKirchhoff) {
 
 // The layers' transverse-shear yield (ShellParameters::transverseShearYield) distributes Mindlin's
 // shear over the layers as a parabola whose Gauss integral is the resultant κ_s G t γ: below yield
-// the plate is the same plate, with or without it (here a thick one, t/a = 0.2, whose shear
-// deflection is 8 % of the bending's).
+// the plate is the same plate, with or without it (here a thick one, t/a = 0.2, whose Mindlin shear
+// deflection p a²/(4 κ_s G t) is (8/3)(t/a)²/(κ_s (1 − ν)) = 19 % of Kirchhoff's p a⁴/(64 D)).
 TEST(SphShell, TransverseShearYieldLeavesTheElasticPlateUnchanged) {
   const ShellNodes nodes = clampedDiskNodes(kRadius, 2.0e-3, 0);
   ShellParameters p = elasticPlate();
