@@ -318,23 +318,21 @@ void SphShell::computeForces(double dt) {
         const std::size_t idx = i * layers + k;
         PlaneTensor sig;
         TransverseShear tau{0.0, 0.0};
-        if (shearYield) {
-          // The layer's share of the mean shear strain: parabolic, zero at the faces, with mean κ_s γ
-          // (the resultant κ_s G t γ when elastic: Gauss integrates the parabola exactly).
-          const double zeta = z / t, profile = 1.5 * (1.0 - 4.0 * zeta * zeta) * m_params.shearCorrection;
-          const TransverseShear epsT = {0.5 * profile * gam0, 0.5 * profile * gam1};
+        if (plastic) {
           const double pBefore = m_plasticStrain[idx];
-          const ReturnMapping r = shellPointUpdate(mat, E, epsT, m_plasticStrainTensor[idx], m_plasticShear[idx],
-                                                   m_plasticStrain[idx], sig, tau);
-          if (damaging) {
-            const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
-            advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, dt);
+          ReturnMapping r;
+          if (shearYield) {
+            // The layer's share of the mean shear strain: parabolic, zero at the faces, with mean κ_s γ
+            // (the resultant κ_s G t γ when elastic: Gauss integrates the parabola exactly).
+            const double zeta = z / t, profile = 1.5 * (1.0 - 4.0 * zeta * zeta) * m_params.shearCorrection;
+            const TransverseShear epsT = {0.5 * profile * gam0, 0.5 * profile * gam1};
+            r = shellPointUpdate(mat, E, epsT, m_plasticStrainTensor[idx], m_plasticShear[idx], m_plasticStrain[idx],
+                                 sig, tau);
+          } else {
+            r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
           }
-        } else if (plastic) {
-          const double pBefore = m_plasticStrain[idx];
-          const ReturnMapping r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
-          if (damaging) {
-            const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig));
+          if (damaging) {  // tau is zero unless the layers yield in shear
+            const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
             advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, dt);
           }
         } else {
