@@ -16,6 +16,10 @@ std::string toString(ImpactorModel model) {
   return "rigid";
 }
 
+std::string toString(CarriageContact contact) {
+  return contact == CarriageContact::Tied ? "tied" : "compression_only";
+}
+
 double ImpactorSpec::pistonArea() const { return 0.25 * std::numbers::pi * pistonDiameter * pistonDiameter; }
 double ImpactorSpec::pistonMass() const { return pistonDensity * pistonArea() * pistonLength; }
 double ImpactorSpec::resolvedContactStiffness() const {
@@ -23,7 +27,9 @@ double ImpactorSpec::resolvedContactStiffness() const {
 }
 
 ImpactorColumn::ImpactorColumn(const ImpactorSpec& spec, double gravity)
-    : m_contactStiffness(spec.resolvedContactStiffness()), m_gravity(gravity) {
+    : m_contactStiffness(spec.resolvedContactStiffness()),
+      m_tied(spec.contact == CarriageContact::Tied),
+      m_gravity(gravity) {
   if (spec.model == ImpactorModel::Rigid)
     throw std::logic_error("ImpactorColumn: the rigid impactor is the SPH piston body itself");
   const double pistonMass = spec.pistonMass();
@@ -67,7 +73,10 @@ void ImpactorColumn::computeForces(double faceForce) {
   m_f.back() += faceForce;
 }
 
-double ImpactorColumn::contactForce() const { return m_contactStiffness * std::max(0.0, m_u[0] - m_u[1]); }
+double ImpactorColumn::contactForce() const {
+  const double closure = m_u[0] - m_u[1];
+  return m_contactStiffness * (m_tied ? closure : std::max(0.0, closure));
+}
 
 void ImpactorColumn::advance(double dt, double faceForce) {
   const int n = std::max(1, static_cast<int>(std::ceil(dt / m_stableStep * (1.0 - 1e-12))));
@@ -110,8 +119,8 @@ double ImpactorColumn::kineticEnergy() const {
 }
 
 double ImpactorColumn::elasticEnergy() const {
-  const double gap = std::max(0.0, m_u[0] - m_u[1]);
-  double e = 0.5 * m_contactStiffness * gap * gap;
+  const double closure = m_tied ? m_u[0] - m_u[1] : std::max(0.0, m_u[0] - m_u[1]);
+  double e = 0.5 * m_contactStiffness * closure * closure;
   for (std::size_t i = 1; i + 1 < m_mass.size(); ++i) {
     const double d = m_u[i] - m_u[i + 1];
     e += 0.5 * m_elementStiffness * d * d;

@@ -7,7 +7,8 @@
 //   node 0        the carriage, mass M, speed V at t = 0
 //   nodes 1 … n   the piston from its top (struck) face to its wetted face, at rest at t = 0
 // Carriage and piston touch through a compression-only contact spring k_c (they may separate and
-// strike again); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
+// strike again), or, read the other way the seed's words allow, the carriage's point is tied to the
+// piston's top by that spring, which then also pulls (`CarriageContact::Tied`); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
 // lumped masses ρ A ℓ (half at the two faces). A rigid piston (`two_body`) is one point of mass
 // ρ A L. The water pushes the wetted face back with the force the fluid gives the SPH piston
 // (piston_drive.hpp). Velocity Verlet, sub-cycled within the fluid's step at the column's own stable
@@ -29,6 +30,13 @@ enum class ImpactorModel {
 };
 std::string toString(ImpactorModel model);  ///< "rigid", "two_body", "elastic_piston"
 
+/// How the carriage holds the piston's struck face.
+enum class CarriageContact {
+  CompressionOnly,  ///< pushes only: the piston may part from the carriage and be struck again
+  Tied              ///< the carriage's point joined to the piston's top: the spring also pulls
+};
+std::string toString(CarriageContact contact);  ///< "compression_only", "tied"
+
 /// The impactor's physical inputs (SI). The defaults are the seed's set-up where it gives them
 /// (M = 245 kg, V = 2 or 5 m/s, §2.1; the piston of APX steel, Table 2: E = 211 GPa, ρ = 7700 kg/m³)
 /// and stated assumptions where it does not (the piston's length and section; docs/tank-impact.md).
@@ -45,6 +53,7 @@ struct ImpactorSpec {
   /// stiffness of a 5 mm slice of the piston, so that the flat steel faces add no more compliance
   /// than that (docs/tank-impact.md#impactor).
   double contactStiffness = 0.0;
+  CarriageContact contact = CarriageContact::CompressionOnly;
 
   double pistonArea() const;   ///< π d²/4 (m²)
   double pistonMass() const;   ///< ρ A L (kg)
@@ -66,7 +75,7 @@ public:
   double faceSpeed() const { return m_v.back(); }         ///< wetted face (m/s)
   double carriageDisplacement() const { return m_u.front(); }
   double carriageSpeed() const { return m_v.front(); }
-  /// Force in the carriage–piston contact (N, ≥ 0 compressive).
+  /// Force in the carriage–piston contact (N, positive compressive; ≥ 0 unless tied).
   double contactForce() const;
   /// The piston's mean speed Σ m_i v_i / Σ m_i (m/s) and its mass (kg).
   double pistonSpeed() const;
@@ -88,6 +97,7 @@ private:
   std::vector<double> m_mass, m_u, m_v, m_f;  ///< per point: kg, m, m/s, N
   double m_elementStiffness = 0;  ///< E A / ℓ (N/m); 0 for a rigid piston
   double m_contactStiffness = 0;  ///< k_c (N/m)
+  bool m_tied = false;            ///< the contact also pulls
   double m_gravity = 0;           ///< m/s² along the motion
   double m_stableStep = 0;        ///< s
   double m_faceWork = 0;          ///< J

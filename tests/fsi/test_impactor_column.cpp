@@ -5,6 +5,9 @@
 //   struck face at T = 2L/c as tension and the two part there. So the carriage leaves at
 //   V e^(−T/τ), τ = M/(Z A), and the piston's mean speed is M V (1 − e^(−T/τ)) / m;
 // - rigid piston (`two_body`): an elastic collision, piston 2M V/(M + m), carriage (M − m) V/(M + m).
+// - tied contact (`contact: tied`), rigid piston: the carriage and the piston a two-mass oscillator,
+//   closure (u_carriage − u_piston) = (V/ω) sin ω t with ω² = k_c (M + m)/(M m), the centre of mass
+//   moving on at M V/(M + m); they never part.
 // Momentum is conserved to round-off and energy (kinetic + elastic) to the integrator's error.
 #include <gtest/gtest.h>
 
@@ -102,6 +105,41 @@ TEST(ImpactorColumn, RigidPistonCollidesElastically) {
   }
 }
 
+TEST(ImpactorColumn, TiedCarriageAndPistonOscillateTogether) {
+  for (double M : {245.0, 10.0}) {
+    ImpactorSpec s;
+    s.model = ImpactorModel::TwoBody;
+    s.contact = CarriageContact::Tied;
+    s.mass = M;
+    ImpactorColumn column(s, 0.0);
+    const double m = s.pistonMass(), k = s.resolvedContactStiffness();
+    const double omega = std::sqrt(k * (M + m) / (M * m)), period = 2 * std::numbers::pi / omega;
+    const double p0 = column.momentum(), e0 = column.kineticEnergy(), dt = period / 400;
+    double drift = 0.0, largestTension = 0.0, largestError = 0.0;
+    for (int step = 1; step <= 1000; ++step) {  // 2.5 periods: the pull of the first rebound included
+      column.advance(dt, 0.0);
+      const double closure = column.carriageDisplacement() - column.faceDisplacement();
+      largestError = std::max(largestError, std::fabs(closure - s.speed / omega * std::sin(omega * step * dt)));
+      largestTension = std::max(largestTension, -column.contactForce());
+      drift = std::max(drift, std::fabs(column.kineticEnergy() + column.elasticEnergy() - e0) / e0);
+    }
+    SCOPED_TRACE("M = " + std::to_string(M) + " kg");
+    EXPECT_LT(largestError, 1e-3 * s.speed / omega);
+    EXPECT_NEAR(largestTension, k * s.speed / omega, 1e-3 * k * s.speed / omega);  // the spring pulls as it pushes
+    EXPECT_NEAR(column.momentum(), p0, 1e-12 * p0);
+    EXPECT_LT(drift, 2e-3);
+  }
+  // Compression only, the same pair parts after half a period and the contact then carries nothing.
+  ImpactorSpec s;
+  s.model = ImpactorModel::TwoBody;
+  ImpactorColumn column(s, 0.0);
+  const double m = s.pistonMass(), omega = std::sqrt(s.resolvedContactStiffness() * (s.mass + m) / (s.mass * m));
+  for (int step = 0; step < 1000; ++step) {
+    column.advance(2 * std::numbers::pi / omega / 400, 0.0);
+    EXPECT_GE(column.contactForce(), 0.0);
+  }
+}
+
 TEST(ImpactorColumn, FaceForceWorkAndGravity) {
   // A constant resisting face force: momentum changes by F t, and the face force's work balances
   // the energy (kinetic + elastic) to the integrator's error.
@@ -129,6 +167,8 @@ TEST(ImpactorSpec, DefaultsAndErrorsNameTheField) {
   EXPECT_DOUBLE_EQ(d.pistonYoungModulus, 211e9);  // seed Table 2, APX steel
   EXPECT_DOUBLE_EQ(d.pistonDensity, 7700.0);
   EXPECT_NEAR(d.resolvedContactStiffness(), 211e9 * d.pistonArea() / 0.005, 1.0);
+  EXPECT_EQ(d.contact, CarriageContact::CompressionOnly);
+  EXPECT_EQ(parse({{"contact", "tied"}}).contact, CarriageContact::Tied);
   // The resolved spec reads back to itself.
   const nlohmann::json resolved = rupture::toJson(d);
   EXPECT_EQ(rupture::toJson(parse(resolved)), resolved);
@@ -151,6 +191,8 @@ TEST(ImpactorSpec, DefaultsAndErrorsNameTheField) {
   EXPECT_EQ(fieldOf({{"piston", {{"elements", 0}}}}), "impactor.piston.elements");
   EXPECT_EQ(fieldOf({{"piston", {{"stiffness", 1.0}}}}), "impactor.piston.stiffness");
   EXPECT_EQ(fieldOf({{"mass", 0.0}}), "impactor.mass");
+  EXPECT_EQ(fieldOf({{"contact", "glued"}}), "impactor.contact");
+  EXPECT_EQ(fieldOf({{"model", "rigid"}, {"contact", "tied"}}), "impactor.contact");
   // A contact so stiff that the column would never finish.
   EXPECT_EQ(fieldOf({{"contact_stiffness", 1e16}, {"piston", {{"elements", 1000}}}}), "impactor.contact_stiffness");
 }

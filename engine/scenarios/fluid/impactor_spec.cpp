@@ -20,7 +20,7 @@ ImpactorSpec parseImpactor(const io::SpecReader& r, double bore, double endTime)
   s.mass = r.number("mass", Range::positive(), "kg", s.mass);
   s.speed = r.number("speed", Range::nonNegative(), "m/s", s.speed);
   if (s.model == ImpactorModel::Rigid) {
-    for (const char* key : {"piston", "contact_stiffness"})
+    for (const char* key : {"piston", "contact_stiffness", "contact"})
       if (r.has(key))
         r.fail(key, std::string("no ") + key + " for the rigid impactor (carriage and piston one body of mass `mass`); "
                                                  "use model \"two_body\" or \"elastic_piston\"");
@@ -44,6 +44,9 @@ ImpactorSpec parseImpactor(const io::SpecReader& r, double bore, double endTime)
     p->finish();
   }
   s.contactStiffness = r.number("contact_stiffness", Range{0.0, 1e16, true, false}, "N/m", s.resolvedContactStiffness());
+  s.contact = r.choice("contact", {"compression_only", "tied"}, toString(s.contact)) == "tied"
+                  ? fsi::CarriageContact::Tied
+                  : fsi::CarriageContact::CompressionOnly;
   r.finish();
   // The column must finish: its sub-steps over the run, times its points, are bounded.
   const ImpactorColumn column(s, 0.0);
@@ -70,6 +73,7 @@ nlohmann::json toJson(const ImpactorSpec& s) {
                  {"young_modulus", s.pistonYoungModulus}};
   if (s.model == ImpactorModel::ElasticPiston) j["piston"]["elements"] = s.pistonElements;
   j["contact_stiffness"] = s.resolvedContactStiffness();
+  j["contact"] = toString(s.contact);
   return j;
 }
 
