@@ -77,6 +77,25 @@ TEST(CheckpointIdentity, OnlyTheSameRunOnTheSameBuildContinues) {
   EXPECT_FALSE(fs::exists(checkpoint));
 }
 
+TEST(CheckpointIdentity, AnOlderBuildsCheckpointWithoutNewStateIsRefused) {
+  // A build of the same version that saved less state (a part added since, such as the tank's jet
+  // observers) is refused with the part it lacks named, and the checkpoint is kept for that build.
+  useTestCache();
+  ScratchDir dir;
+  const fs::path path = dir / "run.h5";
+  stopAt(tension(), path, 60);
+  const std::string checkpoint = io::checkpointPathFor(path.string());
+  const std::string part = "/checkpoint/state/bonded_system/damage";
+  {
+    io::Hdf5File file = io::Hdf5File::openReadWrite(checkpoint);
+    ASSERT_TRUE(file.exists(part));
+    file.remove(part);
+  }
+  const std::string why = refusal(tension(), path);
+  EXPECT_NE(why.find("the checkpoint lacks " + part), std::string::npos) << why;
+  EXPECT_TRUE(fs::exists(checkpoint));
+}
+
 TEST(CheckpointIdentity, IntervalCheckpointsAndNoneAtZero) {
   useTestCache();
   ScratchDir dir;
