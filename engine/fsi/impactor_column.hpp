@@ -6,9 +6,10 @@
 // into the water, zero at t = 0):
 //   node 0        the carriage, mass M, speed V at t = 0
 //   nodes 1 … n   the piston from its top (struck) face to its wetted face, at rest at t = 0
-// Carriage and piston touch through a compression-only contact spring k_c (they may separate and
-// strike again), or, read the other way the seed's words allow, the carriage's point is tied to the
-// piston's top by that spring, which then also pulls (`CarriageContact::Tied`); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
+// The carriage's point is tied to the piston's top by a spring k_c that pushes and pulls (the seed's
+// model read as its words allow: the carriage's mass on the beams' top node; `CarriageContact::Tied`,
+// the default), or touches it through that spring in compression only (the two may separate and
+// strike again: the drop tower as built); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
 // lumped masses ρ A ℓ (half at the two faces). A rigid piston (`two_body`) is one point of mass
 // ρ A L. The water pushes the wetted face back with the force the fluid gives the SPH piston
 // (piston_drive.hpp). Velocity Verlet, sub-cycled within the fluid's step at the column's own stable
@@ -53,7 +54,9 @@ struct ImpactorSpec {
   /// stiffness of a 5 mm slice of the piston, so that the flat steel faces add no more compliance
   /// than that (docs/tank-impact.md#impactor).
   double contactStiffness = 0.0;
-  CarriageContact contact = CarriageContact::CompressionOnly;
+  /// Tied by default: the seed's model read that way gives its first peaks, its jet and its tongue
+  /// (docs/tank-impact.md#the-tied-carriage); compression only is the drop tower as built.
+  CarriageContact contact = CarriageContact::Tied;
 
   double pistonArea() const;   ///< π d²/4 (m²)
   double pistonMass() const;   ///< ρ A L (kg)
