@@ -9,8 +9,8 @@
 // The carriage's point is tied to the piston's top by a spring k_c that pushes and pulls (the seed's
 // model read as its words allow: the carriage's mass on the beams' top node; `CarriageContact::Tied`,
 // the default), or touches it through that spring in compression only (the two may separate and
-// strike again: the drop tower as built); the piston's points are joined by springs E A / ℓ (ℓ = L / elements) and carry
-// lumped masses ρ A ℓ (half at the two faces). A rigid piston (`two_body`) is one point of mass
+// strike again: the drop tower as built). The piston's points are joined by springs E A / ℓ
+// (ℓ = L / elements) and carry lumped masses ρ A ℓ (half at the two faces). A rigid piston (`two_body`) is one point of mass
 // ρ A L. The water pushes the wetted face back with the force the fluid gives the SPH piston
 // (piston_drive.hpp). Velocity Verlet, sub-cycled within the fluid's step at the column's own stable
 // step. Docs: docs/tank-impact.md#impactor; the bar-impact solution it is tested against:
