@@ -119,8 +119,8 @@ double ImpactorColumn::kineticEnergy() const {
 }
 
 double ImpactorColumn::elasticEnergy() const {
-  const double closure = m_tied ? m_u[0] - m_u[1] : std::max(0.0, m_u[0] - m_u[1]);
-  double e = 0.5 * m_contactStiffness * closure * closure;
+  const double contact = contactForce();  // k_c times the spring's stretch, whichever contact
+  double e = 0.5 * contact * contact / m_contactStiffness;
   for (std::size_t i = 1; i + 1 < m_mass.size(); ++i) {
     const double d = m_u[i] - m_u[i + 1];
     e += 0.5 * m_elementStiffness * d * d;
