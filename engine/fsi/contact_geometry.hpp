@@ -10,6 +10,10 @@
 //   ≈ Δ − R_c = 0.2 Δ, which widens as the crack opens.
 // Contact when the particle's centre is inside the cylinder grown by r_f along the normal:
 //   |s| < t/2 + r_f and ρ < R_c, s = (x_f − x_n)·n_n, ρ the in-plane distance.
+// The master–slave surface under a particle is interpolated over S = 1.5 max(Δ, dx) in-plane
+// (surfaceSupport): the particle's face dx² on the plate, not only the nodes nearest its centre,
+// carries its load when the plate is finer than the fluid (docs/fsi-contact.md, "Footprint").
+#include <algorithm>
 #include <cmath>
 
 namespace rupture::fsi {
@@ -22,8 +26,14 @@ struct ContactGeometry {
 
   /// The contact distance along the normal: where a resting particle's centre sits (m).
   double standOff() const { return halfThickness + fluidRadius; }
+  /// In-plane radius (m) of the nodes that make the master–slave surface under a particle: 1.5 Δ,
+  /// or 1.5 dx (dx = 2 r_f) where the fluid is the coarser, so that the Shepard weights
+  /// (1 − ρ/S)², whose area is π S²/6 = 1.18 dx², spread the particle's load over its face.
+  double surfaceSupport() const { return 1.5 * std::max(nodeSpacing, 2.0 * fluidRadius); }
   /// Largest centre distance of a contacting pair (m): the cell size of the node grid.
   double reach() const { return std::hypot(standOff(), 1.5 * nodeSpacing); }
+  /// The same for the master–slave surface (m).
+  double surfaceReach() const { return std::hypot(standOff() + fluidRadius, surfaceSupport()); }
 };
 
 /// R_c / Δ (see above).

@@ -16,7 +16,7 @@ FluidShellCoupling::FluidShellCoupling(sph::SphSystem& fluid, SphShell& shell, C
 }
 
 const ContactOutcome& FluidShellCoupling::resolveContact(double dt) {
-  m_grid.build(m_shell, m_geometry.reach());
+  m_grid.build(m_shell, m_method == ContactMethod::Pinball ? m_geometry.reach() : m_geometry.surfaceReach());
   m_last = m_method == ContactMethod::Pinball
                ? resolvePinballContact(m_fluid.particles, m_shell, m_grid, m_geometry, dt)
                : resolveMasterSlaveContact(m_fluid.particles, m_shell, m_grid, m_geometry, dt);

@@ -28,7 +28,7 @@ ContactOutcome resolveMasterSlaveContact(sph::FluidParticles& p, const SphShell&
   const auto& vn = shell.velocities();
   const auto& nn = shell.normals();
   const double standOff = g.standOff(), cell2 = g.cellRadius * g.cellRadius;
-  const double support = 1.5 * g.nodeSpacing;
+  const double support = g.surfaceSupport();
 
   // 1. Slaves on a surface: nearest intact node, then the surface interpolated around it.
   std::vector<Contact> contacts;

@@ -220,5 +220,49 @@ INSTANTIATE_TEST_SUITE_P(BothMethods, ContactMomentum,
                          ::testing::Values(ContactMethod::Pinball, ContactMethod::MasterSlave),
                          [](const auto& info) { return contactMethodName(info.param); });
 
+// A plate four times finer than the fluid (dx = 4 mm, Δ = 1 mm), struck by a 20 mm layer of water
+// falling at 2 m/s: one master–slave contact must spread each particle's load over its face on
+// the plate (ContactGeometry::surfaceSupport, 1.5 max(Δ, dx)), so that the plate under the water
+// is loaded evenly, as a uniform pressure would load it, rather than at the nodes nearest the
+// particles' centres. Asserted on the nodes at least one fluid spacing inside the wall: every one
+// receives a push, and the push per unit area varies by less than 25 % (coefficient of variation;
+// measured 5.7 %, 856 of 856 nodes pushed; with the support of 1.5 Δ = 1.5 mm it was 213 %, 390
+// of 856). The pinballs (a particle meets the nodes within R_c = 0.8 Δ of its centre) push 94 of
+// them, 285 % (docs/fsi-contact.md, "Footprint").
+TEST(MasterSlaveContact, SpreadsEachParticlesLoadOverItsFaceOnAFinerPlate) {
+  ColumnSetup c;
+  c.height = 0.02;
+  c.gravity = 0.0;
+  c.plate = stiffEnoughPlate();
+  c.method = ContactMethod::MasterSlave;
+  auto sys = fsitest::columnOnPlate(c);
+  sph::SphSystem& s = sys->fluid;
+  const double nodeSpacing = 0.25 * c.spacing;
+  SphShell plate(fsitest::discNodes(c.radius, nodeSpacing, 0.0), c.plate);
+  for (std::size_t k = 0; k < s.particles.size(); ++k)
+    if (s.particles.isFluid(k)) {
+      s.particles.vz[k] = -2.0;
+      s.particles.z[k] -= 0.1 * c.spacing;  // the bottom layer a little inside its stand-off
+    }
+  fsi::FluidShellCoupling coupling(s, plate, c.method, fsi::contactGeometry(c.spacing, c.plate.thickness, nodeSpacing));
+  coupling.resolveContact(s.stableTimeStep(0.2));
+  double sum = 0.0, sum2 = 0.0;
+  std::size_t interior = 0, pushed = 0;
+  for (std::size_t n = 0; n < plate.size(); ++n) {
+    const double r = std::hypot(plate.positions()[n][0], plate.positions()[n][1]);
+    if (r > c.radius - c.spacing || plate.clamped(n)) continue;
+    const double push = -coupling.pendingImpulse()[n][2] / plate.integrationArea(n);
+    ++interior;
+    pushed += push > 0.0 ? 1 : 0;
+    sum += push;
+    sum2 += push * push;
+  }
+  ASSERT_GT(interior, 500u);
+  EXPECT_EQ(pushed, interior);
+  const double mean = sum / interior, spread = std::sqrt(std::max(0.0, sum2 / interior - mean * mean));
+  EXPECT_GT(mean, 0.0);
+  EXPECT_LT(spread / mean, 0.25) << "mean push " << mean << " N s/m², standard deviation " << spread;
+}
+
 }  // namespace
 }  // namespace rupture
