@@ -51,8 +51,6 @@ struct Trial {
   std::size_t fracturedAtEnd = 0;
   double deflectionAtFirst = std::numeric_limits<double>::quiet_NaN();  ///< at (D + d)/4, m
   double deflectionAtEnd = std::numeric_limits<double>::quiet_NaN();
-  double maxDamageAtEnd = 0.0;     ///< over the spot face's intact stress points
-  double maxDamageRadius = std::numeric_limits<double>::quiet_NaN();  ///< where it is (m)
   double seconds = 0.0;
   /// Per ring of the spot face at the end: radius (m), largest damage and plastic strain (1).
   std::vector<std::array<double, 3>> rings;
@@ -100,12 +98,6 @@ Trial runTrial(nlohmann::json specJson, double spacing, double pressure, double 
   trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   trial.fracturedAtEnd = plate.fracturedCount() - before;
   trial.deflectionAtEnd = rupture::deflectionAtRadius(plate, geometry, gaugeRadius);
-  for (std::size_t i = 0; i < plate.size(); ++i)
-    if (!plate.fractured(i) && std::hypot(geometry.nodes.x[i], geometry.nodes.y[i]) < faceRadius &&
-        plate.maxDamage(i) > trial.maxDamageAtEnd) {
-      trial.maxDamageAtEnd = plate.maxDamage(i);
-      trial.maxDamageRadius = std::hypot(geometry.nodes.x[i], geometry.nodes.y[i]);
-    }
   // Rings r_k = k Δ (clampedDiskNodes): the largest damage and plastic strain on each.
   for (std::size_t i = 0; i < plate.size(); ++i) {
     const double r = std::hypot(geometry.nodes.x[i], geometry.nodes.y[i]);
@@ -170,8 +162,7 @@ int main(int argc, char** argv) {
         {"first_fracture_radius", std::isnan(t.firstFractureRadius) ? nlohmann::json(nullptr) : nlohmann::json(t.firstFractureRadius)},
         {"fractured_at_end", t.fracturedAtEnd},
         {"deflection_at_first_fracture", std::isnan(t.deflectionAtFirst) ? nlohmann::json(nullptr) : nlohmann::json(t.deflectionAtFirst)},
-        {"deflection_at_end", t.deflectionAtEnd}, {"max_intact_damage_at_end", t.maxDamageAtEnd},
-        {"max_intact_damage_radius", std::isnan(t.maxDamageRadius) ? nlohmann::json(nullptr) : nlohmann::json(t.maxDamageRadius)},
+        {"deflection_at_end", t.deflectionAtEnd}, 
         {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
     std::printf("%s\n", line.dump().c_str());
     std::fflush(stdout);
