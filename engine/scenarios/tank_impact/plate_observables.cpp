@@ -1,8 +1,10 @@
 #include "scenarios/tank_impact/plate_observables.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <vector>
 
 namespace rupture {
 
@@ -39,14 +41,27 @@ double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, 
   double side = 0.0;
   for (std::size_t i : geometry.tongueNodes) side += (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
   if (side < 0.0) { mx = -mx; my = -my; }
-  double along = 0.0, down = 0.0;
+  // Each intact node in the plane normal to the hinge: d its reference distance from the hinge,
+  // (u, w) its current in-plane distance and height.
+  std::vector<std::array<double, 3>> duw;
+  duw.reserve(geometry.tongueNodes.size());
   for (std::size_t i : geometry.tongueNodes) {
     if (shell.fractured(i)) continue;
-    const double di = (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
     const auto& x = shell.positions()[i];
-    const double ui = (x[0] - a[0]) * mx + (x[1] - a[1]) * my, wi = x[2];
-    along += di * ui;
-    down -= di * wi;
+    duw.push_back({(geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my,
+                   (x[0] - a[0]) * mx + (x[1] - a[1]) * my, x[2]});
+  }
+  if (duw.empty()) return 0.0;
+  // About the centroids, so that the plate's own sinking and drawing-in at the hinge (it dishes
+  // by millimetres under the water) is a translation, not read as rotation.
+  std::array<double, 3> mean{0.0, 0.0, 0.0};
+  for (const auto& n : duw)
+    for (int k = 0; k < 3; ++k) mean[k] += n[k] / static_cast<double>(duw.size());
+  double along = 0.0, down = 0.0;
+  for (const auto& n : duw) {
+    const double d = n[0] - mean[0];
+    along += d * (n[1] - mean[1]);
+    down -= d * (n[2] - mean[2]);
   }
   return std::atan2(down, along);
 }

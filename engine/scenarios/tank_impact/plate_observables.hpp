@@ -15,12 +15,13 @@ namespace rupture {
 /// NaN where no ring with intact nodes lies within Δ of the radius (inside the hole).
 double deflectionAtRadius(const SphShell& shell, const PlateGeometry& geometry, double radius);
 
-/// Opening angle (rad) of a U tongue about its hinge (PlateGeometry::hinge, the uncut side of the
-/// U), positive when the tongue swings down (−z): the rotation that best maps the tongue's intact
-/// nodes from their reference to their current positions in the plane normal to the hinge,
-/// α = atan2(−Σ d_i w_i, Σ d_i u_i), d_i the reference distance from the hinge, u_i and w_i the
-/// current in-plane and vertical distances (exact for a rigid rotation, any angle up to 180°).
-/// 0 for other shapes.
+/// Opening angle (rad) of a U tongue (PlateGeometry::hinge is the uncut side of the U), positive
+/// when the tongue swings down (−z): its inclination to the plate's reference plane, the rotation
+/// that best maps the tongue's intact nodes from their reference to their current positions in
+/// the plane normal to the hinge, up to a translation: α = atan2(−Σ d̃_i w̃_i, Σ d̃_i ũ_i), d_i the
+/// reference distance from the hinge, u_i and w_i the current in-plane and vertical distances, ˜
+/// their deviations from the tongue's mean. Exact for a rigid rotation of any angle up to 180°
+/// about any point, so the hinge's own sinking as the plate dishes adds nothing. 0 for other shapes.
 double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, const PlateSpec& plate);
 
 /// Length (m) of the cracks the impact opened, beyond the pre-cracks (cuts, not fractured nodes):
