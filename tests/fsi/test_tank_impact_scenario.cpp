@@ -1,7 +1,8 @@
-// The tank-impact scenario end to end on the seed's tests (examples/tank-impact-*.json). E20A5 and
-// FUA5 at a coarse resolution (fluid dx = 6 mm instead of the examples' 4 mm, plate spacing 4 mm
-// instead of 2 mm: ~25 s on one thread instead of ~100 s), 3 ms of impact as the examples; FXA5
-// as given (its cracks start at 1.94 ms; at dx = 6 mm they do not start within 3 ms).
+// The tank-impact scenario end to end on the seed's tests (examples/tank-impact-*.json). E20A5 at
+// a coarse resolution (fluid dx = 6 mm instead of the examples' 4 mm, plate spacing 4 mm instead
+// of 2 mm: ~25 s on one thread instead of ~100 s), 3 ms of impact as the examples; FUA5 and FXA5
+// as given (at dx = 6 mm FUA5's tongue is 7° narrower than at 2 mm, and FXA5's cracks, which start
+// at 1.94 ms, do not start within 3 ms).
 // The figures of the full runs are in docs/tank-impact.md.
 #include <gtest/gtest.h>
 
@@ -127,13 +128,16 @@ TEST(TankImpactScenario, E14FirstPeaksLieInTheMeasuredRanges) {
   }
 }
 
-// FUA5: 2 mm plate with a U pre-crack: the tongue opens downwards (0 < angle < 90°).
-TEST(TankImpactScenario, FUA5ReportsATongueAngle) {
-  const nlohmann::json s = runCoarse("FUA5", coarseExample("FUA5"));
+// FUA5 as given (fluid 4 mm, plate 2 mm, 3 ms): the U tongue opens to the seed's α ≈ 50° within
+// issue #27's 10° (§5.2, Fig. 31: the experiment's, and its own simulation's at 10 ms), read as
+// the tongue's inclination to the plate's plane. 43.0° here; 48.0° at the seed's fluid 2 mm (the
+// validation case tank-FUA5-tongue), 51.0° at 4 mm and 10 ms (docs/tank-impact.md#the-tongues-angle).
+TEST(TankImpactScenario, FUA5TongueOpensToTheSeedsAngle) {
+  const nlohmann::json s = runCoarse("FUA5", example("FUA5"));
   ASSERT_FALSE(s["final_tongue_angle"].is_null());
-  EXPECT_GT(s["final_tongue_angle"].get<double>(), 0.0);
-  EXPECT_LT(s["final_tongue_angle"].get<double>(), 0.5 * std::numbers::pi);
+  EXPECT_NEAR(s["final_tongue_angle"].get<double>() * 180.0 / std::numbers::pi, 50.0, 10.0);
   EXPECT_GT(s["max_jet_speed"].get<double>(), 0.0);  // the water goes through the opened U
+  EXPECT_EQ(s["fractured_nodes"].get<int>(), 0);     // §3.2: FUA5 did not crack
 }
 
 // FXA5: 2 mm plate with an X of two 30 mm pre-cracks. Cracks propagate from the pre-cracks: stress
