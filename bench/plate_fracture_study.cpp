@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
         {"first_fracture_radius", std::isnan(t.firstFractureRadius) ? nlohmann::json(nullptr) : nlohmann::json(t.firstFractureRadius)},
         {"fractured_at_end", t.fracturedAtEnd},
         {"deflection_at_first_fracture", std::isnan(t.deflectionAtFirst) ? nlohmann::json(nullptr) : nlohmann::json(t.deflectionAtFirst)},
-        {"deflection_at_end", t.deflectionAtEnd}, 
+        {"deflection_at_end", t.deflectionAtEnd},
         {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
     std::printf("%s\n", line.dump().c_str());
     std::fflush(stdout);

@@ -1,10 +1,8 @@
 #include "scenarios/tank_impact/plate_observables.hpp"
 
-#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <vector>
 
 namespace rupture {
 
@@ -42,27 +40,19 @@ double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, 
   for (std::size_t i : geometry.tongueNodes) side += (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
   if (side < 0.0) { mx = -mx; my = -my; }
   // Each intact node in the plane normal to the hinge: d its reference distance from the hinge,
-  // (u, w) its current in-plane distance and height.
-  std::vector<std::array<double, 3>> duw;
-  duw.reserve(geometry.tongueNodes.size());
+  // (u, w) its current in-plane distance and height. The sums are taken about their means (Σ d̃ ũ =
+  // Σ d u − Σd Σu / n), so that the plate's own sinking and drawing-in at the hinge (it dishes by
+  // millimetres under the water) is a translation, not read as rotation.
+  double n = 0.0, sd = 0.0, su = 0.0, sw = 0.0, sdu = 0.0, sdw = 0.0;
   for (std::size_t i : geometry.tongueNodes) {
     if (shell.fractured(i)) continue;
     const auto& x = shell.positions()[i];
-    duw.push_back({(geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my,
-                   (x[0] - a[0]) * mx + (x[1] - a[1]) * my, x[2]});
+    const double d = (geometry.nodes.x[i] - a[0]) * mx + (geometry.nodes.y[i] - a[1]) * my;
+    const double u = (x[0] - a[0]) * mx + (x[1] - a[1]) * my, w = x[2];
+    n += 1.0, sd += d, su += u, sw += w, sdu += d * u, sdw += d * w;
   }
-  if (duw.empty()) return 0.0;
-  // About the centroids, so that the plate's own sinking and drawing-in at the hinge (it dishes
-  // by millimetres under the water) is a translation, not read as rotation.
-  std::array<double, 3> mean{0.0, 0.0, 0.0};
-  for (const auto& n : duw)
-    for (int k = 0; k < 3; ++k) mean[k] += n[k] / static_cast<double>(duw.size());
-  double along = 0.0, down = 0.0;
-  for (const auto& n : duw) {
-    const double d = n[0] - mean[0];
-    along += d * (n[1] - mean[1]);
-    down -= d * (n[2] - mean[2]);
-  }
+  if (n == 0.0) return 0.0;
+  const double along = sdu - sd * su / n, down = -(sdw - sd * sw / n);
   return std::atan2(down, along);
 }
 
