@@ -1,5 +1,6 @@
 #include "shell/shell_nodes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -35,6 +36,78 @@ ShellNodes clampedDiskNodes(double radius, double spacing, int outerRings) {
     }
   }
   return nodes;
+}
+
+ShellNodes ringDiskNodes(const std::vector<double>& radii) {
+  const std::size_t K = radii.size();
+  if (K < 2 || !(radii[0] > 0.0))
+    throw std::invalid_argument("ringDiskNodes: need at least two rings of radius > 0");
+  for (std::size_t k = 1; k < K; ++k)
+    if (!(radii[k] > radii[k - 1])) throw std::invalid_argument("ringDiskNodes: ring radii must increase");
+  const double pi = std::numbers::pi;
+  auto radius = [&](long k) {  // r_0 = 0 and the mirror ring beyond the rim
+    if (k <= 0) return 0.0;
+    if (k > static_cast<long>(K)) return 2.0 * radii[K - 1] - radii[K - 2];
+    return radii[static_cast<std::size_t>(k - 1)];
+  };
+  ShellNodes nodes;
+  auto add = [&](double x, double y, double volume, double area, bool clamped, double spacing) {
+    nodes.x.push_back(x);
+    nodes.y.push_back(y);
+    nodes.kernelVolume.push_back(volume);
+    nodes.integrationArea.push_back(area);
+    nodes.clamped.push_back(clamped ? 1 : 0);
+    nodes.nodeSpacing.push_back(spacing);
+    nodes.spacing = std::max(nodes.spacing, spacing);
+  };
+  const double inner = 0.5 * radius(1);
+  add(0.0, 0.0, pi * inner * inner, pi * inner * inner, false, radius(1));
+  for (long k = 1; k <= static_cast<long>(K); ++k) {
+    const double r = radius(k), lower = 0.5 * (radius(k - 1) + r), upper = 0.5 * (r + radius(k + 1));
+    const double d = 0.5 * (radius(k + 1) - radius(k - 1));
+    const long n = std::max(3L, std::lround(2.0 * pi * r / d));
+    const bool rim = k == static_cast<long>(K);
+    const double annulus = pi * (upper * upper - lower * lower);
+    const double area = rim ? pi * (r * r - lower * lower) : annulus;
+    for (long m = 0; m < n; ++m) {
+      const double phi = 2.0 * pi * (static_cast<double>(m) + 0.5 * static_cast<double>(k % 2)) / static_cast<double>(n);
+      add(r * std::cos(phi), r * std::sin(phi), annulus / static_cast<double>(n), area / static_cast<double>(n), rim, d);
+    }
+  }
+  return nodes;
+}
+
+std::vector<double> refinedRingRadii(double rim, double coarse, double fine, double at, int fineRings) {
+  if (!(fine > 0.0 && fine <= coarse && at > 0.0 && at < rim && fineRings >= 1))
+    throw std::invalid_argument("refinedRingRadii: need 0 < fine <= coarse, 0 < at < rim, fineRings >= 1");
+  std::vector<double> radii;
+  for (int m = 0; m < fineRings; ++m) {
+    radii.push_back(at - (m + 0.5) * fine);
+    radii.push_back(at + (m + 0.5) * fine);
+  }
+  // Grades the spacing from `fine` to `coarse` away from the band (direction ±1) and returns the
+  // last ring placed.
+  auto grade = [&](double from, double direction) {
+    double r = from, spacing = fine;
+    while (spacing < coarse) {
+      spacing = std::min(coarse, kRingGrowth * spacing);
+      r += direction * spacing;
+      radii.push_back(r);
+    }
+    return r;
+  };
+  const double inner = grade(at - (fineRings - 0.5) * fine, -1.0);
+  const double outer = grade(at + (fineRings - 0.5) * fine, +1.0);
+  if (!(inner > 0.5 * coarse && outer < rim))
+    throw std::invalid_argument("refinedRingRadii: the refined band and its grading do not fit inside the plate");
+  // Uniform rings inside (from the centre to the graded part) and outside (to the rim).
+  const long nIn = std::max(1L, std::lround(inner / coarse));
+  for (long k = 1; k < nIn; ++k) radii.push_back(inner * static_cast<double>(k) / static_cast<double>(nIn));
+  const long nOut = std::max(1L, std::lround((rim - outer) / coarse));
+  for (long k = 1; k <= nOut; ++k) radii.push_back(outer + (rim - outer) * static_cast<double>(k) / static_cast<double>(nOut));
+  radii.back() = rim;
+  std::sort(radii.begin(), radii.end());
+  return radii;
 }
 
 }  // namespace rupture

@@ -17,7 +17,10 @@ struct ShellNodes {
   /// t per node (m), for a plate whose thickness steps (a thin spot face in a thick bottom);
   /// empty: the shell's uniform ShellParameters::thickness.
   std::vector<double> thickness;
-  double spacing = 0.0;                  ///< nominal node spacing Δ (m)
+  double spacing = 0.0;                  ///< nominal node spacing Δ (m): the coarsest, where nodeSpacing is given
+  /// Δ_i per node (m), for a node set refined somewhere (ringDiskNodes); empty: `spacing` everywhere.
+  /// The shell's kernel between nodes i and j has h_ij = (h/Δ) (Δ_i + Δ_j)/2.
+  std::vector<double> nodeSpacing;
 
   std::size_t size() const { return x.size(); }
 };
@@ -28,5 +31,24 @@ struct ShellNodes {
 /// plate) and `outerRings` further clamped rings outside (0 is the clamp to use with this shell:
 /// nodes beyond a would see a kink in w'' through their kernels). Integration areas are the exact annuli, so they sum to πa².
 ShellNodes clampedDiskNodes(double radius, double spacing, int outerRings);
+
+/// A circular plate on concentric rings of the given radii 0 < r_1 < … < r_K, clamped on the last
+/// (the rim), for a plate refined where it needs to be (near a step): ring k has round(2π r_k / Δ_k)
+/// nodes, Δ_k = (r_{k+1} − r_{k−1}) / 2 its radial spacing (r_0 = 0, r_{K+1} = 2 r_K − r_{K−1}),
+/// staggered by half a pitch from ring to ring, plus the centre node (Δ_0 = r_1). Kernel volumes are
+/// the annuli between the midpoints of neighbouring rings shared among the ring's nodes, integration
+/// areas the same but the rim's, which carries the half inside the plate: they sum to π r_K².
+/// nodeSpacing holds Δ_k, `spacing` the largest. Uniform radii k Δ give clampedDiskNodes' nodes.
+ShellNodes ringDiskNodes(const std::vector<double>& radii);
+
+/// Ring radii for ringDiskNodes out to the rim r = `rim` at spacing ≈ `coarse`, refined to `fine`
+/// about the circle r = `at` (a thickness step): rings at `at` ± (m + ½) fine for m < `fineRings`, so
+/// the circle falls midway between two rings; from the band the spacing grows by a factor of at
+/// most kRingGrowth per ring up to `coarse` on both sides, and the rest is uniform, the last ring at
+/// the rim. Throws std::invalid_argument when the band and its grading do not fit in (0, rim).
+std::vector<double> refinedRingRadii(double rim, double coarse, double fine, double at, int fineRings);
+
+/// The largest ratio of neighbouring ring spacings in refinedRingRadii.
+inline constexpr double kRingGrowth = 1.3;
 
 }  // namespace rupture

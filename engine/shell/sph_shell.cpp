@@ -47,6 +47,11 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
     throw std::invalid_argument("SphShell: the node arrays must be non-empty and of equal length");
   if (!(nodes.spacing > 0.0)) throw std::invalid_argument("SphShell: the node spacing must be > 0");
   m_spacing = nodes.spacing;
+  if (!nodes.nodeSpacing.empty() && nodes.nodeSpacing.size() != n)
+    throw std::invalid_argument("SphShell: the node spacings must be absent or one per node");
+  m_nodeSpacing = nodes.nodeSpacing.empty() ? std::vector<double>(n, m_spacing) : nodes.nodeSpacing;
+  for (double d : m_nodeSpacing)
+    if (!(d > 0.0 && d <= m_spacing)) throw std::invalid_argument("SphShell: node spacings must be in (0, spacing]");
   // The rule of the uniform thickness; node i's points and weights are t_i / t times these.
   m_rule = gaussLegendreThickness(m_params.thicknessPoints, m_params.thickness);
   const double rho = m_params.density;
@@ -133,7 +138,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   const ElasticPlasticMaterial& m = m_params.material;
   const double nu = m.poissonRatio;
   const double cp2 = m.youngModulus / (rho * (1.0 - nu * nu));
-  const double k = 2.5 / m_spacing;
+  const double k = 2.5 / *std::min_element(m_nodeSpacing.begin(), m_nodeSpacing.end());  // the finest nodes
   const double omegaTranslation = std::sqrt(cp2) * k * (1.0 + m_params.hourglassCoefficient) * std::sqrt(stiffnessRatio);
   const double omegaRotation = std::sqrt((12.0 * m_params.shearCorrection * m.shearModulus() / (rho * t * t) +
                                           cp2 * k * k) / m_params.rotaryInertiaScale);
@@ -142,7 +147,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
 
 void SphShell::buildNeighbours() {
   const std::size_t n = m_reference.size();
-  const double radius = 2.0 * m_params.smoothingRatio * m_spacing;
+  const double radius = 2.0 * m_params.smoothingRatio * m_spacing;  // the longest link (Δ_i = Δ_j = Δ)
   // Bucket grid on the reference plane (built once: total Lagrangian).
   double xmin = m_reference[0][0], ymin = m_reference[0][1], xmax = xmin, ymax = ymin;
   for (const auto& p : m_reference) {
@@ -170,7 +175,8 @@ void SphShell::buildNeighbours() {
         for (std::size_t j : cells[static_cast<std::size_t>(cy * nx + cx)]) {
           if (j == i) continue;
           const double dx = m_reference[j][0] - m_reference[i][0], dy = m_reference[j][1] - m_reference[i][1];
-          if (dx * dx + dy * dy < radius * radius) found.push_back(j);
+          const double support = 2.0 * pairSmoothingLength(i, j);
+          if (dx * dx + dy * dy < support * support) found.push_back(j);
         }
     std::sort(found.begin(), found.end());
     m_neighbour.insert(m_neighbour.end(), found.begin(), found.end());
@@ -185,10 +191,10 @@ void SphShell::buildNeighbours() {
   m_coeffBack.assign(pairs, {0.0, 0.0});
   m_shearCoeff.assign(pairs, {0.0, 0.0});
   m_shearBack.assign(pairs, {0.0, 0.0});
-  const WendlandC2Kernel2D kernel{m_params.smoothingRatio * m_spacing};
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
       const std::size_t j = m_neighbour[p];
+      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, j)};
       const auto first = m_neighbour.begin() + static_cast<long>(m_offset[j]);
       const auto last = m_neighbour.begin() + static_cast<long>(m_offset[j + 1]);
       m_reverse[p] = static_cast<std::size_t>(std::lower_bound(first, last, i) - m_neighbour.begin());
@@ -199,7 +205,6 @@ void SphShell::buildNeighbours() {
 
 void SphShell::buildCorrections() {
   const std::size_t n = m_reference.size();
-  const WendlandC2Kernel2D kernel{m_params.smoothingRatio * m_spacing};
   for (std::size_t i = 0; i < n; ++i) {
     // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
     double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
@@ -208,6 +213,7 @@ void SphShell::buildCorrections() {
       if (!m_active[p]) continue;
       const auto& d = m_separation[p];
       const double r = std::hypot(d[0], d[1]);
+      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
       const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
       const double g0 = -w * d[0], g1 = -w * d[1];
       const double v = m_volume[m_neighbour[p]];
@@ -240,6 +246,7 @@ void SphShell::buildCorrections() {
       if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
       const auto& d = m_separation[p];
       const double r = std::hypot(d[0], d[1]);
+      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
       const double w = kernel.derivative(r) / r;
       const double g0 = -w * d[0], g1 = -w * d[1];
       const double v = m_volume[m_neighbour[p]];

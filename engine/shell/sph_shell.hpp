@@ -115,6 +115,11 @@ public:
   void exchangeState(StateArchive& archive);
 
 private:
+  /// h_ij = (h/Δ) (Δ_i + Δ_j)/2: symmetric, so j sees i whenever i sees j (a refined node set's
+  /// kernels grade with its spacing; the corrected gradients stay first-order consistent).
+  double pairSmoothingLength(std::size_t i, std::size_t j) const {
+    return m_params.smoothingRatio * (0.5 * (m_nodeSpacing[i] + m_nodeSpacing[j]));
+  }
   void buildNeighbours();
   void buildCorrections();
   void computeForces(double dt);
@@ -130,7 +135,7 @@ private:
 
   // Per node (structure of arrays).
   std::vector<std::array<double, 2>> m_reference;
-  std::vector<double> m_volume, m_area, m_mass, m_inertia, m_thickness;
+  std::vector<double> m_volume, m_area, m_mass, m_inertia, m_thickness, m_nodeSpacing;
   std::vector<std::uint8_t> m_clamped, m_fractured, m_hasGradient;
   std::vector<double> m_fractureTime;
   std::vector<std::size_t> m_fractureOrder;

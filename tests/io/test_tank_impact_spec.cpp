@@ -123,6 +123,11 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
   EXPECT_EQ(fieldOf(with({{"plate", {{"clamp", "rim"}, {"bottom", {{"thickness", 0.025}}}}}})), "plate.bottom");
   EXPECT_EQ(fieldOf(with({{"plate", {{"bottom", {{"thickness", 0.001}}}}}})), "plate.bottom.thickness");  // below e_p
   EXPECT_EQ(fieldOf(with({{"plate", {{"bottom", {{"clamp_diameter", 0.085}}}}}})), "plate.bottom.clamp_diameter");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.002}, {"bottom", {{"step_spacing", 0.003}}}}}})), "plate.bottom.step_spacing");
+  // A plate refined at the step needs the master–slave surface (the pinballs are one spacing wide).
+  EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.002}, {"bottom", {{"step_spacing", 0.001}}}}}})), "plate.bottom.step_spacing");
+  EXPECT_NO_THROW(parseTankImpactSpec(with({{"plate", {{"spacing", 0.002}, {"bottom", {{"step_spacing", 0.001}}}}},
+                                            {"contact", {{"method", "master_slave"}}}})));
   EXPECT_EQ(fieldOf(with({{"resolution", {{"spacing", 0.0003}}}})), "resolution.spacing");  // ~1e8 particles
   EXPECT_EQ(fieldOf(with({{"gauge", {0.05, 0.0, 0.01}}})), "gauge");                        // in the wall
   EXPECT_EQ(fieldOf(with({{"probes", {{0.0, 0.0, 0.5}}}})), "probes[0]");                   // above the water

@@ -106,6 +106,58 @@ TEST(TankPlate, ThickBottomStepsMidwayBetweenRingsAndIsHeldAtItsClamp) {
   }
 }
 
+// plate.bottom.step_spacing: the rings within two plate spacings of the step at the fine spacing,
+// the step still midway between two rings, the areas still the annulus out to the clamp, and the
+// deflection observable reading the graded rings as the uniform ones.
+TEST(TankPlate, ThickBottomRefinedAtTheStep) {
+  PlateSpec plate = plateWith(PrecrackShape::Hole, 0.002);
+  plate.shell.thickness = 0.001;
+  plate.bottom = PlateBottomSpec{};
+  plate.bottom->stepSpacing = 0.0005;
+  ASSERT_TRUE(plateRefinedAtStep(plate));
+  const PlateGeometry g = plateGeometry(plate);
+  const PlateGeometry uniform = plateGeometry(plateWith(PrecrackShape::Hole, 0.002));
+  const double d = 0.04 / 20.5, f = 0.0005, R = 0.04, Rc = 0.5 * plate.bottom->clampDiameter;  // resolved spacing
+  ASSERT_EQ(g.nodes.nodeSpacing.size(), g.nodes.size());
+  double area = 0.0, heldRadius = 0.0, finest = 1.0;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double r = std::hypot(g.nodes.x[i], g.nodes.y[i]);
+    EXPECT_GT(std::fabs(r - R), 0.49 * f) << "node at r = " << r;
+    EXPECT_EQ(g.nodes.thickness[i], r < R ? 0.001 : 0.025);
+    // The band's last rings border the grading: their spacing is the mean of their two gaps.
+    if (std::fabs(r - R) < 2.0 * d - f) { EXPECT_NEAR(g.nodes.nodeSpacing[i], f, 1e-12) << "node at r = " << r; }
+    if (r < 0.02) { EXPECT_NEAR(g.nodes.nodeSpacing[i] / d, 1.0, 0.5) << "node at r = " << r; }
+    finest = std::min(finest, g.nodes.nodeSpacing[i]);
+    if (g.nodes.clamped[i]) heldRadius = std::max(heldRadius, r);
+    area += g.nodes.integrationArea[i];
+  }
+  EXPECT_NEAR(finest, f, 1e-12);
+  EXPECT_NEAR(heldRadius, Rc, 0.5 * d);
+  EXPECT_NEAR(area, kPi * (heldRadius * heldRadius - 0.01 * 0.01), 1e-9);
+  EXPECT_GT(g.nodes.size(), 2 * uniform.nodes.size());
+
+  // A paraboloid w = −c r² on the nodes: read between rings, exactly within the interpolation's
+  // error c Δ_k² / 4 (linear between rings of a quadratic).
+  SphShell shell = buildPlate(plate, g);
+  const double c = 2.0;
+  for (std::size_t i = 0; i < shell.size(); ++i) {
+    const double x = g.nodes.x[i], y = g.nodes.y[i];
+    shell.setNodeState(i, {x, y, -c * (x * x + y * y)}, {0.0, 0.0, 1.0}, {0.0, 0.0, 0.0});
+  }
+  for (double radius : {0.0235, 0.0381, 0.0405, 0.05})
+    EXPECT_NEAR(deflectionAtRadius(shell, g, radius), c * radius * radius, 0.25 * c * (1.5 * d) * (1.5 * d)) << "r = " << radius;
+  // Refinement past the plate's spacing, or too fine for a shell, names the field.
+  plate.bottom->stepSpacing = 0.003;
+  EXPECT_THROW(
+      try { validatePlateGeometry(plate); } catch (const SpecError& e) {
+        EXPECT_EQ(e.field(), "plate.bottom.step_spacing");
+        throw;
+      },
+      SpecError);
+  plate.bottom->stepSpacing = 0.00004;
+  EXPECT_THROW(validatePlateGeometry(plate), SpecError);
+}
+
 // The crack lines are where the spec puts them, up to the documented shift of at most Δ/2.
 TEST(TankPlate, PrecracksLieWithinHalfASpacingOfTheNominalLines) {
   const PlateSpec plate = plateWith(PrecrackShape::U, 0.0015);

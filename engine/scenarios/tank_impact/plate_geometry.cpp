@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/format_number.hpp"
 #include "rupture/spec_error.hpp"
@@ -31,6 +32,17 @@ double clampRadius(const PlateSpec& plate) {
   if (!plate.bottom) return 0.5 * plate.diameter;
   const double d = resolvedSpacing(plate);
   return d * std::round(0.5 * plate.bottom->clampDiameter / d);
+}
+
+/// Fine rings on each side of the step: the band reaches two plate spacings from it.
+int stepBandRings(const PlateSpec& plate) {
+  return static_cast<int>(std::ceil(2.0 * resolvedSpacing(plate) / plate.bottom->stepSpacing - 1e-9));
+}
+
+/// The ring radii of a plate refined about its step, out to the clamp.
+std::vector<double> refinedRadii(const PlateSpec& plate) {
+  return refinedRingRadii(clampRadius(plate), resolvedSpacing(plate), plate.bottom->stepSpacing, 0.5 * plate.diameter,
+                          stepBandRings(plate));
 }
 
 /// Sideways shift δ ∈ [−Δ/2, Δ/2] of the segment [a, b] (along its left normal) that keeps every
@@ -83,25 +95,29 @@ void cutHole(ShellNodes& nodes, double holeRadius) {
   const double d = nodes.spacing, pi = std::numbers::pi;
   ShellNodes kept;
   kept.spacing = d;
-  long innermost = std::numeric_limits<long>::max();
+  double innermost = std::numeric_limits<double>::infinity(), innermostSpacing = d;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const double r = std::hypot(nodes.x[i], nodes.y[i]);
     if (r < holeRadius * (1.0 - 1e-12)) continue;
-    innermost = std::min(innermost, std::lround(r / d));
+    const double spacing = nodes.nodeSpacing.empty() ? d : nodes.nodeSpacing[i];
+    if (r < innermost - 1e-6 * spacing) innermost = r, innermostSpacing = spacing;
     kept.x.push_back(nodes.x[i]);
     kept.y.push_back(nodes.y[i]);
     kept.kernelVolume.push_back(nodes.kernelVolume[i]);
     kept.integrationArea.push_back(nodes.integrationArea[i]);
     kept.clamped.push_back(nodes.clamped[i]);
     if (!nodes.thickness.empty()) kept.thickness.push_back(nodes.thickness[i]);
+    if (!nodes.nodeSpacing.empty()) kept.nodeSpacing.push_back(spacing);
   }
+  // The innermost ring kept: the nodes within a millionth of its spacing of its radius.
+  auto onInnermost = [&](std::size_t i) { return std::fabs(std::hypot(kept.x[i], kept.y[i]) - innermost) < 1e-6 * innermostSpacing; };
   std::size_t ringSize = 0;
   for (std::size_t i = 0; i < kept.size(); ++i)
-    if (std::lround(std::hypot(kept.x[i], kept.y[i]) / d) == innermost) ++ringSize;
-  const double outer = (static_cast<double>(innermost) + 0.5) * d;
+    if (onInnermost(i)) ++ringSize;
+  const double outer = innermost + 0.5 * innermostSpacing;
   const double area = pi * (outer * outer - holeRadius * holeRadius) / static_cast<double>(ringSize);
   for (std::size_t i = 0; i < kept.size(); ++i)
-    if (std::lround(std::hypot(kept.x[i], kept.y[i]) / d) == innermost) kept.integrationArea[i] = area;
+    if (onInnermost(i)) kept.integrationArea[i] = area;
   nodes = std::move(kept);
 }
 
@@ -110,6 +126,10 @@ void cutHole(ShellNodes& nodes, double holeRadius) {
 }
 
 }  // namespace
+
+bool plateRefinedAtStep(const PlateSpec& plate) {
+  return plate.bottom && plate.bottom->stepSpacing > 0.0 && plate.bottom->stepSpacing < resolvedSpacing(plate) * (1.0 - 1e-9);
+}
 
 void validatePlateGeometry(const PlateSpec& plate) {
   const double R = 0.5 * plate.diameter, t = plate.shell.thickness;
@@ -139,6 +159,27 @@ void validatePlateGeometry(const PlateSpec& plate) {
     if (std::numbers::pi * Rc * Rc / (d * d) > kMaxPlateNodes)
       refuse("spacing", plate.spacing, "a node spacing giving at most 1e6 plate nodes out to the clamp (>= " +
                                            formatNumber(Rc * std::sqrt(std::numbers::pi / kMaxPlateNodes)) + " m)");
+    const double f = b.stepSpacing;
+    if (f != 0.0 && !(f >= t / 20.0 && f <= plate.spacing * (1.0 + 1e-12)))
+      refuse("bottom.step_spacing", f,
+             "a node spacing in [plate.thickness / 20, plate.spacing] = [" + formatNumber(t / 20.0) + ", " + formatNumber(plate.spacing) +
+                 "] m (a shell node stands for the whole thickness; plate.spacing itself: no refinement)");
+    if (plateRefinedAtStep(plate)) {
+      std::vector<double> radii;
+      try {
+        radii = refinedRadii(plate);
+      } catch (const std::invalid_argument&) {
+        refuse("bottom.step_spacing", f,
+               "a refinement whose band (two plate spacings each side of the step) and grading fit between the centre and the clamp");
+      }
+      double nodes = 1.0;
+      for (std::size_t k = 0; k < radii.size(); ++k) {
+        const double below = k == 0 ? 0.0 : radii[k - 1], above = k + 1 < radii.size() ? radii[k + 1] : 2.0 * radii[k] - below;
+        nodes += 2.0 * std::numbers::pi * radii[k] / (0.5 * (above - below));
+      }
+      if (nodes > kMaxPlateNodes)
+        refuse("bottom.step_spacing", f, "a node spacing giving at most 1e6 plate nodes (this one gives about " + formatNumber(std::round(nodes)) + ")");
+    }
   }
 
   const PrecrackSpec& c = plate.precrack;
@@ -184,7 +225,7 @@ PlateGeometry plateGeometry(const PlateSpec& plate) {
   const double R = 0.5 * plate.diameter;
   if (plate.bottom) {
     // Rings out to the clamp; the nodes beyond the step (r > R, none lies on it) carry the bottom's thickness.
-    g.nodes = clampedDiskNodes(clampRadius(plate), resolvedSpacing(plate), 0);
+    g.nodes = plateRefinedAtStep(plate) ? ringDiskNodes(refinedRadii(plate)) : clampedDiskNodes(clampRadius(plate), resolvedSpacing(plate), 0);
     g.nodes.thickness.resize(g.nodes.size());
     for (std::size_t i = 0; i < g.nodes.size(); ++i)
       g.nodes.thickness[i] = std::hypot(g.nodes.x[i], g.nodes.y[i]) < R ? plate.shell.thickness : plate.bottom->thickness;

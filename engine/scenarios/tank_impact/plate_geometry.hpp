@@ -42,6 +42,10 @@ struct PlateGeometry {
 /// pass through the hole (its sagitta is 0.12 % of the radius).
 inline constexpr int kHoleEdgeSides = 64;
 
+/// Whether the plate's rings are refined about the step (plate.bottom.step_spacing finer than the
+/// resolved plate spacing): refinedRingRadii with the band two spacings wide on each side.
+bool plateRefinedAtStep(const PlateSpec& plate);
+
 /// Checks that the plate is a shell that its node spacing resolves and that the pre-crack fits
 /// inside it; throws SpecError naming the plate field (plate.spacing, plate.thickness,
 /// plate.precrack.hole_diameter, .length, .width).

@@ -2,27 +2,31 @@
 
 #include <cmath>
 #include <limits>
+#include <iterator>
 #include <map>
 
 namespace rupture {
 
 double deflectionAtRadius(const SphShell& shell, const PlateGeometry& geometry, double radius) {
   const ShellNodes& nodes = geometry.nodes;
-  const double d = nodes.spacing;
-  std::map<long, std::pair<double, int>> rings;  // ring index → (sum of −z, intact nodes)
+  // Rings by radius (to 0.1 µm; rings are at least plate.thickness / 20 apart) → (sum of −z, intact nodes).
+  std::map<long, std::pair<double, int>> rings;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
+    auto& ring = rings[std::lround(std::hypot(nodes.x[i], nodes.y[i]) * 1e7)];
     if (shell.fractured(i)) continue;
-    auto& ring = rings[std::lround(std::hypot(nodes.x[i], nodes.y[i]) / d)];
     ring.first -= shell.deflection(i);
     ++ring.second;
   }
-  auto mean = [&](long k) {
-    const auto it = rings.find(k);
-    return it == rings.end() ? std::numeric_limits<double>::quiet_NaN() : it->second.first / it->second.second;
+  auto mean = [&](std::map<long, std::pair<double, int>>::const_iterator it) {
+    return it == rings.end() || it->second.second == 0 ? std::numeric_limits<double>::quiet_NaN()
+                                                       : it->second.first / it->second.second;
   };
-  const long k0 = static_cast<long>(std::floor(radius / d));
-  const double f = radius / d - static_cast<double>(k0);
-  const double w0 = mean(k0), w1 = mean(k0 + 1);
+  // The rings on either side of the radius and where it lies between them.
+  auto above = rings.upper_bound(std::lround(radius * 1e7));
+  if (above == rings.begin() || above == rings.end()) return std::numeric_limits<double>::quiet_NaN();
+  const auto below = std::prev(above);
+  const double f = (radius * 1e7 - static_cast<double>(below->first)) / static_cast<double>(above->first - below->first);
+  const double w0 = mean(below), w1 = mean(above);
   if (!std::isnan(w0) && !std::isnan(w1)) return (1.0 - f) * w0 + f * w1;
   if (!std::isnan(w0) && f <= 0.5) return w0;
   if (!std::isnan(w1) && f >= 0.5) return w1;

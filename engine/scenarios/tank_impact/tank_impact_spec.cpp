@@ -97,6 +97,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.damage = true;
   p.bottom = PlateBottomSpec{};  // the seed's Calculation 2, in all its simulations after E20A5's first (§5.1)
   p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
+  p.bottom->stepSpacing = p.spacing;
   const auto node = root.optionalObject("plate");
   if (!node) {
     applyPreset(p.materialPreset, "plate.material.preset", p);
@@ -115,11 +116,13 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
   p.precrack = parsePrecrack(*node);
   p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
+  p.bottom->stepSpacing = p.spacing;
   const bool atRim = node->choice("clamp", {"bottom", "rim"}, "bottom") == "rim";
   if (const auto bottom = node->optionalObject("bottom")) {
     if (atRim) throw SpecError("plate.bottom", "an object", "absent when plate.clamp is \"rim\" (the spot face alone, clamped at its rim)");
     p.bottom->thickness = bottom->number("thickness", Range::positive(), "m", p.bottom->thickness);
     p.bottom->clampDiameter = bottom->number("clamp_diameter", Range::positive(), "m", p.bottom->clampDiameter);
+    p.bottom->stepSpacing = bottom->number("step_spacing", Range::positive(), "m", p.bottom->stepSpacing);
     bottom->finish();
   }
   if (atRim) p.bottom.reset();
@@ -242,6 +245,10 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& input) {
   if (s.plate.shell.damage) validateDamage(s.plate.shell.damageLaw, "plate.material");
   validateShellParameters(s.plate.shell, "plate");
   validatePlateGeometry(s.plate);
+  if (s.plate.bottom && plateRefinedAtStep(s.plate) && s.contact.method != ContactMethod::MasterSlave)
+    throw SpecError("plate.bottom.step_spacing", formatNumber(s.plate.bottom->stepSpacing),
+                    "plate.spacing (" + formatNumber(s.plate.spacing) +
+                        " m) unless contact.method is \"master_slave\": a pinball is one node spacing wide, so a plate with two spacings needs the surface that spreads each particle over its face");
 
   // Particles: the water column, the cylinder's wall layers (side, piston, the clamp ring under
   // the wall), and the plate's nodes.
@@ -308,7 +315,8 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"courant_factor", sh.courantFactor},
                 {"precrack", precrack}};
   j["plate"]["clamp"] = p.bottom ? "bottom" : "rim";
-  if (p.bottom) j["plate"]["bottom"] = {{"thickness", p.bottom->thickness}, {"clamp_diameter", p.bottom->clampDiameter}};
+  if (p.bottom) j["plate"]["bottom"] = {{"thickness", p.bottom->thickness}, {"clamp_diameter", p.bottom->clampDiameter},
+                                          {"step_spacing", p.bottom->stepSpacing}};
   j["contact"] = {{"method", toString(s.contact.method)}};
   j["resolution"] = io::toJson(s.resolution);
   j["fluid"] = io::toJson(s.fluid, s.soundSpeed);

@@ -48,6 +48,10 @@ struct PlateBottomSpec {
   /// Where the block is held (m): by default 1.75 spot-face diameters, 140 mm for the seed's 80 mm,
   /// an assumption (the seed gives no screw circle).
   double clampDiameter = 0.14;
+  /// Node spacing (m) within two plate spacings of the step, graded to plate.spacing beyond (the
+  /// seed's finer elements where the plate tears, §5.3.1); 0 or plate.spacing: no refinement (the
+  /// parser resolves the default to plate.spacing).
+  double stepSpacing = 0.0;
 };
 
 /// The default clamp diameter over the spot face's (140 mm / 80 mm).
