@@ -111,6 +111,45 @@ struct SteppedPlateTheory {
   }
 };
 
+/// The stepped plate relaxed under the pressure: dynamic relaxation, damped near the first mode,
+/// whose frequency the spot face clamped at its rim bounds from above (Rayleigh: scaled by the
+/// square root of the compliance ratio).
+SphShell relaxedSteppedPlate(const ShellNodes& nodes, const ShellParameters& p, const SteppedPlateTheory& theory, double pressure) {
+  const PlateTheory spot(p);
+  const double omega = spot.omega1 * std::sqrt(spot.centreDeflection(pressure) / theory.centreDeflection());
+  ShellParameters damped = p;
+  damped.dampingRate = 2.0 * omega;
+  SphShell shell(nodes, damped);
+  shell.setPressure(pressure);
+  const double dt = shell.stableTimeStep();
+  shell.advance(static_cast<int>(12.0 / omega / dt), dt, {});
+  return shell;
+}
+
+struct StepBending {
+  double largestRadius;  ///< where 6 |M_r| / t² is largest over the free nodes (m)
+  double ours, expected; ///< its sum over the spot face's nodes within `band` of the step, and the solution's
+};
+
+/// The bending stress 6 |M_r| / t² of the relaxed stepped plate (nodes inside `centre` skipped).
+StepBending stepBending(const SphShell& shell, const ShellNodes& nodes, const SteppedPlateTheory& theory, double centre, double band) {
+  double largest = 0.0;
+  StepBending out{0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < shell.size(); ++i) {
+    if (shell.clamped(i)) continue;
+    const double r = std::hypot(nodes.x[i], nodes.y[i]);
+    if (r < 0.5 * centre) continue;
+    const double c = nodes.x[i] / r, s = nodes.y[i] / r;
+    const auto& M = shell.bendingMoment(i);
+    const double mr = M[0] * c * c + M[1] * s * s + 2.0 * M[2] * s * c;
+    const double stress = 6.0 * std::fabs(mr) / (nodes.thickness[i] * nodes.thickness[i]);
+    if (stress > largest) largest = stress, out.largestRadius = r;
+    if (r > theory.a - band && r < theory.a)
+      out.ours += stress, out.expected += 6.0 * std::fabs(theory.radialMoment(r)) / (theory.t1 * theory.t1);
+  }
+  return out;
+}
+
 TEST(SphShell, SteppedPlateDeflectsAsTheJoinedKirchhoffPlatesAndBendsMostAtTheStep) {
   const double a = kRadius, b = 0.06, pressure = 1.0e4;
   const ShellParameters p = elasticPlate();
@@ -121,35 +160,15 @@ TEST(SphShell, SteppedPlateDeflectsAsTheJoinedKirchhoffPlatesAndBendsMostAtTheSt
     nodes.thickness.resize(nodes.size());
     for (std::size_t i = 0; i < nodes.size(); ++i) nodes.thickness[i] = std::hypot(nodes.x[i], nodes.y[i]) < a ? p.thickness : t2;
     const SteppedPlateTheory theory(p, a, d * std::round(b / d), t2, pressure);
-    // Dynamic relaxation, damped near the first mode, whose frequency the spot face clamped at
-    // its rim bounds from above (Rayleigh: scaled by the square root of the compliance ratio).
-    const PlateTheory spot(p);
-    const double omega = spot.omega1 * std::sqrt(spot.centreDeflection(pressure) / theory.centreDeflection());
-    ShellParameters damped = p;
-    damped.dampingRate = 2.0 * omega;
-    SphShell shell(nodes, damped);
+    const SphShell shell = relaxedSteppedPlate(nodes, p, theory, pressure);
     EXPECT_EQ(shell.thickness(0), p.thickness);
-    shell.setPressure(pressure);
-    const double dt = shell.stableTimeStep();
-    shell.advance(static_cast<int>(12.0 / omega / dt), dt, {});
     EXPECT_NEAR(shell.deflection(0) / theory.centreDeflection(), 1.0, 0.05)
         << "t2 = " << t2 << ": w = " << shell.deflection(0) << " m, joined plates " << theory.centreDeflection() << " m";
 
     // The bending stress 6 |M_r| / t² over the free nodes: largest on the spot face's two rings
     // next to the step, as the solution says for the seed's 25 mm bottom. Nodal integration leaves
     // the moment alternating from ring to ring by about ±10 %, so the two rings' mean is compared.
-    double largest = 0.0, largestRadius = 0.0, ours = 0.0, expected = 0.0;
-    for (std::size_t i = 0; i < shell.size(); ++i) {
-      if (shell.clamped(i)) continue;
-      const double r = std::hypot(nodes.x[i], nodes.y[i]);
-      if (r < 0.5 * d) continue;
-      const double c = nodes.x[i] / r, s = nodes.y[i] / r;
-      const auto& M = shell.bendingMoment(i);
-      const double mr = M[0] * c * c + M[1] * s * s + 2.0 * M[2] * s * c;
-      const double stress = 6.0 * std::fabs(mr) / (nodes.thickness[i] * nodes.thickness[i]);
-      if (stress > largest) largest = stress, largestRadius = r;
-      if (r > a - 2.0 * d && r < a) ours += stress, expected += 6.0 * std::fabs(theory.radialMoment(r)) / (p.thickness * p.thickness);
-    }
+    const auto [largestRadius, ours, expected] = stepBending(shell, nodes, theory, d, 2.0 * d);
     if (t2 == 25.0e-3) {
       const double atStep = 6.0 * std::fabs(theory.radialMoment(a - 0.5 * d)) / (p.thickness * p.thickness);
       ASSERT_GT(atStep, 6.0 * std::fabs(theory.radialMoment(0.0)) / (p.thickness * p.thickness));
@@ -217,28 +236,10 @@ TEST(SphShell, SteppedPlateRefinedAtTheStepDeflectsAsTheJoinedKirchhoffPlates) {
   nodes.thickness.resize(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) nodes.thickness[i] = std::hypot(nodes.x[i], nodes.y[i]) < a ? p.thickness : t2;
   const SteppedPlateTheory theory(p, a, b, t2, pressure);
-  const PlateTheory spot(p);
-  const double omega = spot.omega1 * std::sqrt(spot.centreDeflection(pressure) / theory.centreDeflection());
-  ShellParameters damped = p;
-  damped.dampingRate = 2.0 * omega;
-  SphShell shell(nodes, damped);
-  shell.setPressure(pressure);
-  const double dt = shell.stableTimeStep();
-  shell.advance(static_cast<int>(12.0 / omega / dt), dt, {});
+  const SphShell shell = relaxedSteppedPlate(nodes, p, theory, pressure);
   EXPECT_NEAR(shell.deflection(0) / theory.centreDeflection(), 1.0, 0.05)
       << "w = " << shell.deflection(0) << " m, joined plates " << theory.centreDeflection() << " m";
-  double largest = 0.0, largestRadius = 0.0, ours = 0.0, expected = 0.0;
-  for (std::size_t i = 0; i < shell.size(); ++i) {
-    if (shell.clamped(i)) continue;
-    const double r = std::hypot(nodes.x[i], nodes.y[i]);
-    if (r < 0.5 * coarse) continue;
-    const double c = nodes.x[i] / r, s = nodes.y[i] / r;
-    const auto& M = shell.bendingMoment(i);
-    const double mr = M[0] * c * c + M[1] * s * s + 2.0 * M[2] * s * c;
-    const double stress = 6.0 * std::fabs(mr) / (nodes.thickness[i] * nodes.thickness[i]);
-    if (stress > largest) largest = stress, largestRadius = r;
-    if (r > a - 2.0 * fine && r < a) ours += stress, expected += 6.0 * std::fabs(theory.radialMoment(r)) / (p.thickness * p.thickness);
-  }
+  const auto [largestRadius, ours, expected] = stepBending(shell, nodes, theory, coarse, 2.0 * fine);
   EXPECT_GT(largestRadius, a - 2.0 * fine) << "the bending stress peaks at r = " << largestRadius << " m";
   EXPECT_LT(largestRadius, a) << "the bending stress peaks at r = " << largestRadius << " m";
   EXPECT_NEAR(ours / expected, 1.0, 0.05) << "the two fine rings next to the step";
