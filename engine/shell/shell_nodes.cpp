@@ -38,18 +38,47 @@ ShellNodes clampedDiskNodes(double radius, double spacing, int outerRings) {
   return nodes;
 }
 
-ShellNodes ringDiskNodes(const std::vector<double>& radii) {
-  const std::size_t K = radii.size();
-  if (K < 2 || !(radii[0] > 0.0))
+namespace {
+
+void checkRingRadii(const std::vector<double>& radii) {
+  if (radii.size() < 2 || !(radii[0] > 0.0))
     throw std::invalid_argument("ringDiskNodes: need at least two rings of radius > 0");
-  for (std::size_t k = 1; k < K; ++k)
+  for (std::size_t k = 1; k < radii.size(); ++k)
     if (!(radii[k] > radii[k - 1])) throw std::invalid_argument("ringDiskNodes: ring radii must increase");
+}
+
+/// Ring k of ringDiskNodes (k = 1 … K): r_0 = 0 and the mirror ring r_{K+1} beyond the rim.
+double ringRadius(const std::vector<double>& radii, long k) {
+  const long K = static_cast<long>(radii.size());
+  if (k <= 0) return 0.0;
+  if (k > K) return 2.0 * radii[radii.size() - 1] - radii[radii.size() - 2];
+  return radii[static_cast<std::size_t>(k - 1)];
+}
+
+/// Ring k's radial spacing Δ_k = (r_{k+1} − r_{k−1}) / 2.
+double ringSpacing(const std::vector<double>& radii, long k) {
+  return 0.5 * (ringRadius(radii, k + 1) - ringRadius(radii, k - 1));
+}
+
+/// The nodes on ring k: round(2π r_k / Δ_k), at least 3.
+long ringNodes(const std::vector<double>& radii, long k) {
+  return std::max(3L, std::lround(2.0 * std::numbers::pi * ringRadius(radii, k) / ringSpacing(radii, k)));
+}
+
+}  // namespace
+
+std::size_t ringDiskNodeCount(const std::vector<double>& radii) {
+  checkRingRadii(radii);
+  std::size_t count = 1;  // the centre
+  for (long k = 1; k <= static_cast<long>(radii.size()); ++k) count += static_cast<std::size_t>(ringNodes(radii, k));
+  return count;
+}
+
+ShellNodes ringDiskNodes(const std::vector<double>& radii) {
+  checkRingRadii(radii);
+  const long K = static_cast<long>(radii.size());
   const double pi = std::numbers::pi;
-  auto radius = [&](long k) {  // r_0 = 0 and the mirror ring beyond the rim
-    if (k <= 0) return 0.0;
-    if (k > static_cast<long>(K)) return 2.0 * radii[K - 1] - radii[K - 2];
-    return radii[static_cast<std::size_t>(k - 1)];
-  };
+  auto radius = [&](long k) { return ringRadius(radii, k); };
   ShellNodes nodes;
   auto add = [&](double x, double y, double volume, double area, bool clamped, double spacing) {
     nodes.x.push_back(x);
@@ -62,11 +91,11 @@ ShellNodes ringDiskNodes(const std::vector<double>& radii) {
   };
   const double inner = 0.5 * radius(1);
   add(0.0, 0.0, pi * inner * inner, pi * inner * inner, false, radius(1));
-  for (long k = 1; k <= static_cast<long>(K); ++k) {
+  for (long k = 1; k <= K; ++k) {
     const double r = radius(k), lower = 0.5 * (radius(k - 1) + r), upper = 0.5 * (r + radius(k + 1));
-    const double d = 0.5 * (radius(k + 1) - radius(k - 1));
-    const long n = std::max(3L, std::lround(2.0 * pi * r / d));
-    const bool rim = k == static_cast<long>(K);
+    const double d = ringSpacing(radii, k);
+    const long n = ringNodes(radii, k);
+    const bool rim = k == K;
     const double annulus = pi * (upper * upper - lower * lower);
     const double area = rim ? pi * (r * r - lower * lower) : annulus;
     for (long m = 0; m < n; ++m) {

@@ -41,6 +41,9 @@ ShellNodes clampedDiskNodes(double radius, double spacing, int outerRings);
 /// nodeSpacing holds Δ_k, `spacing` the largest. Uniform radii k Δ give clampedDiskNodes' nodes.
 ShellNodes ringDiskNodes(const std::vector<double>& radii);
 
+/// The number of nodes ringDiskNodes(radii) makes, without making them (a spec's size check).
+std::size_t ringDiskNodeCount(const std::vector<double>& radii);
+
 /// Ring radii for ringDiskNodes out to the rim r = `rim` at spacing ≈ `coarse`, refined to `fine`
 /// about the circle r = `at` (a thickness step): rings at `at` ± (m + ½) fine for m < `fineRings`, so
 /// the circle falls midway between two rings; from the band the spacing grows by a factor of at
@@ -48,7 +51,8 @@ ShellNodes ringDiskNodes(const std::vector<double>& radii);
 /// the rim. Throws std::invalid_argument when the band and its grading do not fit in (0, rim).
 std::vector<double> refinedRingRadii(double rim, double coarse, double fine, double at, int fineRings);
 
-/// The largest ratio of neighbouring ring spacings in refinedRingRadii.
+/// The largest ratio of neighbouring ring spacings in refinedRingRadii's graded part (where the
+/// uniform parts join it, rounding to whole rings may give up to 1.5 on a short stretch).
 inline constexpr double kRingGrowth = 1.3;
 
 }  // namespace rupture

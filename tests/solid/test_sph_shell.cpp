@@ -186,6 +186,7 @@ TEST(SphShell, RingDiskNodesOnUniformRadiiAreTheClampedDisk) {
   for (int k = 1; k <= 20; ++k) radii.push_back(k * d);
   const ShellNodes rings = ringDiskNodes(radii);
   ASSERT_EQ(rings.size(), uniform.size());
+  EXPECT_EQ(ringDiskNodeCount(radii), rings.size());
   EXPECT_NEAR(rings.spacing, d, 1e-15);
   double area = 0.0;
   for (std::size_t i = 0; i < rings.size(); ++i) {
@@ -220,6 +221,7 @@ TEST(SphShell, RefinedRingRadiiGradeFromTheBandToTheCoarseSpacing) {
   EXPECT_NEAR(smallest, fine, 1e-12);
   EXPECT_LT(largest, 1.5 * coarse);
   const ShellNodes nodes = ringDiskNodes(r);
+  EXPECT_EQ(ringDiskNodeCount(r), nodes.size());
   double area = 0.0;
   for (double a : nodes.integrationArea) area += a;
   EXPECT_NEAR(area / (std::numbers::pi * rim * rim), 1.0, 1e-12);

@@ -172,13 +172,9 @@ void validatePlateGeometry(const PlateSpec& plate) {
         refuse("bottom.step_spacing", f,
                "a refinement whose band (two plate spacings each side of the step) and grading fit between the centre and the clamp");
       }
-      double nodes = 1.0;
-      for (std::size_t k = 0; k < radii.size(); ++k) {
-        const double below = k == 0 ? 0.0 : radii[k - 1], above = k + 1 < radii.size() ? radii[k + 1] : 2.0 * radii[k] - below;
-        nodes += 2.0 * std::numbers::pi * radii[k] / (0.5 * (above - below));
-      }
+      const double nodes = static_cast<double>(ringDiskNodeCount(radii));
       if (nodes > kMaxPlateNodes)
-        refuse("bottom.step_spacing", f, "a node spacing giving at most 1e6 plate nodes (this one gives about " + formatNumber(std::round(nodes)) + ")");
+        refuse("bottom.step_spacing", f, "a node spacing giving at most 1e6 plate nodes (this one gives " + formatNumber(nodes) + ")");
     }
   }
 

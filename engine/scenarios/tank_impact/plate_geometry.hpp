@@ -1,7 +1,8 @@
 #pragma once
 // The tank-impact bottom plate as an SPH shell: the Ø D spot face of nodes at spacing Δ
 // (clampedDiskNodes: concentric rings), clamped at its rim or continued by the thick bottom out to
-// its clamp (plate.clamp, the step midway between two rings), the central hole and the pre-cracks.
+// its clamp (plate.clamp, the step midway between two rings; refined about the step by
+// plate.bottom.step_spacing: ringDiskNodes on refinedRingRadii), the central hole and the pre-cracks.
 //
 // Hole: no node is created inside it (r < r_h); the innermost ring kept carries the part of its
 // annulus outside the hole, so the integration areas sum to π(R² − r_h²). The hole's edge is a

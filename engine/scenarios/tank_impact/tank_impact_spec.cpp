@@ -245,7 +245,7 @@ TankImpactSpec parseTankImpactSpec(const nlohmann::json& input) {
   if (s.plate.shell.damage) validateDamage(s.plate.shell.damageLaw, "plate.material");
   validateShellParameters(s.plate.shell, "plate");
   validatePlateGeometry(s.plate);
-  if (s.plate.bottom && plateRefinedAtStep(s.plate) && s.contact.method != ContactMethod::MasterSlave)
+  if (plateRefinedAtStep(s.plate) && s.contact.method != ContactMethod::MasterSlave)
     throw SpecError("plate.bottom.step_spacing", formatNumber(s.plate.bottom->stepSpacing),
                     "plate.spacing (" + formatNumber(s.plate.spacing) +
                         " m) unless contact.method is \"master_slave\": a pinball is one node spacing wide, so a plate with two spacings needs the surface that spreads each particle over its face");
