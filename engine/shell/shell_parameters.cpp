@@ -20,6 +20,9 @@ void validateShellParameters(const ShellParameters& p, const std::string& prefix
   if (p.damage) validateDamage(p.damageLaw, prefix + ".damage");
   if (p.thicknessPoints < 2 || p.thicknessPoints > 7)
     throw SpecError(prefix + ".thickness_points", std::to_string(p.thicknessPoints), "an integer in [2, 7]");
+  if (!(p.fractureLayerFraction > 0.0 && p.fractureLayerFraction <= 1.0))
+    throw SpecError(prefix + ".fracture_layer_fraction", formatNumber(p.fractureLayerFraction),
+                    "a fraction of the layers in (0, 1]");
   if (!(p.shearCorrection > 0.0 && p.shearCorrection <= 1.0))
     throw SpecError(prefix + ".shear_correction", formatNumber(p.shearCorrection), "a number in (0, 1]");
   if (!(p.smoothingRatio >= 1.0 && p.smoothingRatio <= 2.5))

@@ -1,6 +1,8 @@
 #pragma once
 // Parameters of the SPH (meshless) Mindlin–Reissner shell, SI units. One struct, validated once
 // (validateShellParameters), so that a spec reader, the server and the tests share the checks.
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "damage/lemaitre_chaboche.hpp"
@@ -16,6 +18,10 @@ struct ShellParameters {
   bool damage = false;                   ///< Lemaitre–Chaboche with delay at every layer
   LemaitreChabocheDamage damageLaw;      ///< its ν is taken from `material`
   int thicknessPoints = 5;               ///< Gauss points through the thickness, [2, 7]
+  /// Fraction of a stress point's layers that must reach D_c before it fractures, (0, 1]: 1, every
+  /// layer (a crack through the whole thickness); 0.2 of 5 layers, the first one. Explicit FE codes
+  /// expose the same rule: Radioss's P_thickfail, LS-DYNA's NUMFIP (*MAT_ADD_EROSION).
+  double fractureLayerFraction = 1.0;
   double shearCorrection = 5.0 / 6.0;    ///< κ_s of the transverse shear resultant
   /// true: each layer's transverse shear (parabolic through the thickness) enters its yield,
   /// flow and damage; false (the seed's shells): the layers yield in plane stress and the
@@ -27,6 +33,14 @@ struct ShellParameters {
   double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
   double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
 };
+
+/// Layers of `layers` that must have failed for a stress point to fracture: ⌈fraction · layers⌉,
+/// at least one (a fraction that is a whole number of layers in decimal, such as 0.6 of 5, counts
+/// that number, not one more from rounding).
+inline int layersToFracture(double fraction, int layers) {
+  const int count = static_cast<int>(std::ceil(fraction * layers - 1e-9));
+  return std::clamp(count, 1, layers);
+}
 
 /// Throws SpecError naming `<prefix>.<field>`.
 void validateShellParameters(const ShellParameters& p, const std::string& prefix);

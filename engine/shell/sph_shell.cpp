@@ -54,6 +54,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
     if (!(d > 0.0 && d <= m_spacing)) throw std::invalid_argument("SphShell: node spacings must be in (0, spacing]");
   // The rule of the uniform thickness; node i's points and weights are t_i / t times these.
   m_rule = gaussLegendreThickness(m_params.thicknessPoints, m_params.thickness);
+  m_layersToFracture = layersToFracture(m_params.fractureLayerFraction, m_params.thicknessPoints);
   const double rho = m_params.density;
   if (!nodes.thickness.empty() && nodes.thickness.size() != n)
     throw std::invalid_argument("SphShell: the node thicknesses must be absent or one per node");
@@ -355,7 +356,7 @@ void SphShell::computeForces(double dt) {
           M[c] += w * z * f * sig[c];
         }
       }
-      if (broken == static_cast<int>(layers)) newlyFractured[i] = 1;
+      if (broken >= m_layersToFracture) newlyFractured[i] = 1;
       Mout = M;
       const double om = m_area[i];
       // Elastic shear: κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
@@ -499,6 +500,13 @@ double SphShell::maxPlasticStrain(std::size_t i) const {
   double v = 0.0;
   for (std::size_t k = 0; k < layers; ++k) v = std::max(v, m_plasticStrain[i * layers + k]);
   return v;
+}
+
+int SphShell::failedLayers(std::size_t i) const {
+  const std::size_t layers = m_rule.xi.size();
+  int count = 0;
+  for (std::size_t k = 0; k < layers; ++k) count += m_damage[i * layers + k].fractured ? 1 : 0;
+  return count;
 }
 
 double SphShell::maxDamage(std::size_t i) const {

@@ -22,11 +22,12 @@
 // separation of a pair and the one predicted by the mean gradient of its two nodes (exact for
 // quadratic fields, so it does not stiffen smooth bending).
 //
-// Fracture (Caleyron et al. 2011): when every layer of a stress point has reached D_c, the stress
-// point is dropped, its node's links are cut, the links between other nodes whose segment crosses
-// its cell (disc of radius √V/2) are cut (visibility criterion), and the corrected gradients are
-// rebuilt (free edges follow: the correction only uses the neighbours that remain). A node left
-// without a valid gradient becomes a fragment (moves freely, carries no stress).
+// Fracture (Caleyron et al. 2011): once ShellParameters::fractureLayerFraction of a stress point's
+// layers have reached D_c (by default every layer), the stress point is dropped, its node's links
+// are cut, the links between other nodes whose segment crosses its cell (disc of radius √V/2) are
+// cut (visibility criterion), and the corrected gradients are rebuilt (free edges follow: the
+// correction only uses the neighbours that remain). A node left without a valid gradient becomes a
+// fragment (moves freely, carries no stress).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -79,6 +80,8 @@ public:
   double deflection(std::size_t i) const { return m_position[i][2]; }
   /// Largest accumulated plastic strain over the layers of a node.
   double maxPlasticStrain(std::size_t i) const;
+  /// Number of the node's layers that have reached D_c (all of them once it has fractured).
+  int failedLayers(std::size_t i) const;
   /// Largest damage over the layers of a node.
   double maxDamage(std::size_t i) const;
   bool fractured(std::size_t i) const { return m_fractured[i] != 0; }
@@ -128,6 +131,7 @@ private:
 
   ShellParameters m_params;
   ThroughThicknessRule m_rule;
+  int m_layersToFracture = 1;  ///< failed layers that fracture a stress point
   double m_spacing = 0.0;
   double m_pressure = 0.0;
   double m_time = 0.0;

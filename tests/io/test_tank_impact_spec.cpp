@@ -52,6 +52,7 @@ TEST(TankImpactSpec, DefaultsAreTheSeedsTest) {
   EXPECT_DOUBLE_EQ(s.plate.shell.damageLaw.delaySharpness, 2.0);
   EXPECT_TRUE(s.plate.shell.damage);
   EXPECT_EQ(s.plate.shell.thicknessPoints, 5);
+  EXPECT_DOUBLE_EQ(s.plate.shell.fractureLayerFraction, 1.0);  // every layer, "fully damaged" (§5.3.1)
   EXPECT_DOUBLE_EQ(s.plate.spacing, 0.004);  // the fluid spacing
   EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::None);
   EXPECT_DOUBLE_EQ(s.gauge[0], 0.035);
@@ -79,6 +80,7 @@ TEST(TankImpactSpec, MaterialOverridesAndPrecrackDefaults) {
   j["plate"] = {{"material", {{"preset", "au4g_2024_t351"}, {"young_modulus", 70e9}, {"critical_damage", 0.4},
                               {"delay_time", 2e-7}, {"hardening", "linear"}, {"hardening_exponent", 1.0}}},
                 {"layers", 3},
+                {"fracture_layer_fraction", 0.4},
                 {"spacing", 0.001},
                 {"precrack", {{"shape", "hole+cracks"}}}};
   const TankImpactSpec s = parseTankImpactSpec(j);
@@ -89,6 +91,8 @@ TEST(TankImpactSpec, MaterialOverridesAndPrecrackDefaults) {
   EXPECT_DOUBLE_EQ(s.plate.shell.damageLaw.criticalPlasticStrain, 0.21);  // the preset's
   EXPECT_EQ(s.plate.shell.material.hardening.kind, HardeningKind::linear);
   EXPECT_EQ(s.plate.shell.thicknessPoints, 3);
+  EXPECT_DOUBLE_EQ(s.plate.shell.fractureLayerFraction, 0.4);
+  EXPECT_EQ(layersToFracture(s.plate.shell.fractureLayerFraction, s.plate.shell.thicknessPoints), 2);  // ⌈1.2⌉
   EXPECT_DOUBLE_EQ(s.plate.precrack.holeDiameter, 0.014);  // F14E3A5: hole 14 mm, two 3 mm cracks
   EXPECT_DOUBLE_EQ(s.plate.precrack.length, 0.003);
   EXPECT_EQ(s.plate.precrack.crackCount, 2);
@@ -117,6 +121,8 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
             "plate.material.critical_plastic_strain");  // below the threshold 0.03 (validateDamage)
   EXPECT_EQ(fieldOf(with({{"plate", {{"material", {{"initial_yield_stress", 0.0}}}}}})), "plate.material.initial_yield_stress");
   EXPECT_EQ(fieldOf(with({{"plate", {{"plasticity", false}}}})), "plate.damage");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"fracture_layer_fraction", 0.0}}}})), "plate.fracture_layer_fraction");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"fracture_layer_fraction", 1.5}}}})), "plate.fracture_layer_fraction");
   EXPECT_EQ(fieldOf(with({{"plate", {{"diameter", 0.1}}}})), "plate.diameter");
   EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.02}}}})), "plate.spacing");
   EXPECT_EQ(fieldOf(with({{"plate", {{"clamp", "edge"}}}})), "plate.clamp");

@@ -111,6 +111,8 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.damage = node->boolean("damage", true);
   p.shell.transverseShearYield = node->boolean("transverse_shear_yield", p.shell.transverseShearYield);
   p.shell.thicknessPoints = static_cast<int>(node->integer("layers", 2, 7, p.shell.thicknessPoints));
+  p.shell.fractureLayerFraction =
+      node->number("fracture_layer_fraction", {0.0, 1.0, true, false}, "1", p.shell.fractureLayerFraction);
   p.shell.smoothingRatio = node->number("smoothing_ratio", Range::closed(1.0, 2.5), "1", p.shell.smoothingRatio);
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
@@ -310,6 +312,7 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"damage", sh.damage},
                 {"transverse_shear_yield", sh.transverseShearYield},
                 {"layers", sh.thicknessPoints},
+                {"fracture_layer_fraction", sh.fractureLayerFraction},
                 {"smoothing_ratio", sh.smoothingRatio},
                 {"hourglass_coefficient", sh.hourglassCoefficient},
                 {"courant_factor", sh.courantFactor},
