@@ -397,6 +397,39 @@ TEST(TankPlateObservables, CrackedLengthOfABandOfFracturedNodes) {
   }
 }
 
+// The rim's torn fraction: the angular cover of the fractured cells near r = D/2. A ring torn all
+// round covers the circumference, half a ring half of it (within a cell's width), and cracks
+// away from the rim nothing.
+TEST(TankPlateObservables, RimTornFractionIsTheTornShareOfTheCircumference) {
+  const PlateSpec plate = plateWith(PrecrackShape::None, 0.002);
+  const PlateGeometry g = plateGeometry(plate);
+  const double rim = 0.5 * plate.diameter, band = 2.0 * plate.spacing;
+  // The outermost ring of free nodes inside the rim.
+  double ring = 0.0;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i)
+    if (!g.nodes.clamped[i]) ring = std::max(ring, std::hypot(g.nodes.x[i], g.nodes.y[i]));
+  auto onRing = [&](std::size_t i) { return std::abs(std::hypot(g.nodes.x[i], g.nodes.y[i]) - ring) < 1e-9; };
+  SphShell whole = buildPlate(plate, g), half = buildPlate(plate, g), inner = buildPlate(plate, g);
+  EXPECT_EQ(rimTornFraction(whole, g, rim, band), 0.0);
+  std::size_t cells = 0;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    if (onRing(i)) {
+      whole.fractureNode(i);
+      ++cells;
+      if (g.nodes.y[i] > 0.0) half.fractureNode(i);
+    }
+    if (std::hypot(g.nodes.x[i], g.nodes.y[i]) < rim - 2.0 * band && std::abs(g.nodes.y[i]) < 0.5 * plate.spacing)
+      inner.fractureNode(i);  // a diameter's crack, short of the band
+  }
+  ASSERT_GT(cells, 50u);
+  const double cell = 1.0 / static_cast<double>(cells);  // one cell's share of the circumference
+  EXPECT_NEAR(rimTornFraction(whole, g, rim, band), 1.0, cell);
+  EXPECT_LE(rimTornFraction(whole, g, rim, band), 1.0);
+  EXPECT_NEAR(rimTornFraction(half, g, rim, band), 0.5, 1.5 * cell);
+  EXPECT_GT(inner.fracturedCount(), 10u);
+  EXPECT_EQ(rimTornFraction(inner, g, rim, band), 0.0);
+}
+
 // The fracture history: crackPath lists the failed nodes in the order they failed, and each
 // node's fracture time is the time of the step it failed in.
 TEST(TankPlateObservables, CrackPathFollowsTheFractureOrder) {

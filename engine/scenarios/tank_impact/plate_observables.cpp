@@ -1,9 +1,12 @@
 #include "scenarios/tank_impact/plate_observables.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <map>
+#include <numbers>
+#include <utility>
 
 namespace rupture {
 
@@ -65,6 +68,39 @@ double crackedLength(const SphShell& shell, const PlateGeometry& geometry) {
   for (std::size_t i = 0; i < geometry.nodes.size(); ++i)
     if (shell.fractured(i)) length += std::sqrt(geometry.nodes.kernelVolume[i]);
   return length;
+}
+
+double rimTornFraction(const SphShell& shell, const PlateGeometry& geometry, double rimRadius, double band) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  // Each fractured cell near the rim as an arc [θ − w/2, θ + w/2] of [0, 2π); an arc across 0 is
+  // split in two.
+  std::vector<std::pair<double, double>> arcs;
+  const ShellNodes& nodes = geometry.nodes;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double r = std::hypot(nodes.x[i], nodes.y[i]);
+    if (!shell.fractured(i) || std::abs(r - rimRadius) > band || r == 0.0) continue;
+    const double half = std::min(0.5 * std::sqrt(nodes.kernelVolume[i]) / r, std::numbers::pi);
+    double theta = std::atan2(nodes.y[i], nodes.x[i]);
+    if (theta < 0.0) theta += kTwoPi;
+    const double lo = theta - half, hi = theta + half;
+    if (lo < 0.0) {
+      arcs.emplace_back(0.0, hi);
+      arcs.emplace_back(lo + kTwoPi, kTwoPi);
+    } else if (hi > kTwoPi) {
+      arcs.emplace_back(lo, kTwoPi);
+      arcs.emplace_back(0.0, hi - kTwoPi);
+    } else {
+      arcs.emplace_back(lo, hi);
+    }
+  }
+  std::sort(arcs.begin(), arcs.end());
+  double covered = 0.0, end = 0.0;
+  for (const auto& [lo, hi] : arcs) {  // the union's length, sweeping the sorted arcs
+    if (hi <= end) continue;
+    covered += hi - std::max(lo, end);
+    end = hi;
+  }
+  return covered / kTwoPi;
 }
 
 std::vector<std::array<double, 2>> crackPath(const SphShell& shell, const PlateGeometry& geometry) {

@@ -29,6 +29,13 @@ double tongueOpeningAngle(const SphShell& shell, const PlateGeometry& geometry, 
 /// length ℓ holds about ℓ/Δ cells of area Δ²).
 double crackedLength(const SphShell& shell, const PlateGeometry& geometry);
 
+/// Fraction of the spot face's rim along which the plate has torn, in [0, 1]: the union of the
+/// angular widths √V_i / r_i of the fractured nodes whose reference radius lies within `band` of
+/// `rimRadius` (m), over 2π. The seed's "rupture of the bottom at the level of the spot-facing
+/// circumference" (§3.2) reads as a fraction near 1; a crack that runs in from a pre-crack touches
+/// it only where it reaches the rim.
+double rimTornFraction(const SphShell& shell, const PlateGeometry& geometry, double rimRadius, double band);
+
 /// Reference positions (m) of the fractured nodes, in the order they failed (SphShell::fractureOrder)
 /// — the crack paths.
 std::vector<std::array<double, 2>> crackPath(const SphShell& shell, const PlateGeometry& geometry);

@@ -23,6 +23,7 @@ const ResultFields& tankImpactSummaryFields() {
       {"time_to_fracture", "s", "Time to fracture", "First fracture of a stress point beyond the pre-cracks (null if none)"},
       {"fracture_radius", "m", "Fracture radius", "Distance from the axis of the first stress point the impact fractured (null if none): the spot face's rim is D/2"},
       {"cracked_length", "m", "Cracked length", "Length of the cracks the impact opened beyond the pre-cracks, at the end"},
+      {"rim_torn_fraction", "1", "Rim torn fraction", "Fraction of the spot face's rim circumference along which the plate has torn at the end: the angular cover of the fractured cells within two plate spacings of r = D/2 (1: the seed's rupture along the rim)"},
       {"fractured_nodes", "1", "Fractured nodes", "Plate nodes fractured by the impact at the end"},
       {"fluid_below_final", "1", "Fluid below the plate", "Fluid particles below the plate at the end"},
       {"carriage_initial_speed", "m/s", "Carriage initial speed", "V"},
