@@ -64,12 +64,15 @@ TEST(CliTankImpact, BadFieldExitsTwoNamingIt) {
 
 }  // namespace
 
-// The campaign request of docs/tank-impact.md#the-campaign is a valid server request, and a spec
-// naming a specimen runs from the CLI with the seed's measurements in its summary.
+// The campaign request of docs/tank-impact.md#the-campaign and the failure rule's study are valid
+// server requests, and a spec naming a specimen runs from the CLI with the seed's measurements in
+// its summary.
 TEST(CliTankImpact, CampaignRequestValidatesAndASpecimenRunReportsTheSeed) {
-  const std::string request = (fs::path(RUPTURE_SOURCE_DIR) / "examples" / "tank-campaign.json").string();
-  const auto valid = runCli("validate " + request + " --scenario tank-impact");
-  EXPECT_EQ(valid.exitCode, 0) << valid.err;
+  for (const char* name : {"tank-campaign.json", "tank-fracture-rule.json"}) {
+    const std::string request = (fs::path(RUPTURE_SOURCE_DIR) / "examples" / name).string();
+    const auto valid = runCli("validate " + request + " --scenario tank-impact");
+    EXPECT_EQ(valid.exitCode, 0) << name << ": " << valid.err;
+  }
   const nlohmann::json spec = {{"scenario", "tank-impact"}, {"specimen", "E20A5"},
                                {"plate", {{"spacing", 0.004}}}, {"resolution", {{"spacing", 0.01}}},
                                {"run", {{"end_time", 1e-5}}}};
@@ -81,6 +84,7 @@ TEST(CliTankImpact, CampaignRequestValidatesAndASpecimenRunReportsTheSeed) {
   EXPECT_EQ(summary["specimen"], "E20A5");
   EXPECT_DOUBLE_EQ(summary["seed_jet_speed"].get<double>(), 92.0);
   EXPECT_EQ(summary["impactor_model"], "elastic_piston");
+  EXPECT_EQ(summary["rim_torn_fraction"].get<double>(), 0.0);  // nothing torn in 10 µs
   const auto bad = runCli("run " + writeSpec({{"scenario", "tank-impact"}, {"specimen", "E99"}, {"resolution", {{"spacing", 0.01}}}},
                                              "cli-tank-bad-specimen.json") + " -o /dev/null --threads 1");
   EXPECT_EQ(bad.exitCode, 2);
