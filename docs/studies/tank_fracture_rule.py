@@ -11,9 +11,13 @@ each specimen's outcome under each rule beside the seed's (its section 3.2) as M
 --job reuses a finished job instead of submitting a new one. Standard library only.
 
 Outcomes, ours read from the summary at the end of the run (3 ms):
-  no fracture   no stress point fractured beyond the pre-cracks (fractured_nodes = 0);
-  rim           the plate has torn along at least half of the spot face's rim (rim_torn_fraction >= 0.5);
-  cracks        stress points fractured, the rim torn along less than half of it.
+  no fracture       no stress point fractured beyond the pre-cracks (fractured_nodes = 0);
+  rim               the plate has torn along at least half of the spot face's rim
+                    (rim_torn_fraction >= 0.5);
+  cracks            stress points fractured, the rim torn along less than half of it, the first
+                    one inside the spot face (fracture_radius < D/2 - 4 mm: from a pre-crack or
+                    the hole's edge);
+  cracks at the rim the same, but the first one within 4 mm of the rim.
 The seed's: "no fracture ..." -> no fracture; "rupture ... along the spot-face rim" -> rim;
 "cracks from the pre-cracks, bottom not completely ruptured" -> cracks.
 """
@@ -25,12 +29,16 @@ from server_job import ROOT, fmt, get, job_line, submit, wait
 
 RULE = "plate.fracture_layer_fraction"
 LAYERS = 5  # plate.layers, the default (the seed's 5 points through the thickness)
+RIM = 0.040  # m, the spot face's radius (Ø 80 mm, every specimen)
+RIM_BAND = 0.004  # m, two of the plate's 2 mm spacings: rim_torn_fraction's band
 
 
 def our_outcome(row):
     if row.get("fractured_nodes") in (None, 0):
         return "no fracture"
-    return "rim" if (row.get("rim_torn_fraction") or 0.0) >= 0.5 else "cracks"
+    if (row.get("rim_torn_fraction") or 0.0) >= 0.5:
+        return "rim"
+    return "cracks at the rim" if row["fracture_radius"] >= RIM - RIM_BAND else "cracks"
 
 
 def seed_outcome(text):
