@@ -1,5 +1,6 @@
 """Submitting a study's request to a running rupture-server and reading its job back, for the
 study scripts of docs/studies/. Standard library only."""
+import argparse
 import json
 import math
 import os
@@ -31,6 +32,26 @@ def wait(server, job):
         if status["status"] in ("successful", "failed", "dismissed"):
             return status
         time.sleep(5)
+
+
+def study_job(doc, request, table):
+    """The study's command line (--server, --job, --out) and its job: submits the request
+    (a path under the repository) unless --job names a finished one, and waits for it to end.
+    Returns (server, job, status, out), out the Markdown table's path (default docs/studies/table)."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--server", default="http://127.0.0.1:8080")
+    ap.add_argument("--job")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "studies", table))
+    a = ap.parse_args()
+    job = a.job or submit(a.server, request)
+    return a.server, job, wait(a.server, job), a.out
+
+
+def write_table(out, lines):
+    """Writes the generated table and prints its path."""
+    with open(out, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print(out)
 
 
 def job_line(job, status):

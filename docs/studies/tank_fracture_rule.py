@@ -21,11 +21,10 @@ Outcomes, ours read from the summary at the end of the run (3 ms):
 The seed's: "no fracture ..." -> no fracture; "rupture ... along the spot-face rim" -> rim;
 "cracks from the pre-cracks, bottom not completely ruptured" -> cracks.
 """
-import argparse
 import math
 import os
 
-from server_job import ROOT, fmt, get, job_line, submit, wait
+from server_job import fmt, get, job_line, study_job, write_table
 
 RULE = "plate.fracture_layer_fraction"
 LAYERS = 5  # plate.layers, the default (the seed's 5 points through the thickness)
@@ -53,14 +52,8 @@ def failed_layers(fraction):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--server", default="http://127.0.0.1:8080")
-    ap.add_argument("--job")
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "studies", "tank-fracture-rule.md"))
-    a = ap.parse_args()
-    job = a.job or submit(a.server, os.path.join("examples", "tank-fracture-rule.json"))
-    status = wait(a.server, job)
-    rows = [r for r in get(f"{a.server}/jobs/{job}/summary")["rows"] if r.get("status") == "successful"]
+    server, job, status, out = study_job(__doc__, os.path.join("examples", "tank-fracture-rule.json"), "tank-fracture-rule.md")
+    rows = [r for r in get(f"{server}/jobs/{job}/summary")["rows"] if r.get("status") == "successful"]
     rules = sorted({r[RULE] for r in rows}, reverse=True)
     specimens = list(dict.fromkeys(r["specimen"] for r in rows))  # the request's order
     rows.sort(key=lambda r: (specimens.index(r["specimen"]), -r[RULE]))
@@ -83,9 +76,7 @@ def main():
             f"{r.get('fractured_nodes')} | {fmt(r.get('max_deflection'), 1e3, 2)} |")
     lines += ["", "| layers at D_c that fail a stress point | outcomes as the seed's |", "|---|---|"]
     lines += [f"| {failed_layers(f)} of {LAYERS} (f = {f:g}) | {matches[f]} of {len(specimens)} |" for f in rules]
-    with open(a.out, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print(a.out)
+    write_table(out, lines)
 
 
 if __name__ == "__main__":
