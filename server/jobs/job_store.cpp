@@ -403,6 +403,19 @@ std::vector<JobRecord> JobStore::listJobs(const JobFilter& filter, std::int64_t&
 
 std::vector<RunRecord> JobStore::runs(std::int64_t jobId) {
   std::lock_guard lock(m_mutex);
+  return runsLocked(jobId);
+}
+
+std::optional<JobWithRuns> JobStore::jobWithRuns(std::int64_t id) {
+  // Every write goes through this connection under m_mutex (rupture.lock keeps one server to a
+  // data directory), so holding it over both reads makes them one snapshot.
+  std::lock_guard lock(m_mutex);
+  auto job = jobLocked(id);
+  if (!job) return std::nullopt;
+  return JobWithRuns{std::move(*job), runsLocked(id)};
+}
+
+std::vector<RunRecord> JobStore::runsLocked(std::int64_t jobId) {
   Stmt q(m_db, (std::string("SELECT ") + kRunColumns + " FROM runs WHERE job_id = ? ORDER BY idx").c_str());
   q.bind(1, jobId);
   std::vector<RunRecord> out;

@@ -79,6 +79,13 @@ struct JobRecord {
   Json provenance;
 };
 
+/// A job and its runs as one read: its counts, progress and `updated` agree with the runs listed
+/// (two separate reads can straddle a progress write).
+struct JobWithRuns {
+  JobRecord job;
+  std::vector<RunRecord> runs;
+};
+
 /// The spec every run of a job starts from: {"scenario": processId} followed by the inputs as
 /// posted (without their own "scenario"). Sweeps, replicates and refinement change it by paths.
 Json jobBaseSpec(const std::string& processId, const Json& inputs);
@@ -153,6 +160,8 @@ public:
   /// A job's runs in index order, without materialising their specs (RunRecord::spec is null for
   /// runs stored as patches: runSpec(job, run) gives it).
   std::vector<RunRecord> runs(std::int64_t jobId);
+  /// job(id) and runs(id) under one lock, so that no write falls between them; nullopt for no job.
+  std::optional<JobWithRuns> jobWithRuns(std::int64_t id);
   /// One run, its full spec included.
   std::optional<RunRecord> run(RunKey key);
 
@@ -211,6 +220,7 @@ private:
   void finishRun(RunKey key, Status status, const Json* summary, const std::string* error,
                  const std::string* resultPath);
   std::optional<JobRecord> jobLocked(std::int64_t id);
+  std::vector<RunRecord> runsLocked(std::int64_t jobId);
 
   std::mutex m_mutex;
   sqlite3* m_db = nullptr;

@@ -131,8 +131,7 @@ void markRunsWithPictures(ServerContext& ctx, const std::vector<RunRecord>& runs
 }  // namespace
 
 void getJob(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
-  auto runs = ctx.store->runs(job.id);
+  auto [job, runs] = loadJobWithRuns(ctx, req);
   if (wantsHtml(req)) {
     Json summary, points;  // once every run has ended
     std::string plot;
@@ -160,8 +159,8 @@ void deleteJob(ServerContext& ctx, const Request& req, Response& res) {
   auto job = ctx.scheduler->dismiss(id);
   if (!job) throw noSuchJob(std::to_string(id));
   logLine("job " + std::to_string(id) + " dismiss requested; status " + toString(job->status));
-  auto runs = ctx.store->runs(id);
-  sendJson(res, statusInfo(*job, &runs));
+  auto [record, runs] = ctx.store->jobWithRuns(id).value_or(JobWithRuns{*job, {}});
+  sendJson(res, statusInfo(record, &runs));
 }
 
 void postRetry(ServerContext& ctx, const Request& req, Response& res) {
@@ -178,9 +177,8 @@ void postRetry(ServerContext& ctx, const Request& req, Response& res) {
   }
   ctx.scheduler->resubmit(id, indices);
   logLine("job " + std::to_string(id) + ": " + std::to_string(indices.size()) + " failed run(s) re-submitted");
-  auto job = ctx.store->job(id);
-  auto runs = ctx.store->runs(id);
-  Json doc = statusInfo(*job, &runs);
+  auto [job, runs] = ctx.store->jobWithRuns(id).value();
+  Json doc = statusInfo(job, &runs);
   doc["retried_runs"] = indices;
   sendJson(res, doc);
 }

@@ -100,15 +100,15 @@ void replayJob(ServerContext& ctx, const Request& req, Response& res, const Idem
                        std::to_string(earlier.id) + "); use a new key for a new submission",
                    "Idempotency-Key", Json{{"in", "header"}, {"jobID", std::to_string(earlier.id)}});
   }
-  auto record = ctx.store->job(earlier.id);
-  if (!record) throw noSuchJob(std::to_string(earlier.id));
-  auto runs = ctx.store->runs(earlier.id);
+  auto found = ctx.store->jobWithRuns(earlier.id);
+  if (!found) throw noSuchJob(std::to_string(earlier.id));
+  auto& [record, runs] = *found;
   res.set_header("Location", "/jobs/" + std::to_string(earlier.id));
   res.set_header("Idempotent-Replayed", "true");
   if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
     res.set_header("Preference-Applied", "respond-async");
   }
-  sendJson(res, statusInfo(*record, &runs), 201);
+  sendJson(res, statusInfo(record, &runs), 201);
 }
 
 /// A POST /processes/{id}/execution body, checked member by member: the spec's inputs for `scenario`
@@ -333,13 +333,12 @@ void postExecution(ServerContext& ctx, const Request& req, Response& res) {
   logLine("job " + std::to_string(id) + " accepted: " + scenario + ", " + std::to_string(runCount) + " run(s)" +
           (job.name.empty() ? "" : ", \"" + job.name + "\""));
 
-  auto record = ctx.store->job(id);
-  auto runs = ctx.store->runs(id);
+  auto [record, runs] = ctx.store->jobWithRuns(id).value();
   res.set_header("Location", "/jobs/" + std::to_string(id));
   if (req.get_header_value("Prefer").find("respond-async") != std::string::npos) {
     res.set_header("Preference-Applied", "respond-async");
   }
-  sendJson(res, statusInfo(*record, &runs), 201);
+  sendJson(res, statusInfo(record, &runs), 201);
 }
 
 }  // namespace handlers

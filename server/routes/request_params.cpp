@@ -173,6 +173,12 @@ JobRecord loadJob(ServerContext& ctx, const Request& req) {
   return *job;
 }
 
+JobWithRuns loadJobWithRuns(ServerContext& ctx, const Request& req) {
+  auto found = ctx.store->jobWithRuns(jobIdFrom(req));
+  if (!found) throw noSuchJob(req.matches[1]);
+  return std::move(*found);
+}
+
 RunRecord loadRun(ServerContext& ctx, const Request& req, const JobRecord& job) {
   auto run = ctx.store->run({job.id, runIndexFrom(req, job)});
   if (!run) throw noSuchJob(req.matches[1]);

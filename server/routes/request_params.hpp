@@ -51,6 +51,8 @@ bool aggregateParam(const httplib::Request& req);
 void requireToken(const ServerContext& ctx, const httplib::Request& req);
 
 JobRecord loadJob(ServerContext& ctx, const httplib::Request& req);
+/// loadJob with the job's runs, read together (JobStore::jobWithRuns).
+JobWithRuns loadJobWithRuns(ServerContext& ctx, const httplib::Request& req);
 RunRecord loadRun(ServerContext& ctx, const httplib::Request& req, const JobRecord& job);
 /// The run, which must be successful with its file in place.
 RunRecord finishedRun(ServerContext& ctx, const httplib::Request& req, const JobRecord& job);

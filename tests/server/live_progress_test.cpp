@@ -98,6 +98,12 @@ TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {
   }, 120)) << later.dump(2);
   EXPECT_GT(later["runs"][0]["updated"].get<std::string>(), run["updated"].get<std::string>());
   EXPECT_GT(later["updated"].get<std::string>(), first["updated"].get<std::string>());
+  // The job and its runs are one read: the job's stamp is never older than a run it lists.
+  for (const Json& r : later["runs"]) {
+    if (r["updated"].is_string()) {
+      EXPECT_GE(later["updated"].get<std::string>(), r["updated"].get<std::string>());
+    }
+  }
   EXPECT_GT(later["runs"][0]["elapsed_s"].get<double>(), run["elapsed_s"].get<double>());
   // The job list carries the same members.
   const Json list = getJson(*client, "/jobs");
