@@ -76,22 +76,22 @@ void sendArchive(Response& res, std::shared_ptr<Archive> archive, const std::str
 namespace handlers {
 
 void getJobResults(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
+  const auto [job, runs] = loadJobWithRuns(ctx, req);
   requireEveryRunFinished(job, "results file");
   if (job.runsSuccessful == 0) {
     throw ApiError(404, problem::kNoResults, "No results",
                    "job " + std::to_string(job.id) + " has no successful run (" + publicMessage(job.message) + ")");
   }
-  const fs::path path = mergedResults(job, ctx.store->runs(job.id), ctx.resultsDir);
+  const fs::path path = mergedResults(job, runs, ctx.resultsDir);
   sendFile(req, res, path, "rupture-job-" + std::to_string(job.id) + ".h5");
 }
 
 void getJobCrate(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
+  const auto [job, runs] = loadJobWithRuns(ctx, req);
   requireEveryRunFinished(job, "RO-Crate");
   std::shared_ptr<ZipArchive> crate;
   try {
-    crate = jobCrate(job, ctx.store->runs(job.id), ctx.resultsDir);
+    crate = jobCrate(job, runs, ctx.resultsDir);
   } catch (const std::length_error&) {
     throw ApiError(409, problem::kCrateTooLarge, "Crate too large",
                    "job " + std::to_string(job.id) + "'s RO-Crate would be 4 GiB or larger (a ZIP without ZIP64): "

@@ -49,13 +49,13 @@ std::vector<ComparedJob> loadComparedJobs(ServerContext& ctx, const Request& req
                        "jobs lists job " + text + " twice", "jobs", Json{{"in", "query"}, {"value", text}});
       }
     }
-    auto job = ctx.store->job(*id);
+    auto job = ctx.store->jobWithRuns(*id);
     if (!job) {
       throw ApiError(404, problem::kNoSuchJob, "No such job",
                      "no job '" + text + "' (named in the jobs list; GET /jobs lists them)", "jobs",
                      Json{{"in", "query"}, {"value", text}});
     }
-    jobs.push_back({*job, buildSummary(*job, ctx.store->runs(*id))});
+    jobs.push_back({job->job, buildSummary(job->job, job->runs)});
   }
   return jobs;
 }
@@ -132,8 +132,8 @@ void sendPlot(const Request& req, Response& res, const SummaryTable& table, cons
 namespace handlers {
 
 void getJobSummary(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
-  const SummaryTable table = buildSummary(job, ctx.store->runs(job.id));
+  const auto [job, runs] = loadJobWithRuns(ctx, req);
+  const SummaryTable table = buildSummary(job, runs);
   const bool aggregate = aggregateParam(req);
   const bool csv = wantsCsv(req);
   if (csv) {
@@ -191,8 +191,8 @@ void getComparedPlot(ServerContext& ctx, const Request& req, Response& res) {
 }
 
 void getJobSummaryPlot(ServerContext& ctx, const Request& req, Response& res) {
-  const JobRecord job = loadJob(ctx, req);
-  SummaryTable table = buildSummary(job, ctx.store->runs(job.id));
+  const auto [job, runs] = loadJobWithRuns(ctx, req);
+  SummaryTable table = buildSummary(job, runs);
   PlotRequest plot;
   plot.x = req.has_param("x") ? req.get_param_value("x")
                               : (table.sweptPaths.empty() ? std::string() : table.sweptPaths.front());
