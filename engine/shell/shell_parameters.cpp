@@ -31,6 +31,9 @@ void validateShellParameters(const ShellParameters& p, const std::string& prefix
     throw SpecError(prefix + ".hourglass_coefficient", formatNumber(p.hourglassCoefficient), "a number in [0, 1]");
   if (!(std::isfinite(p.rotaryInertiaScale) && p.rotaryInertiaScale >= 1.0))
     throw SpecError(prefix + ".rotary_inertia_scale", formatNumber(p.rotaryInertiaScale), "a number >= 1");
+  if (!(std::isfinite(p.stepRotaryInertia) && p.stepRotaryInertia > 0.0))
+    throw SpecError(prefix + ".step_rotary_inertia", formatNumber(p.stepRotaryInertia),
+                    "a number > 0 (the rotary inertia beside a thickness step in units of rho t_i t_j^2/12)");
   if (!(std::isfinite(p.dampingRate) && p.dampingRate >= 0.0))
     throw SpecError(prefix + ".damping_rate", formatNumber(p.dampingRate), "a rate >= 0 (1/s)");
   if (!(p.courantFactor > 0.0 && p.courantFactor <= 1.0))

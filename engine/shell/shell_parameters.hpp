@@ -30,6 +30,11 @@ struct ShellParameters {
   double smoothingRatio = 1.3;           ///< h / Δ (support radius 2h)
   double hourglassCoefficient = 0.05;    ///< α of the pair-wise hourglass control, [0, 1]
   double rotaryInertiaScale = 1.0;       ///< s_I >= 1: I = s_I ρ t³/12 per unit area
+  /// f > 0: the rotary inertia of a node whose kernel reaches thicker stress points (a thickness
+  /// step), I = f ρ t_i t_j²/12 with t_j the thickest (never below its own ρ t_i³/12). 1: the
+  /// least that keeps the time step the step's translation sets; smaller values are closer to the
+  /// node's own inertia and shorten the step as √f.
+  double stepRotaryInertia = 1.0;
   double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
   double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
 };

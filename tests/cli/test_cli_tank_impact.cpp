@@ -68,7 +68,7 @@ TEST(CliTankImpact, BadFieldExitsTwoNamingIt) {
 // server requests, and a spec naming a specimen runs from the CLI with the seed's measurements in
 // its summary.
 TEST(CliTankImpact, CampaignRequestValidatesAndASpecimenRunReportsTheSeed) {
-  for (const char* name : {"tank-campaign.json", "tank-fracture-rule.json"}) {
+  for (const char* name : {"tank-campaign.json", "tank-fracture-rule.json", "tank-thin-specimens.json"}) {
     const std::string request = (fs::path(RUPTURE_SOURCE_DIR) / "examples" / name).string();
     const auto valid = runCli("validate " + request + " --scenario tank-impact");
     EXPECT_EQ(valid.exitCode, 0) << name << ": " << valid.err;

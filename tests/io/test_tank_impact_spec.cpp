@@ -53,6 +53,7 @@ TEST(TankImpactSpec, DefaultsAreTheSeedsTest) {
   EXPECT_TRUE(s.plate.shell.damage);
   EXPECT_EQ(s.plate.shell.thicknessPoints, 5);
   EXPECT_DOUBLE_EQ(s.plate.shell.fractureLayerFraction, 1.0);  // every layer, "fully damaged" (§5.3.1)
+  EXPECT_DOUBLE_EQ(s.plate.shell.stepRotaryInertia, 1.0);      // the least that keeps the step's time step
   EXPECT_DOUBLE_EQ(s.plate.spacing, 0.004);  // the fluid spacing
   EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::None);
   EXPECT_DOUBLE_EQ(s.gauge[0], 0.035);
@@ -81,6 +82,7 @@ TEST(TankImpactSpec, MaterialOverridesAndPrecrackDefaults) {
                               {"delay_time", 2e-7}, {"hardening", "linear"}, {"hardening_exponent", 1.0}}},
                 {"layers", 3},
                 {"fracture_layer_fraction", 0.4},
+                {"step_rotary_inertia", 0.04},
                 {"spacing", 0.001},
                 {"precrack", {{"shape", "hole+cracks"}}}};
   const TankImpactSpec s = parseTankImpactSpec(j);
@@ -92,6 +94,7 @@ TEST(TankImpactSpec, MaterialOverridesAndPrecrackDefaults) {
   EXPECT_EQ(s.plate.shell.material.hardening.kind, HardeningKind::linear);
   EXPECT_EQ(s.plate.shell.thicknessPoints, 3);
   EXPECT_DOUBLE_EQ(s.plate.shell.fractureLayerFraction, 0.4);
+  EXPECT_DOUBLE_EQ(s.plate.shell.stepRotaryInertia, 0.04);
   EXPECT_EQ(layersToFracture(s.plate.shell.fractureLayerFraction, s.plate.shell.thicknessPoints), 2);  // ⌈1.2⌉
   EXPECT_DOUBLE_EQ(s.plate.precrack.holeDiameter, 0.014);  // F14E3A5: hole 14 mm, two 3 mm cracks
   EXPECT_DOUBLE_EQ(s.plate.precrack.length, 0.003);
@@ -123,6 +126,8 @@ TEST(TankImpactSpec, ErrorsNameTheField) {
   EXPECT_EQ(fieldOf(with({{"plate", {{"plasticity", false}}}})), "plate.damage");
   EXPECT_EQ(fieldOf(with({{"plate", {{"fracture_layer_fraction", 0.0}}}})), "plate.fracture_layer_fraction");
   EXPECT_EQ(fieldOf(with({{"plate", {{"fracture_layer_fraction", 1.5}}}})), "plate.fracture_layer_fraction");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"step_rotary_inertia", 0.0}}}})), "plate.step_rotary_inertia");
+  EXPECT_EQ(fieldOf(with({{"plate", {{"step_rotary_inertia", -1.0}}}})), "plate.step_rotary_inertia");
   EXPECT_EQ(fieldOf(with({{"plate", {{"diameter", 0.1}}}})), "plate.diameter");
   EXPECT_EQ(fieldOf(with({{"plate", {{"spacing", 0.02}}}})), "plate.spacing");
   EXPECT_EQ(fieldOf(with({{"plate", {{"clamp", "edge"}}}})), "plate.clamp");

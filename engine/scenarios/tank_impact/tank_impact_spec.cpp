@@ -113,6 +113,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.thicknessPoints = static_cast<int>(node->integer("layers", 2, 7, p.shell.thicknessPoints));
   p.shell.fractureLayerFraction =
       node->number("fracture_layer_fraction", {0.0, 1.0, true, false}, "1", p.shell.fractureLayerFraction);
+  p.shell.stepRotaryInertia = node->number("step_rotary_inertia", Range::positive(), "1", p.shell.stepRotaryInertia);
   p.shell.smoothingRatio = node->number("smoothing_ratio", Range::closed(1.0, 2.5), "1", p.shell.smoothingRatio);
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
@@ -313,6 +314,7 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"transverse_shear_yield", sh.transverseShearYield},
                 {"layers", sh.thicknessPoints},
                 {"fracture_layer_fraction", sh.fractureLayerFraction},
+                {"step_rotary_inertia", sh.stepRotaryInertia},
                 {"smoothing_ratio", sh.smoothingRatio},
                 {"hourglass_coefficient", sh.hourglassCoefficient},
                 {"courant_factor", sh.courantFactor},
