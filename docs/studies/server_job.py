@@ -35,15 +35,17 @@ def wait(server, job):
 
 
 def study_job(doc, request, table):
-    """The study's command line (--server, --job, --out) and its job: submits the request
-    (a path under the repository) unless --job names a finished one, and waits for it to end.
-    Returns (server, job, status, out), out the Markdown table's path (default docs/studies/table)."""
+    """The study's command line (--server, --job, --request, --out) and its job: submits the
+    request (a path under the repository; --request another of the same shape) unless --job names
+    a finished one, and waits for it to end. Returns (server, job, status, out), out the Markdown
+    table's path (default docs/studies/table)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--server", default="http://127.0.0.1:8080")
     ap.add_argument("--job")
+    ap.add_argument("--request", default=request)
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "studies", table))
     a = ap.parse_args()
-    job = a.job or submit(a.server, request)
+    job = a.job or submit(a.server, a.request)
     return a.server, job, wait(a.server, job), a.out
 
 

@@ -6,9 +6,12 @@ plate.fracture_layer_fraction) to a running rupture-server, waits for it, and wr
 each specimen's outcome under each rule beside the seed's (its section 3.2) as Markdown.
 
     python3 docs/studies/tank_fracture_rule.py [--server http://127.0.0.1:8080] [--job ID]
-        [--out docs/studies/tank-fracture-rule.md]
+        [--request examples/tank-fracture-rule.json] [--out docs/studies/tank-fracture-rule.md]
 
---job reuses a finished job instead of submitting a new one. Standard library only.
+--job reuses a finished job instead of submitting a new one. --request submits another request
+over the thin specimens (examples/tank-thin-specimens.json: every input at its default; a run
+without plate.fracture_layer_fraction in its sweep is read at the default, 1). Standard library
+only.
 
 Outcomes, ours read from the summary at the end of the run (3 ms):
   no fracture       no stress point fractured beyond the pre-cracks (fractured_nodes = 0);
@@ -54,6 +57,8 @@ def failed_layers(fraction):
 def main():
     server, job, status, out = study_job(__doc__, os.path.join("examples", "tank-fracture-rule.json"), "tank-fracture-rule.md")
     rows = [r for r in get(f"{server}/jobs/{job}/summary")["rows"] if r.get("status") == "successful"]
+    for r in rows:
+        r.setdefault(RULE, 1.0)  # not swept: the default, every layer
     rules = sorted({r[RULE] for r in rows}, reverse=True)
     specimens = list(dict.fromkeys(r["specimen"] for r in rows))  # the request's order
     rows.sort(key=lambda r: (specimens.index(r["specimen"]), -r[RULE]))
