@@ -132,7 +132,8 @@ TEST(TankImpactScenario, E14FirstPeaksLieInTheMeasuredRanges) {
 // FUA5 as given (fluid 4 mm, plate 2 mm, 3 ms): the U tongue opens to the seed's α ≈ 50° within
 // issue #27's 10° (§5.2, Fig. 31: the experiment's, and its own simulation's at 10 ms), read as
 // the tongue's inclination to the plate's plane. 43.0° here; 48.0° at the seed's fluid 2 mm (the
-// validation case tank-FUA5-tongue), 51.0° at 4 mm and 10 ms (docs/tank-impact.md#the-tongues-angle).
+// validation case tank-FUA5-tongue), 51.0° at 4 mm and 10 ms (docs/tank-impact.md#the-tongues-angle;
+// those figures are of 2026-12-01, before the rotary inertia beside the step was lowered).
 TEST(TankImpactScenario, FUA5TongueOpensToTheSeedsAngle) {
   const nlohmann::json s = summaryOfRun("FUA5", example("FUA5"));
   ASSERT_FALSE(s["final_tongue_angle"].is_null());
