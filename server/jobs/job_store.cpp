@@ -315,7 +315,11 @@ std::vector<std::string> specPatches(const std::string& processId, const Json& i
 }  // namespace
 
 CreatedJob JobStore::createJobOnce(const NewJob& job) {
-  const std::vector<std::string> patches = specPatches(job.processId, job.inputs, job.runs);
+  const std::vector<std::string> patches =
+      job.runPatches.empty() ? specPatches(job.processId, job.inputs, job.runs) : job.runPatches;
+  if (patches.size() != job.runs.size())
+    throw std::logic_error("job store: " + std::to_string(patches.size()) + " spec patches for " +
+                           std::to_string(job.runs.size()) + " runs");
   std::lock_guard lock(m_mutex);
   const std::string now = utcNow();
   Transaction tx(m_db);

@@ -110,6 +110,10 @@ struct NewJob {
   /// (swept values, full spec) per run, in run order. The store keeps the inputs once and each
   /// run's difference from them (a JSON Patch), so a large description is not stored per run.
   std::vector<std::pair<Json, Json>> runs;
+  /// When set (one per run): each run's spec as the text of its JSON Patch against the job's base
+  /// spec (jobBaseSpec), and runs[k].second is not read. A large sweep is planned one spec at a time
+  /// (routes/process_handlers.cpp), so its specs are never held whole.
+  std::vector<std::string> runPatches;
   std::vector<int> replicates;  ///< replicate index per run (empty: all 0)
   Json study;                   ///< JobRecord::study (null: none)
   Json provenance;              ///< JobRecord::provenance

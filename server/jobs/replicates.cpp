@@ -113,49 +113,59 @@ ReplicatePlan parseReplicatePlan(const Json* member, const std::string& scenario
   return plan;
 }
 
+ReplicateExpander::ReplicateExpander(const ReplicatePlan& plan, const std::string& scenario) : m_plan(plan) {
+  if (!plan.requested()) return;
+  const nlohmann::json schema = schemaOf(scenario);
+  if (const nlohmann::json* node = schemaNodeAt(schema, plan.vary);
+      node && node->contains("default") && (*node)["default"].is_number_integer())
+    m_default = (*node)["default"];
+  m_segments = splitPath(plan.vary);
+}
+
+void ReplicateExpander::expand(SweepPoint&& p, const std::function<void(ReplicatedPoint&&)>& visit) const {
+  if (!m_plan.requested()) {
+    visit({std::move(p), 0});  // specs can be large: no copies
+    return;
+  }
+  long long base = 0;
+  if (const Json* v = findAtPath(p.spec, m_plan.vary); v && v->is_number_integer()) {
+    base = v->get<long long>();
+  } else if (v) {
+    throw replicateError("replicates.vary", m_plan.vary,
+                         "the inputs set " + m_plan.vary + " to " + v->dump() + ", not an integer; replicates add 0.." +
+                             std::to_string(m_plan.count - 1) + " to it",
+                         Json());
+  } else if (!m_default.is_null()) {
+    base = m_default.get<long long>();
+  } else {
+    throw replicateError("replicates.vary", m_plan.vary,
+                         m_plan.vary + " has no value in the inputs and no default in the schema; set it in the inputs",
+                         Json());
+  }
+  for (int r = 0; r < m_plan.count; ++r) {
+    ReplicatedPoint rp{r + 1 < m_plan.count ? p : std::move(p), r};
+    // Walk to the parent, creating objects (the field may be absent and defaulted).
+    Json* parent = &rp.point.spec;
+    for (std::size_t i = 0; i + 1 < m_segments.size(); ++i) {
+      if (!parent->is_object()) break;
+      parent = &(*parent)[m_segments[i]];
+      if (parent->is_null()) *parent = Json::object();
+    }
+    if (!parent->is_object()) {
+      throw replicateError("replicates.vary", m_plan.vary, "the inputs hold no object at the parent of " + m_plan.vary,
+                           Json());
+    }
+    (*parent)[m_segments.back()] = base + r;
+    visit(std::move(rp));
+  }
+}
+
 std::vector<ReplicatedPoint> expandReplicates(std::vector<SweepPoint> points, const ReplicatePlan& plan,
                                               const std::string& scenario) {
   std::vector<ReplicatedPoint> out;
   out.reserve(points.size() * static_cast<std::size_t>(plan.requested() ? plan.count : 1));
-  if (!plan.requested()) {
-    for (SweepPoint& p : points) out.push_back({std::move(p), 0});  // specs can be large: no copies
-    return out;
-  }
-  const nlohmann::json schema = schemaOf(scenario);
-  const nlohmann::json* node = schemaNodeAt(schema, plan.vary);
-  const auto segments = splitPath(plan.vary);
-  for (SweepPoint& p : points) {
-    long long base = 0;
-    if (const Json* v = findAtPath(p.spec, plan.vary); v && v->is_number_integer()) {
-      base = v->get<long long>();
-    } else if (v) {
-      throw replicateError("replicates.vary", plan.vary,
-                           "the inputs set " + plan.vary + " to " + v->dump() + ", not an integer; replicates add 0.." +
-                               std::to_string(plan.count - 1) + " to it",
-                           Json());
-    } else if (node && node->contains("default") && (*node)["default"].is_number_integer()) {
-      base = (*node)["default"].get<long long>();
-    } else {
-      throw replicateError("replicates.vary", plan.vary,
-                           plan.vary + " has no value in the inputs and no default in the schema; set it in the inputs",
-                           Json());
-    }
-    for (int r = 0; r < plan.count; ++r) {
-      ReplicatedPoint rp{r + 1 < plan.count ? p : std::move(p), r};
-      // Walk to the parent, creating objects (the field may be absent and defaulted).
-      Json* parent = &rp.point.spec;
-      for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
-        if (!parent->is_object()) break;
-        parent = &(*parent)[segments[i]];
-        if (parent->is_null()) *parent = Json::object();
-      }
-      if (!parent->is_object()) {
-        throw replicateError("replicates.vary", plan.vary, "the inputs hold no object at the parent of " + plan.vary, Json());
-      }
-      (*parent)[segments.back()] = base + r;
-      out.push_back(std::move(rp));
-    }
-  }
+  const ReplicateExpander expander(plan, scenario);
+  for (SweepPoint& p : points) expander.expand(std::move(p), [&](ReplicatedPoint&& rp) { out.push_back(std::move(rp)); });
   return out;
 }
 

@@ -5,6 +5,7 @@
 // base + r, where base is the point's own value (from the inputs, or the schema's default). Replicate 0
 // is therefore the run the job would make without replicates. Runs of a point are consecutive:
 // run index = point * N + r.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,22 @@ struct ReplicatedPoint {
   int replicate = 0;  ///< 0..count-1
 };
 
-/// Each point N times, the varied field set to base + r. Throws ApiError(400) naming
-/// replicates.vary when a point has no base value (not in the inputs, no schema default).
+/// Makes a point's replicates: N copies, the varied field set to base + r.
+class ReplicateExpander {
+public:
+  ReplicateExpander(const ReplicatePlan& plan, const std::string& scenario);
+  /// Hands each replicate of `point` to `visit`, in replicate order (the point itself without
+  /// replicates). Throws ApiError(400) naming replicates.vary when the point has no base value
+  /// (not in the inputs, no schema default).
+  void expand(SweepPoint&& point, const std::function<void(ReplicatedPoint&&)>& visit) const;
+
+private:
+  ReplicatePlan m_plan;
+  nlohmann::json m_default;  ///< the varied field's schema default (null: none)
+  std::vector<std::string> m_segments;
+};
+
+/// Each point N times (ReplicateExpander, for every point at once).
 std::vector<ReplicatedPoint> expandReplicates(std::vector<SweepPoint> points, const ReplicatePlan& plan,
                                               const std::string& scenario);
 

@@ -149,8 +149,8 @@ std::size_t runCount(const SweepPlan& plan) {
   return n;
 }
 
-std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inputs,
-                                    const SweepPlan& plan, std::size_t maxRuns) {
+void forEachSweepPoint(const std::string& scenario, const Json& inputs, const SweepPlan& plan, std::size_t maxRuns,
+                       const std::function<void(SweepPoint&&)>& visit) {
   const std::size_t total = runCount(plan);
   if (total > maxRuns) {
     throw ApiError(400, problem::kTooManyRuns, "Too many runs",
@@ -171,8 +171,6 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
     if (!err.empty()) throw sweepError(axis.path, "sweep path '" + axis.path + "': " + err);
   }
 
-  std::vector<SweepPoint> points;
-  points.reserve(total);
   std::vector<std::size_t> odometer(plan.axes.size(), 0);
   for (std::size_t n = 0; n < total; ++n) {
     SweepPoint point{base, Json::array()};
@@ -182,79 +180,88 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
       setAtPath(point.spec, segments[a], value);
       point.swept.push_back(value);
     }
-    points.push_back(std::move(point));
+    visit(std::move(point));
     // Advance the odometer: the last axis varies fastest.
     for (std::size_t a = plan.axes.size(); a-- > 0;) {
       if (++odometer[a] < plan.axes[a].values.size()) break;
       odometer[a] = 0;
     }
   }
+}
+
+std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inputs,
+                                    const SweepPlan& plan, std::size_t maxRuns) {
+  std::vector<SweepPoint> points;
+  forEachSweepPoint(scenario, inputs, plan, maxRuns, [&](SweepPoint&& point) { points.push_back(std::move(point)); });
   return points;
 }
 
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
                          double maxMemoryBytes) {
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    double memoryEstimate = -1;  // set when the point is refused for memory
-    try {
-      const nlohmann::json spec(points[k].spec);
-      const rupture::RunEstimate estimate = rupture::estimateRun(spec);  // validates first
-      auto valueAt = [&](const std::string& field) {
-        std::string pointer = "/" + field;
-        std::replace(pointer.begin(), pointer.end(), '.', '/');
-        const nlohmann::json::json_pointer at(pointer);
-        return spec.contains(at) ? spec.at(at).dump() : std::string("(default)");
-      };
-      if (estimate.particles > maxElements) {
-        std::ostringstream allowed;
-        allowed << "a run of at most " << maxElements << " elements (this server's --max-elements); this spec needs about "
-                << std::llround(estimate.particles) << " elements and " << std::llround(estimate.memoryBytes / 1048576.0)
-                << " MiB of memory";
-        throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
-      }
-      if (estimate.memoryBytes > maxMemoryBytes) {
-        std::ostringstream allowed;
-        allowed << "a run needing at most " << formatBytes(maxMemoryBytes)
-                << " of memory (this server's --max-run-memory); this spec needs about " << formatBytes(estimate.memoryBytes)
-                << " for about " << std::llround(estimate.particles) << " elements (" << estimate.basis
-                << "): make " << estimate.field << " larger or the sample smaller";
-        memoryEstimate = estimate.memoryBytes;
-        throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
-      }
-    } catch (const rupture::SpecError& e) {
-      Json extra = Json::object();
-      extra["in"] = "inputs";
-      extra["value"] = e.value();
-      extra["allowed"] = e.allowed();
-      if (memoryEstimate >= 0) {
-        extra["estimated_memory_bytes"] = std::llround(memoryEstimate);
-        extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes);
-      }
-      std::string where;
-      if (!plan.axes.empty()) {
-        Json swept = Json::object();
-        for (std::size_t a = 0; a < plan.axes.size(); ++a) {
-          swept[plan.axes[a].path] = points[k].swept[a];
-          const std::string& path = plan.axes[a].path;
-          if (e.field() == path || e.field().rfind(path + ".", 0) == 0 ||
-              e.field().rfind(path + "[", 0) == 0) {
-            extra["in"] = "sweep";
-          }
-        }
-        extra["sweep_point"] = k;
-        extra["swept"] = swept;
-        where = " (sweep point " + std::to_string(k) + ": " + swept.dump() + ")";
-      }
-      throw ApiError(400, problem::kInvalidSpec, "Invalid spec", std::string(e.what()) + where,
-                     e.field(), extra);
-    } catch (const std::exception& e) {
-      // The validator choked on an input it did not expect: still the client's input, still a 400.
-      Json extra = Json::object();
-      extra["in"] = "inputs";
-      if (!plan.axes.empty()) extra["sweep_point"] = k;
-      throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
-                     std::string("the spec could not be validated: ") + e.what(), "", extra);
+  for (std::size_t k = 0; k < points.size(); ++k) validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes);
+}
+
+void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan& plan, double maxElements,
+                        double maxMemoryBytes) {
+  double memoryEstimate = -1;  // set when the point is refused for memory
+  try {
+    const nlohmann::json spec(point.spec);  // one copy at a time
+    const rupture::RunEstimate estimate = rupture::estimateRun(spec);  // validates first
+    auto valueAt = [&](const std::string& field) {
+      std::string pointer = "/" + field;
+      std::replace(pointer.begin(), pointer.end(), '.', '/');
+      const nlohmann::json::json_pointer at(pointer);
+      return spec.contains(at) ? spec.at(at).dump() : std::string("(default)");
+    };
+    if (estimate.particles > maxElements) {
+      std::ostringstream allowed;
+      allowed << "a run of at most " << maxElements << " elements (this server's --max-elements); this spec needs about "
+              << std::llround(estimate.particles) << " elements and " << std::llround(estimate.memoryBytes / 1048576.0)
+              << " MiB of memory";
+      throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
     }
+    if (estimate.memoryBytes > maxMemoryBytes) {
+      std::ostringstream allowed;
+      allowed << "a run needing at most " << formatBytes(maxMemoryBytes)
+              << " of memory (this server's --max-run-memory); this spec needs about " << formatBytes(estimate.memoryBytes)
+              << " for about " << std::llround(estimate.particles) << " elements (" << estimate.basis
+              << "): make " << estimate.field << " larger or the sample smaller";
+      memoryEstimate = estimate.memoryBytes;
+      throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
+    }
+  } catch (const rupture::SpecError& e) {
+    Json extra = Json::object();
+    extra["in"] = "inputs";
+    extra["value"] = e.value();
+    extra["allowed"] = e.allowed();
+    if (memoryEstimate >= 0) {
+      extra["estimated_memory_bytes"] = std::llround(memoryEstimate);
+      extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes);
+    }
+    std::string where;
+    if (!plan.axes.empty()) {
+      Json swept = Json::object();
+      for (std::size_t a = 0; a < plan.axes.size(); ++a) {
+        swept[plan.axes[a].path] = point.swept[a];
+        const std::string& path = plan.axes[a].path;
+        if (e.field() == path || e.field().rfind(path + ".", 0) == 0 ||
+            e.field().rfind(path + "[", 0) == 0) {
+          extra["in"] = "sweep";
+        }
+      }
+      extra["sweep_point"] = k;
+      extra["swept"] = swept;
+      where = " (sweep point " + std::to_string(k) + ": " + swept.dump() + ")";
+    }
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec", std::string(e.what()) + where,
+                   e.field(), extra);
+  } catch (const std::exception& e) {
+    // The validator choked on an input it did not expect: still the client's input, still a 400.
+    Json extra = Json::object();
+    extra["in"] = "inputs";
+    if (!plan.axes.empty()) extra["sweep_point"] = k;
+    throw ApiError(400, problem::kInvalidSpec, "Invalid spec",
+                   std::string("the spec could not be validated: ") + e.what(), "", extra);
   }
 }
 

@@ -4,6 +4,7 @@
 // zip = element-wise, all lists the same length. Every expanded spec is validated before a job is
 // accepted, so a job is accepted whole or not at all.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,15 @@ SweepPlan parseSweepPlan(const Json* sweep, const Json* mode);
 /// Number of runs the plan expands to (1 without axes); saturates at SIZE_MAX instead of overflowing.
 std::size_t runCount(const SweepPlan& plan);
 
-/// Expands the plan over `inputs` (the spec without "scenario"). Throws ApiError(400) when the runs
-/// would exceed maxRuns (before expanding anything), or when a swept path's parent does not exist in
-/// the inputs (the path is named).
+/// Builds the plan's points over `inputs` (the spec without "scenario") one at a time, in run order,
+/// and hands each to `visit`: a point's spec holds the whole inputs (a large description, many
+/// probes), so a sweep of many runs is never held whole. Throws ApiError(400) when the runs would
+/// exceed maxRuns (before building anything), or when a swept path's parent does not exist in the
+/// inputs (the path is named).
+void forEachSweepPoint(const std::string& scenario, const Json& inputs, const SweepPlan& plan, std::size_t maxRuns,
+                       const std::function<void(SweepPoint&&)>& visit);
+
+/// Every point of forEachSweepPoint, held at once (for a few points: refinement rounds, tests).
 std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inputs,
                                     const SweepPlan& plan, std::size_t maxRuns);
 
@@ -50,6 +57,10 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
 /// point's index and its swept values.
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
                          double maxMemoryBytes);
+
+/// validateSweepPoints for the one point at run index `index`.
+void validateSweepPoint(const SweepPoint& point, std::size_t index, const SweepPlan& plan, double maxElements,
+                        double maxMemoryBytes);
 
 /// "a.b.0.c" -> {"a","b","0","c"}; empty segments are an error (returns empty vector).
 std::vector<std::string> splitPath(const std::string& path);

@@ -5,6 +5,7 @@
 
 #include <httplib.h>
 
+#include "common/heap.hpp"
 #include "common/log.hpp"
 #include "core/fnv1a.hpp"
 #include "http/json_body.hpp"
@@ -177,32 +178,34 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   const SweepPlan plan = parseSweepPlan(submission.member("sweep"), submission.member("sweep_mode"));
   const ReplicatePlan replicates = parseReplicatePlan(submission.member("replicates"), scenario, plan);
   const std::size_t maxRuns = static_cast<std::size_t>(ctx.config.maxRuns);
-  std::vector<SweepPoint> sweepPoints = expandSweep(scenario, inputs, plan, maxRuns);
-  if (sweepPoints.size() * static_cast<std::size_t>(replicates.count) > maxRuns) {
-    const std::size_t total = sweepPoints.size() * static_cast<std::size_t>(replicates.count);
+  const std::size_t points = runCount(plan);
+  if (points <= maxRuns && points * static_cast<std::size_t>(replicates.count) > maxRuns) {
+    const std::size_t total = points * static_cast<std::size_t>(replicates.count);
     throw ApiError(400, problem::kTooManyRuns, "Too many runs",
-                   "the sweep's " + std::to_string(sweepPoints.size()) + " points x " +
+                   "the sweep's " + std::to_string(points) + " points x " +
                        std::to_string(replicates.count) + " replicates make " + std::to_string(total) +
                        " runs; this server accepts at most " + std::to_string(maxRuns) + " per job (--max-runs)",
                    "replicates.count", Json{{"in", "body"}, {"runs", total}, {"max_runs", maxRuns}});
   }
-  // Every spec holds the whole inputs (a large description, many probes): moved, never copied.
-  std::vector<ReplicatedPoint> replicated = expandReplicates(std::move(sweepPoints), replicates, scenario);
-  std::vector<SweepPoint> points;
-  std::vector<int> replicateIndex;
-  points.reserve(replicated.size());
-  for (ReplicatedPoint& rp : replicated) {
-    points.push_back(std::move(rp.point));
-    replicateIndex.push_back(rp.replicate);
-  }
-  replicated.clear();
-  const std::size_t runCount = points.size();
-  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+  NewJob job;
+  // Every spec holds the whole inputs (a large description, many probes): each run's spec is built,
+  // validated and reduced to its patch against the base before the next, so the POST holds the
+  // inputs a few times over, never once per run (docs/server.md, "Security and limits").
+  const Json base = jobBaseSpec(scenario, inputs);
+  const ReplicateExpander replicator(replicates, scenario);
+  forEachSweepPoint(scenario, inputs, plan, maxRuns, [&](SweepPoint&& point) {
+    replicator.expand(std::move(point), [&](ReplicatedPoint&& rp) {
+      validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+      job.runPatches.push_back(Json::diff(base, rp.point.spec).dump());
+      job.runs.emplace_back(std::move(rp.point.swept), Json());
+      job.replicates.push_back(rp.replicate);
+    });
+  });
+  const std::size_t runCount = job.runs.size();
   requireQueueRoom(ctx, runCount, inputs.dump().size());
   const std::optional<RefinePlan> refine =
       parseRefinePlan(submission.member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
 
-  NewJob job;
   job.processId = scenario;
   job.name = submission.name;
   job.sweepMode = toString(plan.mode);
@@ -214,11 +217,6 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   job.provenance = buildDocument();
   job.provenance["executor"] = ctx.scheduler->name();
   job.provenance["threads_per_run"] = ctx.scheduler->threadsPerRun();
-  job.runs.reserve(runCount);
-  for (std::size_t k = 0; k < runCount; ++k) {
-    job.runs.emplace_back(std::move(points[k].swept), std::move(points[k].spec));
-    job.replicates.push_back(replicateIndex[k]);
-  }
   if (replicates.requested() || refine) {
     job.study = Json::object();
     if (replicates.requested()) job.study["replicates"] = replicates.toJson();
@@ -299,7 +297,24 @@ void getProcess(ServerContext& ctx, const Request& req, Response& res) {
   sendJson(res, doc);
 }
 
+namespace {
+
+void submitJob(ServerContext& ctx, const Request& req, Response& res);
+
+}  // namespace
+
 void postExecution(ServerContext& ctx, const Request& req, Response& res) {
+  // The plan of a large sweep frees megabytes that glibc would keep: give them back, so the
+  // server's resident memory returns to where it was (docs/server.md, "Security and limits").
+  struct ReturnHeap {
+    ~ReturnHeap() { returnFreeHeapToSystem(); }
+  } returnHeap;
+  submitJob(ctx, req, res);
+}
+
+namespace {
+
+void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   requireToken(ctx, req);
   if (ctx.stopping) {
     throw ApiError(503, problem::kShuttingDown, "Service Unavailable",
@@ -340,6 +355,8 @@ void postExecution(ServerContext& ctx, const Request& req, Response& res) {
   }
   sendJson(res, statusInfo(record, &runs), 201);
 }
+
+}  // namespace
 
 }  // namespace handlers
 

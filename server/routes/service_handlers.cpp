@@ -3,6 +3,7 @@
 
 #include <httplib.h>
 
+#include "common/heap.hpp"
 #include "routes/answers.hpp"
 #include "routes/documents.hpp"
 #include "routes/handlers.hpp"
@@ -56,6 +57,7 @@ void getHealth(ServerContext& ctx, const Request&, Response& res) {
   doc["queue_depth"] = ctx.store->queueDepth();
   doc["waiting_for_disk"] = ctx.scheduler->waitingForDisk();          // below --min-free-bytes
   doc["unrecorded_outcomes"] = ctx.scheduler->unrecordedOutcomes();   // finished on disk, store retrying
+  doc["resident_memory_bytes"] = residentBytes();  // the server's, so a memory leak shows from outside
   doc["uptime_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.startedAt).count();
   Json scenarios = Json::array();
   for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);
