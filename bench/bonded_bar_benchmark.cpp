@@ -10,6 +10,7 @@
 
 #include "bonded_bench_report.hpp"
 #include "bonded/bonded_system.hpp"
+#include "samples/bond_disorder.hpp"
 
 namespace rupture::bench {
 
@@ -84,6 +85,13 @@ nlohmann::json runW1(const W1Options& options) {
       p.vx[k] = kPullVelocity * (p.x[k] - xMin) / (xMax - xMin);
     }
   }
+  if (options.stiffnessWeibullModulus > 0) {
+    BondDisorder disorder;
+    disorder.stiffness.kind = FactorDistribution::Kind::Weibull;
+    disorder.stiffness.weibullModulus = options.stiffnessWeibullModulus;
+    disorder.seed = 20261121;
+    applyBondDisorder(disorder, s.bonds);
+  }
   s.initialize();
   const double initialPeakStress =
       *std::max_element(s.bonds.failureMeasure.begin(), s.bonds.failureMeasure.end());
@@ -97,6 +105,7 @@ nlohmann::json runW1(const W1Options& options) {
 
   nlohmann::json report = bondedBenchReport("W1", s, options.steps, options.threads, seconds, cpuSeconds);
   report["time_step"] = dt;
+  report["stiffness_weibull_modulus"] = options.stiffnessWeibullModulus;
   report["initial_peak_equivalent_stress"] = initialPeakStress;
   report.update(checkpointCost([&](StateArchive& a) { s.exchangeState(a); }));
   return report;

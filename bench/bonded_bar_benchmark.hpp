@@ -11,6 +11,9 @@ struct W1Options {
   int threads = 1;
   std::size_t particles = 102400;  ///< scales the 64 × 20 × 20 fcc cell box
   int steps = 1000;
+  /// Weibull modulus m of a per-bond stiffness factor of mean 1 (material.disorder's stiffness);
+  /// 0 = off, every factor 1 (the workload as defined). Times the loop with the option on.
+  double stiffnessWeibullModulus = 0;
 };
 
 /// Builds W1, runs it and returns one JSON object: workload, particles, bonds, steps, threads,

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <iostream>
 
 #include "cli/cli.hpp"
@@ -78,8 +79,16 @@ int benchCommand(const Args& args) {
     } else if (args[k] == "--steps") {
       if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
       options.steps = static_cast<int>(v);
+    } else if (args[k] == "--stiffness-weibull") {
+      char* end = nullptr;
+      const double m = std::strtod(args[k + 1].c_str(), &end);
+      if (end == args[k + 1].c_str() || *end != '\0' || !(m >= 0.5 && m <= 1000))
+        return usageError("bench: --stiffness-weibull = '" + args[k + 1] +
+                          "'; allowed: a Weibull modulus from 0.5 to 1000 (material.disorder's range)");
+      options.stiffnessWeibullModulus = m;
     } else {
-      return usageError("bench: unknown option '" + args[k] + "'; allowed: --threads, --particles, --steps");
+      return usageError("bench: unknown option '" + args[k] + "'; allowed: --threads, --particles, --steps, "
+                        "--stiffness-weibull");
     }
     ++k;
   }

@@ -41,7 +41,7 @@ commands:
                                           measure macroscopic E, nu, tensile strength and onset
                                           strain, or fit the beams to the targets; JSON on stdout,
                                           progress on stderr
-  bench W1 [--threads N] [--particles N] [--steps N]
+  bench W1 [--threads N] [--particles N] [--steps N] [--stiffness-weibull M]
   bench W2 [--threads N] [--steps N]
   bench W3 [--threads N] [--steps N]
   bench TANK [--threads N] [--steps N] [--spec FILE]

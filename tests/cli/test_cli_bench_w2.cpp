@@ -28,6 +28,10 @@ TEST(CliBenchW2, PrintsOneJsonLineWithTheDocumentedKeys) {
   EXPECT_GT(bondsPerSite, 50.0);
   EXPECT_LT(bondsPerSite, 61.0);
   EXPECT_EQ(runCli("bench W2 --particles 10").exitCode, 2);  // W2 has a fixed size
+  // W1's option on: a Weibull modulus in material.disorder's range, else exit 2 naming it.
+  const auto off = runCli("bench W1 --stiffness-weibull 0.1 --steps 1");
+  EXPECT_EQ(off.exitCode, 2);
+  EXPECT_NE(off.err.find("--stiffness-weibull"), std::string::npos) << off.err;
 
   // The processor it ran on: /proc/cpuinfo's first "model name" and the L1 data cache the C
   // library reports (bench/README.md, "Output").

@@ -9,7 +9,9 @@
 #include <numbers>
 
 #include "core/fast_math.hpp"
+#include "core/bond_loop.hpp"
 #include "dem/beam_forces.hpp"
+#include "dem/beam_law.hpp"
 
 using namespace rupture;
 
@@ -181,6 +183,46 @@ TEST(BeamBond3D, ForceIsMinusEnergyGradient) {
     minus.move(1, -step);
     const double gradient = (plus.response().energy - minus.response().energy) / (2 * h);
     EXPECT_NEAR(-gradient, forceJ(r)[axis], 1e-5 * forceJ(r).norm()) << "axis " << axis;
+  }
+}
+
+// A bond's stiffness factor f (disorder, inclusions) scales the law of E_μ after it is evaluated
+// (dem/beam_law.hpp): it must be the beam of modulus f·E_μ to round-off, and f = 1 must leave every
+// number of the unscaled law as it is, bit for bit.
+TEST(BeamBond3D, StiffnessFactorIsTheBeamOfTheScaledModulus) {
+  Pair b(3);
+  b.move(1, {3e-6, -2e-6, 1.5e-6});
+  b.rotate(0, Eigen::Quaterniond(Eigen::AngleAxisd(2e-3, Eigen::Vector3d(0.3, 1, -0.2).normalized())));
+  b.rotate(1, Eigen::Quaterniond(Eigen::AngleAxisd(-1e-3, Eigen::Vector3d(1, 0.4, 0.7).normalized())));
+  const BondGeometry g = bondGeometry<BeamLaw>(b.p, b.bonds, 0);
+  ASSERT_EQ(g.stiffness, 1.0);
+  const BeamLaw law{b.beam};
+  const BondResponse unscaled = law.response(g);
+  const BeamResponse direct = b.response();
+  EXPECT_EQ(unscaled.fjx, direct.fjx);
+  EXPECT_EQ(unscaled.tiy, direct.tiy);
+  EXPECT_EQ(unscaled.equivalentStress, direct.equivalentStress);
+  EXPECT_EQ(unscaled.energy, direct.energy);
+  for (const double f : {0.37, 1.9}) {
+    BondGeometry scaled = g;
+    scaled.stiffness = f;
+    BeamParameters stiffer = b.beam;
+    stiffer.youngModulus *= f;
+    const BondResponse got = BeamLaw{b.beam}.response(scaled);
+    const BondResponse want = BeamLaw{stiffer}.response(g);
+    const double loads[][2] = {{got.fjx, want.fjx}, {got.fjy, want.fjy}, {got.fjz, want.fjz},
+                               {got.tix, want.tix}, {got.tiy, want.tiy}, {got.tiz, want.tiz},
+                               {got.tjx, want.tjx}, {got.tjy, want.tjy}, {got.tjz, want.tjz},
+                               {got.energy, want.energy}, {got.normalForce, want.normalForce},
+                               {got.shearEnergy, want.shearEnergy}, {got.equivalentStress, want.equivalentStress}};
+    for (const auto& [a, w] : loads) EXPECT_NEAR(a, w, 1e-13 * std::fabs(w)) << "f = " << f;
+    EXPECT_EQ(got.stretch, want.stretch);
+    const BondStiffness k = BeamLaw{b.beam}.stiffness(scaled), kWant = BeamLaw{stiffer}.stiffness(g);
+    EXPECT_NEAR(k.translational, kWant.translational, 1e-13 * kWant.translational);
+    EXPECT_NEAR(k.rotational, kWant.rotational, 1e-13 * kWant.rotational);
+    b.bonds.stiffness[0] = f;  // the one-bond evaluation scales the same way
+    EXPECT_EQ(b.response().fjx, got.fjx);
+    b.bonds.stiffness[0] = 1.0;
   }
 }
 
