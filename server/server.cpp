@@ -102,7 +102,12 @@ RuptureServer::RuptureServer(ServerConfig config) {
   const double runMemory = m_context.config.maxRunMemory > 0 ? static_cast<double>(m_context.config.maxRunMemory)
                                                              : std::numeric_limits<double>::infinity();
   m_context.maxRunMemory = runMemory;
-  m_context.renders = std::make_shared<RenderGate>(m_context.config.maxRenders, m_context.config.maxRenderPixels);
+  // Renders wait for their turn on HTTP handler threads: as many may wait as leave two threads to
+  // /health, pages and downloads (and at least one), so that a browser's six parallel picture
+  // requests of a run page are all drawn in turn while nothing else waits behind renders.
+  const int renderWaiters = std::max(1, m_context.config.httpThreads - 2 - m_context.config.maxRenders);
+  m_context.renders =
+      std::make_shared<RenderGate>(m_context.config.maxRenders, renderWaiters, m_context.config.maxRenderPixels);
   m_refinement = std::make_unique<RefinementDriver>(*m_store, *m_scheduler,
                                                     static_cast<double>(m_context.config.maxElements), runMemory);
 
@@ -176,6 +181,9 @@ void RuptureServer::stop() {
   m_stopRequested = true;
   // 1. The scheduler: no run starts from now on, running runs are told to stop; POSTs get 503.
   stopAcceptingWork();
+  //    Renders in flight end at their next check and waiting ones are turned away (503), so the
+  //    HTTP side's grace below is not spent drawing pictures nobody will see.
+  m_context.renders->stop();
   // 2. The HTTP side. cpp-httplib's stop() is a no-op until listen() is running: keep asking while
   //    listen() is active. listen() returns once the connection hub has closed every connection.
   while (m_inListen) {

@@ -22,8 +22,8 @@ struct ServerConfig {
   long long maxRunMemory = 0;             ///< B one run may need (spec estimate; 400 above); 0 = defaultRunMemory()
   int maxQueuedRuns = 10'000;             ///< accepted runs waiting in the whole server (503 above)
   long long maxQueuedBytes = 1LL << 30;   ///< stored inputs of unfinished jobs in the whole server (503 above)
-  int maxRenders = 2;                     ///< PNG renders at once; as many more may wait, the rest get 503
-  long long maxRenderPixels = 8'000'000;  ///< largest PNG (width x height x scale^2 px; 400 above)
+  int maxRenders = 2;                     ///< renders at once; http-threads - 2 - this may wait, the rest get 503
+  long long maxRenderPixels = 8'000'000;  ///< largest PNG, thumbnails and series too (width x height x scale^2 px; 400 above)
   std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
   int httpThreads = 8;                    ///< threads answering HTTP requests
   bool logRequests = false;               ///< one line per request on stderr

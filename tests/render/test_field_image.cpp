@@ -213,6 +213,28 @@ TEST(FieldImage, ATanksDamageIsItsPlateAndItsPressureASliceOfTheFluid) {
   EXPECT_EQ(renderFieldImage(file, request).drawn, 64u);
 }
 
+TEST(FieldImage, AStopCheckEndsTheDrawing) {
+  ScratchDir dir;
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path(), 4));
+  const auto stopNow = [] { return true; };
+  for (ImageFormat format : {ImageFormat::Png, ImageFormat::Svg}) {
+    FieldImageRequest field;
+    field.format = format;
+    EXPECT_THROW(renderFieldImage(file, field, stopNow), RenderStopped);
+    SeriesPlotRequest series;
+    series.format = format;
+    EXPECT_THROW(renderSeriesPlot(file, series, stopNow), RenderStopped);
+  }
+  // Stopped only once the PNG is being encoded: the four checks before (after reading, on the
+  // canvas, before the bonds, at finish) say go on, the encoder's first write is refused.
+  int asked = 0;
+  const auto stopLate = [&asked] { return ++asked > 4; };
+  EXPECT_THROW(renderFieldImage(file, FieldImageRequest{}, stopLate), RenderStopped);
+  EXPECT_GE(asked, 5);
+  // Told to go on, it draws as ever, and the canvas is free for the next drawing.
+  EXPECT_EQ(renderFieldImage(file, FieldImageRequest{}, [] { return false; }).bytes.substr(1, 3), "PNG");
+}
+
 TEST(FieldImage, RefusesWhatItCannotDrawNamingTheMember) {
   ScratchDir dir;
   const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path(), 4));
