@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -64,6 +65,14 @@ std::string bindFailureReason(const std::string& host, int port) {
   }
   ::freeaddrinfo(found);
   return reason;
+}
+
+/// The kernel's largest listen queue (net.core.somaxconn; listen() caps any larger value at it).
+int systemListenBacklog() {
+  std::ifstream in("/proc/sys/net/core/somaxconn");
+  int value = 0;
+  if (in >> value && value > 0) return value;
+  return SOMAXCONN;
 }
 
 }  // namespace
@@ -143,11 +152,16 @@ int RuptureServer::bind() {
     throw std::runtime_error("cannot listen on " + c.bind + ":" + std::to_string(c.port) + ": " +
                              bindFailureReason(c.bind, c.port));
   }
+  // cpp-httplib listens with a queue of 5: a burst of connections beyond it waits for SYN retries
+  // (1 s, 3 s, ...) before it is even accepted. The system's limit holds a burst.
+  const int backlog = c.listenBacklog > 0 ? c.listenBacklog : systemListenBacklog();
+  if (!m_http->setListenBacklog(backlog))
+    throw std::runtime_error("cannot set the listen backlog to " + std::to_string(backlog) + ": " + std::strerror(errno));
   m_scheduler->start();
   m_refinement->start();  // resumes refinements a stop interrupted
-  logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " with " +
-          std::to_string(m_scheduler->workers()) + " worker(s) x " + std::to_string(m_scheduler->threadsPerRun()) +
-          " thread(s), data in " + m_context.dataDir.string());
+  logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " (backlog " + std::to_string(backlog) +
+          ") with " + std::to_string(m_scheduler->workers()) + " worker(s) x " +
+          std::to_string(m_scheduler->threadsPerRun()) + " thread(s), data in " + m_context.dataDir.string());
   return m_port;
 }
 

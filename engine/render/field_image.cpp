@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <set>
 
 #include "render/colour_map.hpp"
 #include "rupture/quantity_text.hpp"
@@ -64,6 +65,15 @@ std::vector<std::size_t> selectParticles(const SnapshotField& s, const std::stri
   }
   for (std::size_t k = 0; k < n; ++k)
     if (choice == "fluid" ? s.body[k] < 0 : s.body[k] == wanted) out.push_back(k);
+  // A body asked for by name that no particle belongs to would be an empty picture: say which exist.
+  if (out.empty() && !body.empty()) {
+    std::set<int> present(s.body.begin(), s.body.end());
+    std::string allowed = "all";
+    if (present.count(-1)) allowed += ", fluid";
+    for (int b : present)
+      if (b >= 0) allowed += ", " + std::to_string(b);
+    throw FieldImageError("body", "body '" + body + "': no particle of this run belongs to it; allowed: " + allowed);
+  }
   note = choice == "fluid" ? "fluid" : (s.plateBody && wanted == *s.plateBody ? "plate" : "body " + choice);
   return out;
 }

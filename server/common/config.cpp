@@ -189,6 +189,10 @@ const std::vector<Option>& options() {
        "10", [](ServerConfig& c, const std::string& v) { return parseSeconds(v, 0.05, 3600, c.requestTimeout); }},
       {"max-connections", "RUPTURE_MAX_CONNECTIONS", "N", "open HTTP connections in all; more get 503", "512",
        intSetter(&ServerConfig::maxConnections, 1, 900)},
+      {"listen-backlog", "RUPTURE_LISTEN_BACKLOG", "N",
+       "connections the kernel accepts and queues before the server takes them (a burst of clients); "
+       "0 = the system's limit, net.core.somaxconn, which also caps any larger value",
+       "0", intSetter(&ServerConfig::listenBacklog, 0, 1'000'000)},
       {"max-connections-per-client", "RUPTURE_MAX_CONNECTIONS_PER_CLIENT", "N",
        "open HTTP connections from one client address; more get 503", "64",
        intSetter(&ServerConfig::maxConnectionsPerClient, 1, 900)},

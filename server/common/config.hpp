@@ -40,6 +40,7 @@ struct ServerConfig {
   double requestTimeout = 10;             ///< s from a request's first byte to its last (408 after)
   int maxConnections = 512;               ///< open connections in all (503 above)
   int maxConnectionsPerClient = 64;       ///< open connections from one address (503 above)
+  int listenBacklog = 0;                  ///< connections the kernel queues before accept; 0 = net.core.somaxconn
   std::vector<std::string> allowOrigins;  ///< Origins (scheme://host[:port]) allowed to POST and DELETE
   std::vector<std::string> publicHosts;   ///< host names clients may use besides the bound address
   std::string readToken;                  ///< when set, every route but /health needs a bearer token

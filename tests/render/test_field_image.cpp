@@ -211,6 +211,15 @@ TEST(FieldImage, ATanksDamageIsItsPlateAndItsPressureASliceOfTheFluid) {
   request.body = "2";
   request.view = "xy";
   EXPECT_EQ(renderFieldImage(file, request).drawn, 64u);
+  // A body no particle belongs to is refused with the bodies there are, not drawn empty.
+  request.body = "999";
+  try {
+    renderFieldImage(file, request);
+    ADD_FAILURE() << "body 999 was drawn";
+  } catch (const FieldImageError& e) {
+    EXPECT_EQ(e.member(), "body");
+    EXPECT_NE(std::string(e.what()).find("allowed: all, fluid, 2"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FieldImage, AStopCheckEndsTheDrawing) {
