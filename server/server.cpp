@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -66,6 +67,14 @@ std::string bindFailureReason(const std::string& host, int port) {
   return reason;
 }
 
+/// The kernel's largest listen queue (net.core.somaxconn; listen() caps any larger value at it).
+int systemListenBacklog() {
+  std::ifstream in("/proc/sys/net/core/somaxconn");
+  int value = 0;
+  if (in >> value && value > 0) return value;
+  return SOMAXCONN;
+}
+
 }  // namespace
 
 RuptureServer::RuptureServer(ServerConfig config) {
@@ -102,7 +111,12 @@ RuptureServer::RuptureServer(ServerConfig config) {
   const double runMemory = m_context.config.maxRunMemory > 0 ? static_cast<double>(m_context.config.maxRunMemory)
                                                              : std::numeric_limits<double>::infinity();
   m_context.maxRunMemory = runMemory;
-  m_context.renders = std::make_shared<RenderGate>(m_context.config.maxRenders, m_context.config.maxRenderPixels);
+  // Renders wait for their turn on HTTP handler threads: as many may wait as leave two threads to
+  // /health, pages and downloads (and at least one), so that a browser's six parallel picture
+  // requests of a run page are all drawn in turn while nothing else waits behind renders.
+  const int renderWaiters = std::max(1, m_context.config.httpThreads - 2 - m_context.config.maxRenders);
+  m_context.renders =
+      std::make_shared<RenderGate>(m_context.config.maxRenders, renderWaiters, m_context.config.maxRenderPixels);
   m_refinement = std::make_unique<RefinementDriver>(*m_store, *m_scheduler,
                                                     static_cast<double>(m_context.config.maxElements), runMemory);
 
@@ -138,11 +152,16 @@ int RuptureServer::bind() {
     throw std::runtime_error("cannot listen on " + c.bind + ":" + std::to_string(c.port) + ": " +
                              bindFailureReason(c.bind, c.port));
   }
+  // cpp-httplib listens with a queue of 5: a burst of connections beyond it waits for SYN retries
+  // (1 s, 3 s, ...) before it is even accepted. The system's limit holds a burst.
+  const int backlog = c.listenBacklog > 0 ? c.listenBacklog : systemListenBacklog();
+  if (!m_http->setListenBacklog(backlog))
+    throw std::runtime_error("cannot set the listen backlog to " + std::to_string(backlog) + ": " + std::strerror(errno));
   m_scheduler->start();
   m_refinement->start();  // resumes refinements a stop interrupted
-  logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " with " +
-          std::to_string(m_scheduler->workers()) + " worker(s) x " + std::to_string(m_scheduler->threadsPerRun()) +
-          " thread(s), data in " + m_context.dataDir.string());
+  logLine("listening on http://" + c.bind + ":" + std::to_string(m_port) + " (backlog " + std::to_string(backlog) +
+          ") with " + std::to_string(m_scheduler->workers()) + " worker(s) x " +
+          std::to_string(m_scheduler->threadsPerRun()) + " thread(s), data in " + m_context.dataDir.string());
   return m_port;
 }
 
@@ -176,6 +195,9 @@ void RuptureServer::stop() {
   m_stopRequested = true;
   // 1. The scheduler: no run starts from now on, running runs are told to stop; POSTs get 503.
   stopAcceptingWork();
+  //    Renders in flight end at their next check and waiting ones are turned away (503), so the
+  //    HTTP side's grace below is not spent drawing pictures nobody will see.
+  m_context.renders->stop();
   // 2. The HTTP side. cpp-httplib's stop() is a no-op until listen() is running: keep asking while
   //    listen() is active. listen() returns once the connection hub has closed every connection.
   while (m_inListen) {

@@ -45,6 +45,8 @@ public:
   /// HTTP connections open now (idle, being read or being answered).
   int openConnections() const { return m_http->openConnections(); }
   const ServerConfig& config() const { return m_context.config; }
+  /// The render gate (tests hold its slots to fill it deterministically).
+  RenderGate& renderGate() { return *m_context.renders; }
 
 private:
   ServerContext m_context;

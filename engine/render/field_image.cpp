@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <set>
 
 #include "render/colour_map.hpp"
 #include "rupture/quantity_text.hpp"
@@ -64,6 +65,15 @@ std::vector<std::size_t> selectParticles(const SnapshotField& s, const std::stri
   }
   for (std::size_t k = 0; k < n; ++k)
     if (choice == "fluid" ? s.body[k] < 0 : s.body[k] == wanted) out.push_back(k);
+  // A body asked for by name that no particle belongs to would be an empty picture: say which exist.
+  if (out.empty() && !body.empty()) {
+    std::set<int> present(s.body.begin(), s.body.end());
+    std::string allowed = "all";
+    if (present.count(-1)) allowed += ", fluid";
+    for (int b : present)
+      if (b >= 0) allowed += ", " + std::to_string(b);
+    throw FieldImageError("body", "body '" + body + "': no particle of this run belongs to it; allowed: " + allowed);
+  }
   note = choice == "fluid" ? "fluid" : (s.plateBody && wanted == *s.plateBody ? "plate" : "body " + choice);
   return out;
 }
@@ -113,7 +123,7 @@ Plane choosePlane(const std::string& view, const SnapshotField& s, const std::ve
 
 }  // namespace
 
-FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& request) {
+FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& request, const StopCheck& stop) {
   if (request.width < kMinImageSide || request.width > kMaxImageSide)
     throw FieldImageError("width", "width " + std::to_string(request.width) + "; allowed: " +
                                        std::to_string(kMinImageSide) + " to " + std::to_string(kMaxImageSide));
@@ -146,6 +156,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   }
   const FieldDeclaration& declaration = *findFieldDeclaration(field);
   const SnapshotField s = readSnapshotField(file, request.root, snapshot, field);
+  if (stop && stop()) throw RenderStopped();  // reading a large snapshot takes a while
 
   // Bonds drawn: as asked, else the broken ones where a particle has a few bonds; a peridynamic
   // family (tens per particle) would paint a crack solid red over the damage that shows it.
@@ -215,10 +226,12 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   auto py = [&](std::size_t k) { return offV + scale * (vhi - s.position[k][plane.v]); };  // v up
 
   FieldImage out;
-  Canvas canvas(request.format, request.width, request.height);
+  Canvas canvas(request.format, request.width, request.height, stop);
   {
     cairo_t* cr = canvas.context();
+    std::size_t painted = 0;
     for (std::size_t k : drawn) {
+      if (++painted % 4096 == 0) canvas.checkStop();
       const Rgb c = viridis((s.value[k] - vmin) / (vmax - vmin));
       cairo_set_source_rgb(cr, c.r, c.g, c.b);
       // Discs under two pixels are squares: anti-aliased dots would leave the background between them.
@@ -238,6 +251,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
       }
       cairo_stroke(cr);
     };
+    canvas.checkStop();
     if (bonds == "all" && !s.intactBonds.empty()) {
       cairo_set_source_rgba(cr, 0.35, 0.35, 0.35, 0.6);
       cairo_set_line_width(cr, std::max(0.4, 0.15 * scale * meanRadius));

@@ -50,7 +50,8 @@ struct FieldImage {
 
 /// Renders the picture. Throws FieldImageError naming the member at fault (an unknown field, a
 /// snapshot out of range, a run without snapshots: "snapshot"), std::runtime_error when the file
-/// cannot be read.
-FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& request);
+/// cannot be read, RenderStopped when `stop` says so (asked between stages and every few thousand
+/// particles).
+FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& request, const StopCheck& stop = {});
 
 }  // namespace rupture::render

@@ -43,7 +43,7 @@ std::vector<std::string> seriesOf(const io::Hdf5File& file, const std::string& r
   return out;
 }
 
-SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& request) {
+SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& request, const StopCheck& stop) {
   for (const auto& [side, name] : {std::pair{request.width, "width"}, std::pair{request.height, "height"}})
     if (side < kMinImageSide || side > kMaxImageSide)
       throw FieldImageError(name, std::string(name) + " " + std::to_string(side) + "; allowed: " +
@@ -111,7 +111,7 @@ SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& r
   auto X = [&](double v) { return left + plotW * (v - xlo) / (xhi - xlo); };
   auto Y = [&](double v) { return top + plotH * (1 - (v - ylo) / (yhi - ylo)); };
 
-  Canvas canvas(request.format, request.width, request.height);
+  Canvas canvas(request.format, request.width, request.height, stop);
   {
     cairo_t* cr = canvas.context();
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);

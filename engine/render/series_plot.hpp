@@ -26,7 +26,8 @@ struct SeriesPlot {
 /// The names of the 1-D datasets under root + "/series", sorted.
 std::vector<std::string> seriesOf(const io::Hdf5File& file, const std::string& root);
 
-/// Throws FieldImageError naming "x", "y", "width" or "height" for a request that cannot be drawn.
-SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& request);
+/// Throws FieldImageError naming "x", "y", "width" or "height" for a request that cannot be drawn,
+/// RenderStopped when `stop` says so.
+SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& request, const StopCheck& stop = {});
 
 }  // namespace rupture::render

@@ -127,10 +127,12 @@ const std::vector<Option>& options() {
        "a submission that would pass it gets 503 with Retry-After",
        "1073741824", intSetter(&ServerConfig::maxQueuedBytes, 1, std::numeric_limits<long long>::max())},
       {"max-renders", "RUPTURE_MAX_RENDERS", "N",
-       "PNG plots rendered at the same time; as many more wait, further ones get 503 with Retry-After",
+       "pictures (field images and thumbnails, series and summary plots as PNG or PDF) drawn at the same "
+       "time; up to http-threads - 2 - N more wait (at least 1), further ones get 503 with Retry-After",
        "2", intSetter(&ServerConfig::maxRenders, 1, 64)},
       {"max-render-pixels", "RUPTURE_MAX_RENDER_PIXELS", "N",
-       "largest PNG plot in pixels (width x height x scale^2); larger requests get 400", "8000000",
+       "largest PNG in pixels (width x height x scale^2), thumbnails and series plots included; larger "
+       "requests get 400", "8000000",
        intSetter(&ServerConfig::maxRenderPixels, 76'800, 100'000'000)},
       {"token", "RUPTURE_TOKEN", "SECRET",
        "when set, POST and DELETE need 'Authorization: Bearer SECRET' (prefer the variable: "
@@ -187,6 +189,10 @@ const std::vector<Option>& options() {
        "10", [](ServerConfig& c, const std::string& v) { return parseSeconds(v, 0.05, 3600, c.requestTimeout); }},
       {"max-connections", "RUPTURE_MAX_CONNECTIONS", "N", "open HTTP connections in all; more get 503", "512",
        intSetter(&ServerConfig::maxConnections, 1, 900)},
+      {"listen-backlog", "RUPTURE_LISTEN_BACKLOG", "N",
+       "connections the kernel accepts and queues before the server takes them (a burst of clients); "
+       "0 = the system's limit, net.core.somaxconn, which also caps any larger value",
+       "0", intSetter(&ServerConfig::listenBacklog, 0, 1'000'000)},
       {"max-connections-per-client", "RUPTURE_MAX_CONNECTIONS_PER_CLIENT", "N",
        "open HTTP connections from one client address; more get 503", "64",
        intSetter(&ServerConfig::maxConnectionsPerClient, 1, 900)},

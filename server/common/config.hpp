@@ -22,8 +22,8 @@ struct ServerConfig {
   long long maxRunMemory = 0;             ///< B one run may need (spec estimate; 400 above); 0 = defaultRunMemory()
   int maxQueuedRuns = 10'000;             ///< accepted runs waiting in the whole server (503 above)
   long long maxQueuedBytes = 1LL << 30;   ///< stored inputs of unfinished jobs in the whole server (503 above)
-  int maxRenders = 2;                     ///< PNG renders at once; as many more may wait, the rest get 503
-  long long maxRenderPixels = 8'000'000;  ///< largest PNG (width x height x scale^2 px; 400 above)
+  int maxRenders = 2;                     ///< renders at once; http-threads - 2 - this may wait, the rest get 503
+  long long maxRenderPixels = 8'000'000;  ///< largest PNG, thumbnails and series too (width x height x scale^2 px; 400 above)
   std::string token;                      ///< when set, POST and DELETE need "Authorization: Bearer <token>"
   int httpThreads = 8;                    ///< threads answering HTTP requests
   bool logRequests = false;               ///< one line per request on stderr
@@ -40,6 +40,7 @@ struct ServerConfig {
   double requestTimeout = 10;             ///< s from a request's first byte to its last (408 after)
   int maxConnections = 512;               ///< open connections in all (503 above)
   int maxConnectionsPerClient = 64;       ///< open connections from one address (503 above)
+  int listenBacklog = 0;                  ///< connections the kernel queues before accept; 0 = net.core.somaxconn
   std::vector<std::string> allowOrigins;  ///< Origins (scheme://host[:port]) allowed to POST and DELETE
   std::vector<std::string> publicHosts;   ///< host names clients may use besides the bound address
   std::string readToken;                  ///< when set, every route but /health needs a bearer token

@@ -44,9 +44,13 @@ void addressOf(const sockaddr_storage& addr, std::string& ip, int& port) {
   ip = text;
 }
 
-/// A complete HTTP response with a problem document, for answers the hub gives itself.
-std::string rawProblem(int status, const std::string& detail) {
-  const std::string body = dumpJson(problemDocument(problemForStatus(status, detail)));
+/// A complete HTTP response with a problem document, for answers the hub gives itself; `header`
+/// names the header at fault (the problem's `field`, with "in": "header").
+std::string rawProblem(int status, const std::string& detail, const std::string& header = {}) {
+  ApiError error = problemForStatus(status, detail);
+  if (!header.empty())
+    error = ApiError(error.status(), error.type(), error.title(), error.what(), header, Json{{"in", "header"}});
+  const std::string body = dumpJson(problemDocument(error));
   return "HTTP/1.1 " + std::to_string(status) + " " + statusTitle(status) +
          "\r\nContent-Type: application/problem+json\r\nContent-Length: " + std::to_string(body.size()) +
          "\r\nConnection: close\r\nX-Content-Type-Options: nosniff\r\nCache-Control: no-store\r\n\r\n" + body;
@@ -93,6 +97,7 @@ struct Framing {
   bool expectContinue = false; // Incomplete: the client waits for 100 Continue
   int status = 0;              // Reject
   std::string detail;          // Reject
+  std::string header;          // Reject: the header at fault, when one is
 };
 
 /// Frames the request at the front of `in` the way cpp-httplib reads it: a request line, header
@@ -104,10 +109,11 @@ Framing frameRequest(const std::string& in, const FrontendLimits& limits) {
   std::optional<std::size_t> contentLength;
   bool chunked = false, expect = false;
   int hostLines = 0;
-  auto reject = [&f](int status, std::string detail) {
+  auto reject = [&f](int status, std::string detail, std::string header = {}) {
     f.kind = Framing::Reject;
     f.status = status;
     f.detail = std::move(detail);
+    f.header = std::move(header);
     return f;
   };
   while (true) {
@@ -140,14 +146,16 @@ Framing frameRequest(const std::string& in, const FrontendLimits& limits) {
     const std::string value = trim(line.substr(colon + 1));
     // cpp-httplib keeps a header value up to its first NUL: "Bearer <token>\0x" would pass as the
     // token, and two different keys "k\0y" and "k\0z" as one (RFC 9110 §5.5 forbids NUL anyway).
-    if (line.find('\0') != std::string_view::npos)
-      return reject(400, "the header '" + toValidUtf8(std::string(name.substr(0, std::min<std::size_t>(name.find('\0'), 100)))) +
-                             "' holds a NUL byte, which HTTP header fields may not contain");
+    if (line.find('\0') != std::string_view::npos) {
+      const std::string header = toValidUtf8(std::string(name.substr(0, std::min<std::size_t>(name.find('\0'), 100))));
+      return reject(400, "the header '" + header + "' holds a NUL byte, which HTTP header fields may not contain", header);
+    }
     if (equalsNoCase(name, "Host") && ++hostLines > 1)
-      return reject(400, "the request has more than one Host header (RFC 9112 §3.2: exactly one)");
+      return reject(400, "the request has more than one Host header (RFC 9112 §3.2: exactly one)", "Host");
     // cpp-httplib drops a header whose value is empty: a retry would then be taken as a new job.
     if (equalsNoCase(name, "Idempotency-Key") && value.empty())
-      return reject(400, "Idempotency-Key is empty; it must be 1 to 200 visible ASCII characters (a UUID is a good choice)");
+      return reject(400, "Idempotency-Key is empty; it must be 1 to 200 visible ASCII characters (a UUID is a good choice)",
+                    "Idempotency-Key");
     if (equalsNoCase(name, "Content-Length")) {
       const bool digits = !value.empty() && value.size() <= 18 &&
                           std::all_of(value.begin(), value.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -156,6 +164,7 @@ Framing frameRequest(const std::string& in, const FrontendLimits& limits) {
         f.kind = Framing::Reject;
         f.status = 400;
         f.detail = "the Content-Length header is not a single decimal number";
+        f.header = "Content-Length";
         return f;
       }
       contentLength = n;
@@ -367,7 +376,7 @@ private:
     }
     const Framing f = frameRequest(c->in, m_limits);
     if (f.kind == Framing::Reject) {
-      sendNow(c->fd, rawProblem(f.status, f.detail));
+      sendNow(c->fd, rawProblem(f.status, f.detail, f.header));
       closeConnection(*c);
       return false;
     }
@@ -592,6 +601,12 @@ HttpFrontend::HttpFrontend(FrontendLimits limits)
 HttpFrontend::~HttpFrontend() { m_hub->stop(); }
 
 int HttpFrontend::openConnections() const { return m_hub->openConnections(); }
+
+bool HttpFrontend::setListenBacklog(int backlog) {
+  // listen() again on a listening socket only changes its queue's length (Linux).
+  const socket_t sock = svr_sock_;
+  return sock != INVALID_SOCKET && ::listen(sock, backlog) == 0;
+}
 
 bool HttpFrontend::process_and_close_socket(socket_t sock) {
   try {

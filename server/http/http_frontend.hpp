@@ -49,6 +49,10 @@ public:
   /// Connections open now (idle, reading or being answered).
   int openConnections() const;
 
+  /// After bind_to_port: the listening socket's accept queue (cpp-httplib listens with 5). Returns
+  /// false with errno set when the kernel refuses.
+  bool setListenBacklog(int backlog);
+
   // Used by the connection hub: runs cpp-httplib's request processing on one buffered request.
   bool processBufferedRequest(httplib::Stream& stream, bool closeConnection, bool& connectionClosed);
 

@@ -1,6 +1,7 @@
 // The pictures of a run, drawn from its HDF5 file by engine/render: its field at a snapshot
-// (GET /jobs/{id}/runs/{k}/field) and its time series (GET .../series?format=svg|png|pdf). Every
-// query parameter is honoured or refused with a 400 naming it. A picture of a finished run never
+// (GET /jobs/{id}/runs/{k}/field) and its time series (GET .../series?format=svg|png|pdf), each
+// behind the render gate and its pixel cap. Every query parameter is honoured or refused with a
+// 400 naming it. A picture of a finished run never
 // changes while its file does not, so it carries an ETag from the file and the query: a page
 // reload costs a 304, not a render.
 #include <charconv>
@@ -74,6 +75,11 @@ bool notModified(const Request& req, Response& res, const std::string& tag) {
   return true;
 }
 
+/// A render ends early once the server stops.
+render::StopCheck stopCheck(const RenderGate& gate) {
+  return [&gate] { return gate.stopRequested(); };
+}
+
 [[noreturn]] void badRequest(const render::FieldImageError& e) {
   throw ApiError(400, problem::kInvalidParameter, "Invalid parameter", e.what(), e.member(), Json{{"in", "query"}});
 }
@@ -115,21 +121,18 @@ void getRunField(ServerContext& ctx, const Request& req, Response& res) {
   const fs::path file = ctx.resultsDir / run.resultPath;
   if (notModified(req, res, entityTag(file, req))) return;
   try {
-    // Thumbnails are small and a job page asks for many at once: they skip the render gate (the
-    // drawing itself is one at a time); a full picture waits for a render slot like a PNG plot.
-    auto draw = [&] { return render::renderFieldImage(io::Hdf5File::openReadOnly(file.string()), r); };
-    render::FieldImage image;
-    if (r.thumbnail) {
-      image = draw();
-    } else {
-      const RenderGate::Slot slot = ctx.renders->acquire();
-      image = draw();
-    }
+    // Every picture, thumbnails too (a thumbnail of a large run reads and draws all of it), waits
+    // for a render slot.
+    const RenderGate::Slot slot = ctx.renders->acquire();
+    const render::FieldImage image =
+        render::renderFieldImage(io::Hdf5File::openReadOnly(file.string()), r, stopCheck(*ctx.renders));
     res.set_header("X-Field", image.field);
     res.set_header("X-Snapshot", std::to_string(image.snapshot));
     res.set_content(image.bytes, image.mediaType);
   } catch (const render::FieldImageError& e) {
     badRequest(e);
+  } catch (const render::RenderStopped&) {
+    throw RenderGate::stoppingError();
   }
 }
 
@@ -150,10 +153,14 @@ void getRunSeriesPlot(ServerContext& ctx, const Request& req, Response& res) {
   const fs::path file = ctx.resultsDir / run.resultPath;
   if (notModified(req, res, entityTag(file, req))) return;
   try {
-    const render::SeriesPlot plot = render::renderSeriesPlot(io::Hdf5File::openReadOnly(file.string()), r);
+    const RenderGate::Slot slot = ctx.renders->acquire();
+    const render::SeriesPlot plot =
+        render::renderSeriesPlot(io::Hdf5File::openReadOnly(file.string()), r, stopCheck(*ctx.renders));
     res.set_content(plot.bytes, plot.mediaType);
   } catch (const render::FieldImageError& e) {
     badRequest(e);
+  } catch (const render::RenderStopped&) {
+    throw RenderGate::stoppingError();
   }
 }
 

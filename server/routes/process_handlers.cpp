@@ -2,6 +2,7 @@
 // a job (validation, queue bounds, idempotent retries).
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include <httplib.h>
 
@@ -58,6 +59,25 @@ void requireQueueRoom(ServerContext& ctx, std::size_t runs, std::size_t inputByt
                      "", Json{{"queued_" + key, b.queued}, {"max_queued_" + key, b.limit}, {"retry_after_s", 60}});
     }
   }
+}
+
+/// The first control character of UTF-8 text (C0, DEL, or C1 U+0080 to U+009F), as "U+0000", or
+/// nothing when it holds none.
+std::optional<std::string> controlCharacterAt(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    unsigned code = 0x100;
+    if (byte < 0x20 || byte == 0x7f) code = byte;
+    else if (byte == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) <= 0x9f &&
+             static_cast<unsigned char>(text[i + 1]) >= 0x80)
+      code = static_cast<unsigned char>(text[i + 1]);
+    if (code < 0x100) {
+      char out[8];
+      std::snprintf(out, sizeof out, "U+%04X", code);
+      return std::string(out) + " at byte " + std::to_string(i);
+    }
+  }
+  return std::nullopt;
 }
 
 /// The Idempotency-Key header: 1 to 200 visible ASCII characters, or "" when absent.
@@ -164,6 +184,12 @@ Submission readSubmission(const std::string& text, const std::string& scenario) 
     if (!n->is_string() || n->get<std::string>().size() > 200) {
       throw ApiError(400, problem::kInvalidRequest, "Invalid request",
                      "name must be a string of at most 200 characters", "name", Json{{"in", "body"}});
+    }
+    // A name is shown in pages, CSV and file names: no control characters (C0, DEL, C1).
+    if (const auto at = controlCharacterAt(n->get<std::string>())) {
+      throw ApiError(400, problem::kInvalidRequest, "Invalid request",
+                     "name holds a control character (" + *at + "); a name is printable text", "name",
+                     Json{{"in", "body"}});
     }
     s.name = n->get<std::string>();
   }

@@ -8,6 +8,7 @@
 #include "routes/handlers.hpp"
 #include "routes/request_params.hpp"
 #include "rupture/validation.hpp"
+#include "views/html_page.hpp"
 
 namespace rupture::server {
 using httplib::Request;
@@ -52,8 +53,8 @@ void getJobReport(ServerContext& ctx, const Request& req, Response& res) {
     res.set_content(report.json, kJsonType);
   else if (format == "csv")
     res.set_content(report.csv, kCsvType);
-  else
-    res.set_content(report.html, "text/html; charset=utf-8");
+  else  // with the CSP and X-Frame-Options of every other page
+    sendHtml(res, html::document(report.html));
 }
 
 }  // namespace handlers

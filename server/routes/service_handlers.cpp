@@ -10,6 +10,7 @@
 #include "routes/request_params.hpp"
 #include "rupture/run.hpp"
 #include "views/html_views.hpp"
+#include "views/render_gate.hpp"
 
 
 namespace rupture::server {
@@ -58,6 +59,8 @@ void getHealth(ServerContext& ctx, const Request&, Response& res) {
   doc["waiting_for_disk"] = ctx.scheduler->waitingForDisk();          // below --min-free-bytes
   doc["unrecorded_outcomes"] = ctx.scheduler->unrecordedOutcomes();   // finished on disk, store retrying
   doc["resident_memory_bytes"] = residentBytes();  // the server's, so a memory leak shows from outside
+  doc["renders"] = {{"running", ctx.renders->running()}, {"waiting", ctx.renders->waiting()},
+                    {"max_running", ctx.renders->maxRunning()}, {"max_waiting", ctx.renders->maxWaiting()}};
   doc["uptime_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.startedAt).count();
   Json scenarios = Json::array();
   for (const auto& s : rupture::listScenarios()) scenarios.push_back(s.name);

@@ -116,14 +116,19 @@ void sendPlot(const Request& req, Response& res, const SummaryTable& table, cons
   const int scale = static_cast<int>(intParam(req, "scale", 1, 1, 4));
   if (format == "png") requireRenderable(plot, scale, gate.maxPixels());
   const std::string svg = rupture::server::summarySvg(table, plot);
-  if (format == "png") {
-    const RenderGate::Slot slot = gate.acquire();
-    res.set_content(renderPng(svg, plot.width * scale, plot.height * scale), "image/png");
-  } else if (format == "pdf") {
-    const RenderGate::Slot slot = gate.acquire();
-    res.set_content(renderPdf(svg, plot.width, plot.height), "application/pdf");
-  } else {
-    res.set_content(svg, "image/svg+xml");
+  const render::StopCheck stop = [&gate] { return gate.stopRequested(); };
+  try {
+    if (format == "png") {
+      const RenderGate::Slot slot = gate.acquire();
+      res.set_content(renderPng(svg, plot.width * scale, plot.height * scale, stop), "image/png");
+    } else if (format == "pdf") {
+      const RenderGate::Slot slot = gate.acquire();
+      res.set_content(renderPdf(svg, plot.width, plot.height, stop), "application/pdf");
+    } else {
+      res.set_content(svg, "image/svg+xml");
+    }
+  } catch (const render::RenderStopped&) {
+    throw RenderGate::stoppingError();
   }
 }
 

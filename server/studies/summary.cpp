@@ -20,7 +20,15 @@ void flattenInto(const Json& value, const std::string& prefix, Json& out, bool a
 }
 
 std::string csvTextCell(const std::string& text) {
-  std::string cell = text;
+  // No raw control bytes: a NUL ends the text in C tools, others garble a terminal or a
+  // spreadsheet. Each becomes U+FFFD (as bytes that are not UTF-8 do); tab, CR and LF stay, quoted.
+  std::string cell;
+  cell.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\t' && c != '\r' && c != '\n') || byte == 0x7f) cell += "\xEF\xBF\xBD";
+    else cell += c;
+  }
   // Spreadsheets evaluate a cell starting with = + - @ (or a tab or CR) as a formula, also after
   // leading spaces or line feeds, which they skip; a leading apostrophe makes it text. A cell that
   // is a plain number ("-1.5") stays a number.

@@ -69,8 +69,9 @@ void flattenInto(const Json& value, const std::string& prefix, Json& out, bool a
 /// Formats a number the way JSON would (shortest round-trip form); "" for NaN and infinities.
 std::string formatNumber(double value);
 
-/// A CSV (RFC 4180) cell holding text: quoted when needed, and neutralised against formula
-/// injection (a leading = + - @ gets an apostrophe) unless it is a plain number.
+/// A CSV (RFC 4180) cell holding text: quoted when needed, neutralised against formula injection
+/// (a leading = + - @ gets an apostrophe) unless it is a plain number, and without raw control
+/// bytes (each but tab, CR and LF becomes U+FFFD).
 std::string csvTextCell(const std::string& text);
 
 /// A JSON value as a CSV cell: numbers as written, null empty, text through csvTextCell.

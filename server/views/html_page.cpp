@@ -62,6 +62,16 @@ HtmlPage page(const std::string& title, const std::string& content, const std::s
   return p;
 }
 
+HtmlPage document(std::string html) {
+  HtmlPage p;
+  p.nonce = newNonce();
+  const std::string tag = "<style>", withNonce = "<style nonce=\"" + p.nonce + "\">";
+  for (std::size_t at = html.find(tag); at != std::string::npos; at = html.find(tag, at + withNonce.size()))
+    html.replace(at, tag.size(), withNonce);
+  p.body = std::move(html);
+  return p;
+}
+
 std::string cell(const Json& v) {
   const bool number = v.is_number();
   return std::string(number ? "<td class=\"num\">" : "<td>") + esc(v) + "</td>";

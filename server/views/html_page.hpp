@@ -23,6 +23,9 @@ std::string esc(const Json& v);
 std::string href(const std::string& path);
 /// The page frame around `content`; `script` (optional) runs under the page's nonce.
 HtmlPage page(const std::string& title, const std::string& content, const std::string& script = {});
+/// A complete document made elsewhere (the validation report of engine/validation) served like
+/// the server's own pages: its `<style>` elements get the page's nonce; no script is admitted.
+HtmlPage document(std::string html);
 /// A table cell; numbers right-aligned.
 std::string cell(const Json& v);
 /// A table cell for a value in `unit`: a number as people read it (rupture::formatQuantity), its

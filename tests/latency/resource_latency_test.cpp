@@ -1,12 +1,15 @@
-// What issue 25 bounds in time, on a real loopback server: /health while a 1,000-run job is
-// created and while eight PNGs render, and how soon a 2-million-particle SPH run frees its worker
-// after DELETE. Its own executable, run alone (RUN_SERIAL): these tests time the server, and other
+// What issues 25 and 56 bound in time, on a real loopback server: /health while a 1,000-run job is
+// created, while eight PNGs render and while 32 thumbnails or series plots are asked for at once,
+// how soon SIGTERM ends a server that is drawing pictures, and how soon a 2-million-particle SPH
+// run frees its worker after DELETE. Its own executable, run alone (RUN_SERIAL): these tests time the server, and other
 // tests' load on the same two cores would time them instead.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <iostream>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -157,6 +160,103 @@ TEST(ResourceLatency, RendersAreCappedInPixelsAndInConcurrencyAndHealthStaysAnsw
   EXPECT_EQ(ok + busy, 8);
   EXPECT_GE(ok, 2);  // the two rendering slots and their two waiters at least
   expectHealthResponsive(probe);
+}
+
+// -- issue 56: thumbnails and series plots behind the gate; SIGTERM while pictures are drawn -------
+
+/// `count` GETs of `path` at once, each on its own connection; the statuses (0: no answer), every
+/// 503 checked for its Retry-After and every 200 for a PNG.
+std::vector<int> getAtOnce(int port, const std::string& path, int count) {
+  std::vector<int> statuses(static_cast<std::size_t>(count), 0);
+  std::vector<std::thread> threads;
+  for (int k = 0; k < count; ++k)
+    threads.emplace_back([&, k] {
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(120, 0);
+      auto res = c.Get(path.c_str());
+      if (!res) return;
+      statuses[static_cast<std::size_t>(k)] = res->status;
+      if (res->status == 503) {
+        EXPECT_FALSE(res->get_header_value("Retry-After").empty());
+      } else {
+        EXPECT_EQ(res->status, 200) << res->body.substr(0, 300);
+        EXPECT_EQ(res->body.substr(1, 3), "PNG");
+      }
+    });
+  for (auto& t : threads) t.join();
+  return statuses;
+}
+
+TEST(ResourceLatency, ThumbnailsAndSeriesPngsWaitForRenderSlotsAndHealthStaysAnswered) {
+  ASSERT_TRUE(test::scenarioAvailable());
+  LiveServer live;  // 8 HTTP threads, 2 renders at once and 4 waiting
+  auto client = live.client();
+  const auto knob = test::runLengthKnob();
+  Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
+  const std::int64_t id = test::submit(*client, body);
+  ASSERT_GT(id, 0);
+  ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
+  const std::string run = "/jobs/" + std::to_string(id) + "/runs/0";
+  // The issue's probe: 32 thumbnails of 4000 x 2000 (the most the pixel cap allows), then 32
+  // series PNGs of that size, all at once.
+  for (const std::string& path : {run + "/field?thumbnail=1&width=4000&height=2000",
+                                  run + "/series?format=png&width=4000&height=2000"}) {
+    HealthProbe probe(live.port());
+    const auto t0 = Clock::now();
+    const std::vector<int> statuses = getAtOnce(live.port(), path, 32);
+    const double seconds = secondsSince(t0);
+    probe.stop();
+    const auto ok = std::count(statuses.begin(), statuses.end(), 200);
+    const auto busy = std::count(statuses.begin(), statuses.end(), 503);
+    std::cout << "[ renders  ] 32 x " << path.substr(path.rfind('/') + 1) << ": " << ok << " drawn, " << busy
+              << " told to retry, in " << seconds << " s; /health worst " << probe.worst() << " s over "
+              << probe.latencies().size() << " polls\n";
+    EXPECT_EQ(ok + busy, 32);
+    EXPECT_GE(ok, 2);
+    EXPECT_GT(busy, 0) << "32 renders at once cannot all have had a slot";
+    expectHealthResponsive(probe);
+  }
+}
+
+TEST(ResourceLatency, SigtermWithRendersInFlightExitsWithinTwoSeconds) {
+  ASSERT_TRUE(test::scenarioAvailable());
+  test::TempDir data;
+  test::ChildServer server(data.path());
+  auto client = server.client();
+  const auto knob = test::runLengthKnob();
+  Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
+  const std::int64_t id = test::submit(*client, body);
+  ASSERT_GT(id, 0);
+  ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
+  const std::string field = "/jobs/" + std::to_string(id) + "/runs/0/field?bonds=all&width=4000&height=2000";
+  // Six large pictures: two drawing, four waiting for a turn, as /health shows them.
+  std::vector<std::thread> renders;
+  std::atomic<int> answered{0};
+  for (int k = 0; k < 6; ++k)
+    renders.emplace_back([&, k] {
+      httplib::Client c("127.0.0.1", server.port());
+      c.set_read_timeout(60, 0);
+      auto res = c.Get((field + "&max=" + std::to_string(k + 1)).c_str());  // six distinct pictures
+      if (res) {
+        EXPECT_TRUE(res->status == 200 || res->status == 503) << res->status;
+      }
+      ++answered;
+    });
+  Json health;
+  ASSERT_TRUE(test::waitFor([&] {
+    auto res = client->Get("/health");
+    if (!res || res->status != 200) return false;
+    health = Json::parse(res->body);
+    return health["renders"]["running"].get<int>() + health["renders"]["waiting"].get<int>() >= 5;
+  }, 30)) << health.dump();
+  const auto t0 = Clock::now();
+  EXPECT_EQ(server.stop(SIGTERM, 20), 0);
+  const double seconds = secondsSince(t0);
+  std::cout << "[ sigterm  ] with " << health["renders"]["running"] << " renders drawing and "
+            << health["renders"]["waiting"] << " waiting: exited after " << seconds << " s\n";
+  EXPECT_LT(seconds, 2.0);
+  for (auto& t : renders) t.join();
+  EXPECT_EQ(answered, 6);
 }
 
 // -- prompt cancel of a 2-million-particle SPH run -------------------------------------------------

@@ -211,6 +211,37 @@ TEST(FieldImage, ATanksDamageIsItsPlateAndItsPressureASliceOfTheFluid) {
   request.body = "2";
   request.view = "xy";
   EXPECT_EQ(renderFieldImage(file, request).drawn, 64u);
+  // A body no particle belongs to is refused with the bodies there are, not drawn empty.
+  request.body = "999";
+  try {
+    renderFieldImage(file, request);
+    ADD_FAILURE() << "body 999 was drawn";
+  } catch (const FieldImageError& e) {
+    EXPECT_EQ(e.member(), "body");
+    EXPECT_NE(std::string(e.what()).find("allowed: all, fluid, 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FieldImage, AStopCheckEndsTheDrawing) {
+  ScratchDir dir;
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path(), 4));
+  const auto stopNow = [] { return true; };
+  for (ImageFormat format : {ImageFormat::Png, ImageFormat::Svg}) {
+    FieldImageRequest field;
+    field.format = format;
+    EXPECT_THROW(renderFieldImage(file, field, stopNow), RenderStopped);
+    SeriesPlotRequest series;
+    series.format = format;
+    EXPECT_THROW(renderSeriesPlot(file, series, stopNow), RenderStopped);
+  }
+  // Stopped only once the PNG is being encoded: the four checks before (after reading, on the
+  // canvas, before the bonds, at finish) say go on, the encoder's first write is refused.
+  int asked = 0;
+  const auto stopLate = [&asked] { return ++asked > 4; };
+  EXPECT_THROW(renderFieldImage(file, FieldImageRequest{}, stopLate), RenderStopped);
+  EXPECT_GE(asked, 5);
+  // Told to go on, it draws as ever, and the canvas is free for the next drawing.
+  EXPECT_EQ(renderFieldImage(file, FieldImageRequest{}, [] { return false; }).bytes.substr(1, 3), "PNG");
 }
 
 TEST(FieldImage, RefusesWhatItCannotDrawNamingTheMember) {

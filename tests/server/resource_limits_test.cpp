@@ -238,6 +238,16 @@ TEST(ResourceLimits, HeaderNulsDuplicateHostsAndEmptyIdempotencyKeysAre400) {
   EXPECT_EQ(status("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\nHost: 127.0.0.1\r\n"), 400);
   EXPECT_EQ(status("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\nIdempotency-Key:\r\n"), 400);
   EXPECT_EQ(status("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\nIdempotency-Key:   \r\n"), 400);
+  // Each names the header at fault, as the handlers' header problems do (issue 56).
+  auto fieldOf = [&](const std::string& head) {
+    const Json problem = Json::parse(test::rawBody(test::rawExchange(port, rawRequest(head))));
+    EXPECT_EQ(problem.value("in", ""), "header") << problem.dump();
+    return problem.value("field", "");
+  };
+  EXPECT_EQ(fieldOf("POST /processes/dynamic-tension/execution HTTP/1.1\r\nHost: 127.0.0.1\r\nIdempotency-Key:\r\n"),
+            "Idempotency-Key");
+  EXPECT_EQ(fieldOf("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\nHost: 127.0.0.1\r\n"), "Host");
+  EXPECT_EQ(fieldOf("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n" + nulKey), "Idempotency-Key");
   EXPECT_EQ(status("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n"), 200);  // and the server is fine
   // The documented 414: a request target over 8 KiB.
   EXPECT_EQ(status("GET /jobs?name=" + std::string(9000, 'a') + " HTTP/1.1\r\nHost: 127.0.0.1\r\n"), 414);

@@ -1,11 +1,18 @@
 // A run's pictures and page over HTTP: GET /jobs/{id}/runs/{k}/field (PNG of the asked size with
 // the field's colours, SVG, PDF, thumbnails, a 304 for a picture the client holds), the series as
 // a plot, the run page with its picture, strip, series and summary, the job page's thumbnails, and
-// every bad parameter refused with a 400 naming it.
+// every bad parameter refused with a 400 naming it; every picture waits for a render slot (503 with
+// Retry-After beyond the waiters) and is held to the pixel cap (issue 56).
+#include <atomic>
+#include <future>
+#include <thread>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
 #include "support/png_probe.hpp"
+#include "views/render_gate.hpp"
 
 namespace rupture::server {
 namespace {
@@ -152,6 +159,79 @@ TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
   EXPECT_EQ(compare->status, 200);
   EXPECT_NE(compare->body.find("<table id=\"compare\"><tr><th title=\"job\">Job</th><th>Run</th>"), std::string::npos)
       << compare->body.substr(0, 3000);
+}
+
+// -- issue 56: every picture behind the render gate and its pixel cap --------------------------------
+
+TEST_F(RunPictures, EveryPictureWaitsForARenderSlotAndBeyondTheWaitersIs503WithRetryAfter) {
+  RenderGate& gate = live->server().renderGate();
+  // 8 HTTP threads, 2 renders at once: 8 - 2 - 2 = 4 may wait, so two threads stay for the rest.
+  ASSERT_EQ(gate.maxRunning(), 2);
+  ASSERT_EQ(gate.maxWaiting(), 4);
+  // The test holds both slots itself, so that the gate is full however fast the machine draws.
+  std::promise<void> letGo;
+  const std::shared_future<void> released = letGo.get_future().share();
+  std::atomic<int> held{0};
+  std::vector<std::thread> holders;
+  for (int i = 0; i < gate.maxRunning(); ++i)
+    holders.emplace_back([&] {
+      const RenderGate::Slot slot = gate.acquire();
+      ++held;
+      released.wait();
+    });
+  ASSERT_TRUE(test::waitFor([&] { return held == gate.maxRunning(); }, 5));
+  // Four thumbnails wait for a turn (a job page's, as a browser asks for them).
+  std::vector<int> waited(4, 0);
+  std::vector<std::thread> waiters;
+  for (int i = 0; i < 4; ++i)
+    waiters.emplace_back([&, i] {
+      auto c = live->client();
+      auto res = c->Get((run(i % 2) + "/field?thumbnail=1&width=" + std::to_string(160 + i)).c_str());
+      if (res) waited[static_cast<std::size_t>(i)] = res->status;
+    });
+  ASSERT_TRUE(test::waitFor([&] { return gate.waiting() == 4; }, 10)) << gate.waiting();
+  // Every other picture is turned away at once, thumbnails and series plots included, with a
+  // Retry-After; what draws nothing (/health, the CSV series) is answered as ever.
+  auto client = live->client();
+  const std::string summaryPng =
+      "/jobs/" + std::to_string(jobId) + "/summary.svg?x=loading.strain_rate&y=peak_stress&format=png";
+  for (const std::string& path : {run(0) + "/field?thumbnail=1", run(1) + "/field", run(0) + "/series?format=png",
+                                  run(0) + "/series?format=svg", run(0) + "/series?format=pdf", summaryPng}) {
+    auto res = client->Get(path.c_str());
+    test::expectProblem(res, 503);
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->get_header_value("Retry-After"), "2") << path;
+    EXPECT_NE(res->body.find("--max-renders"), std::string::npos) << res->body;
+  }
+  const Json health = test::getJson(*client, "/health");
+  EXPECT_EQ(health["renders"]["running"], 2) << health.dump();
+  EXPECT_EQ(health["renders"]["waiting"], 4) << health.dump();
+  auto csv = client->Get((run(0) + "/series?format=csv").c_str());
+  ASSERT_TRUE(csv);
+  EXPECT_EQ(csv->status, 200);
+  // Once the slots are free, the waiting thumbnails are drawn.
+  letGo.set_value();
+  for (auto& t : holders) t.join();
+  for (auto& t : waiters) t.join();
+  for (int status : waited) EXPECT_EQ(status, 200);
+  EXPECT_EQ(gate.running(), 0);
+  EXPECT_EQ(gate.waiting(), 0);
+}
+
+TEST_F(RunPictures, ThumbnailsAndSeriesPlotsAreHeldToThePixelCap) {
+  auto client = live->client();
+  // The suite's server has the default cap, 8,000,000 px: 4000 x 2001 is over it, 4000 x 2000 not.
+  for (const std::string& path : {run(0) + "/field?thumbnail=1&width=4000&height=2001",
+                                  run(0) + "/series?format=png&width=4000&height=2001"}) {
+    auto res = client->Get(path.c_str());
+    const Json problem = test::expectProblem(res, 400, "height");
+    EXPECT_NE(problem.value("detail", "").find("--max-render-pixels"), std::string::npos) << problem.dump();
+    EXPECT_EQ(problem["pixels"], 8'004'000) << path;
+  }
+  // Vector formats have no pixels.
+  auto svg = client->Get((run(0) + "/series?format=svg&width=4000&height=2001").c_str());
+  ASSERT_TRUE(svg);
+  EXPECT_EQ(svg->status, 200);
 }
 
 }  // namespace

@@ -66,6 +66,13 @@ TEST(SphHttp, SmallDamBreakJobRunsToASummary) {
   // The series of the run, as the API serves them.
   const Json series = getJson(*client, "/jobs/" + id + "/runs/0/series?names=time,front_position");
   EXPECT_NE(series.dump().find("front_position"), std::string::npos) << series.dump().substr(0, 300);
+  // A body the run does not have is a 400 naming the parameter and the bodies it has, not an
+  // empty picture (issue 56).
+  const Json problem = expectProblem(client->Get(("/jobs/" + id + "/runs/0/field?body=999").c_str()), 400, "body");
+  EXPECT_NE(problem.value("detail", "").find("allowed: all, fluid"), std::string::npos) << problem.dump();
+  auto fluid = client->Get(("/jobs/" + id + "/runs/0/field?body=fluid&thumbnail=1").c_str());
+  ASSERT_TRUE(fluid);
+  EXPECT_EQ(fluid->status, 200) << fluid->body;
 }
 
 TEST(SphHttp, ProgressReaches100OnlyOnceTheRunHasFinished) {

@@ -54,6 +54,18 @@ TEST(ValidationReportHttp, ASweepOverCasesReportsTheirVerdictsAsHtmlJsonAndCsv) 
   EXPECT_NE(html->get_header_value("Content-Type").find("text/html"), std::string::npos);
   EXPECT_NE(html->body.find("piston-column-first-peak"), std::string::npos);
   EXPECT_NE(html->body.find("<svg"), std::string::npos);  // the figures inline
+  // The headers of every other page (issue 56): a CSP whose nonce admits only the report's own
+  // style, no script, and no framing.
+  const std::string csp = html->get_header_value("Content-Security-Policy");
+  EXPECT_NE(csp.find("default-src 'none'"), std::string::npos) << csp;
+  EXPECT_NE(csp.find("frame-ancestors 'none'"), std::string::npos) << csp;
+  EXPECT_EQ(html->get_header_value("X-Frame-Options"), "DENY");
+  const std::size_t nonceAt = csp.find("style-src 'nonce-");
+  ASSERT_NE(nonceAt, std::string::npos) << csp;
+  const std::string nonce = csp.substr(nonceAt + 17, csp.find('\'', nonceAt + 17) - nonceAt - 17);
+  EXPECT_NE(html->body.find("<style nonce=\"" + nonce + "\">"), std::string::npos);
+  EXPECT_EQ(html->body.find("<style>"), std::string::npos);
+  EXPECT_EQ(html->body.find("<script"), std::string::npos);
   auto csv = client->Get(("/jobs/" + id + "/report?format=csv").c_str());
   ASSERT_TRUE(csv);
   EXPECT_EQ(csv->status, 200);
