@@ -197,7 +197,8 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   }
   replicated.clear();
   const std::size_t runCount = points.size();
-  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+  validateSweepPoints(points, plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory,
+                      static_cast<double>(ctx.config.maxRunSteps));
   requireQueueRoom(ctx, runCount, inputs.dump().size());
   const std::optional<RefinePlan> refine =
       parseRefinePlan(submission.member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
