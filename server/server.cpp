@@ -118,7 +118,8 @@ RuptureServer::RuptureServer(ServerConfig config) {
   m_context.renders =
       std::make_shared<RenderGate>(m_context.config.maxRenders, renderWaiters, m_context.config.maxRenderPixels);
   m_refinement = std::make_unique<RefinementDriver>(*m_store, *m_scheduler,
-                                                    static_cast<double>(m_context.config.maxElements), runMemory);
+                                                    static_cast<double>(m_context.config.maxElements), runMemory,
+                                                    static_cast<double>(m_context.config.maxRunSteps));
 
   const ServerConfig& c = m_context.config;
   FrontendLimits limits;

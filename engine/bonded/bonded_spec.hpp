@@ -25,6 +25,11 @@ template <class Spec>
 RunEstimate estimateBondedSpec(const Spec& spec) {
   return estimateBondedRun(spec.sample, spec.material);
 }
+/// The critical time step BondedSystem::criticalTimeStep will find on that sample (s), estimated
+/// without building it: a wave's transit of the smallest element (bondedStepRule says more).
+double estimatedCriticalStep(const SampleSpec& sample, const MaterialSpec& material);
+/// How estimatedCriticalStep counts, for the error that quotes it.
+std::string bondedStepRule();
 /// Reads "material" from the spec root (dimension-independent).
 MaterialSpec parseMaterial(const SpecReader& root);
 

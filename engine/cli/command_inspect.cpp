@@ -1,6 +1,7 @@
 // rupture validate / scenarios / schema
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include "cli/cli.hpp"
 #include "cli/spec_file.hpp"
@@ -16,17 +17,27 @@ bool isServerRequest(const nlohmann::json& doc) {
   return doc.is_object() && doc.contains("inputs") && !doc.contains("scenario");
 }
 
+/// What rupture-server's admission checks of one spec: the spec itself, then its length.
+void validateForRunning(const nlohmann::json& spec, double maxRunSteps) {
+  checkRunSteps(spec, parseSpec(spec).estimate(), maxRunSteps);
+}
+
 }  // namespace
 
 int validateCommand(const Args& args) {
-  constexpr const char* usage = "validate: usage: rupture validate SPEC.json | REQUEST.json [--scenario NAME]";
+  constexpr const char* usage =
+      "validate: usage: rupture validate SPEC.json | REQUEST.json [--scenario NAME] [--max-run-steps N]";
   std::string path, scenarioOption;
+  long long maxRunSteps = static_cast<long long>(kDefaultMaxRunSteps);
   for (std::size_t k = 0; k < args.size(); ++k) {
     if (args[k] == "--scenario") {
       if (k + 1 >= args.size()) return usageError("validate: option --scenario needs a value; " + std::string(usage));
       scenarioOption = args[++k];
+    } else if (args[k] == "--max-run-steps") {
+      if (k + 1 >= args.size()) return usageError("validate: option --max-run-steps needs a value; " + std::string(usage));
+      if (!parseIntOption("--max-run-steps", args[++k], 1, std::numeric_limits<long long>::max(), maxRunSteps)) return 2;
     } else if (!args[k].empty() && args[k][0] == '-') {
-      return usageError("validate: unknown option '" + args[k] + "'; allowed: --scenario");
+      return usageError("validate: unknown option '" + args[k] + "'; allowed: --scenario, --max-run-steps");
     } else if (path.empty()) {
       path = args[k];
     } else {
@@ -41,7 +52,7 @@ int validateCommand(const Args& args) {
     if (!scenarioOption.empty())
       return usageError("validate: --scenario is for a server request file; " + path + " is a spec (it names its scenario)");
     try {
-      validateSpec(doc);
+      validateForRunning(doc, static_cast<double>(maxRunSteps));
     } catch (const SpecError& e) {
       return reportSpecError(path, e);
     }
@@ -74,7 +85,7 @@ int validateCommand(const Args& args) {
   nlohmann::json spec = inputs;
   spec["scenario"] = scenario;
   try {
-    validateSpec(spec);
+    validateForRunning(spec, static_cast<double>(maxRunSteps));
   } catch (const SpecError& e) {
     std::cerr << path << ": a server request file for " << scenario << "; in its inputs: " << e.what() << "\n";
     return 2;

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -117,6 +118,8 @@ constexpr const char* kRunUsage =
     "                          even if RUN.h5.checkpoint exists\n"
     "  --resume                continue the run from RUN.h5.checkpoint (written every\n"
     "                          run.checkpoint_interval_s and when Ctrl-C or SIGTERM stops it)\n"
+    "  --max-run-steps N       refuse (exit 2) a spec whose estimated time steps exceed N\n"
+    "                          (default 100000000, as rupture-server's --max-run-steps)\n"
     "  -h, --help              this text\n";
 
 }  // namespace
@@ -124,6 +127,7 @@ constexpr const char* kRunUsage =
 int runCommand(const Args& args) {
   std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
+  long long maxRunSteps = static_cast<long long>(kDefaultMaxRunSteps);
   bool json = false, force = false, resume = false;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
@@ -131,10 +135,13 @@ int runCommand(const Args& args) {
       std::cout << kRunUsage;
       return 0;
     }
-    if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file") {
+    if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file" || a == "--max-run-steps") {
       if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; see rupture run --help");
       if (a == "--threads") {
         if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
+      } else if (a == "--max-run-steps") {
+        if (!parseIntOption("--max-run-steps", args[k + 1], 1, std::numeric_limits<long long>::max(), maxRunSteps))
+          return 2;
       } else if (a == "--progress-file") {
         progressPath = args[k + 1];
       } else {
@@ -149,7 +156,7 @@ int runCommand(const Args& args) {
       resume = true;
     } else if (!a.empty() && a[0] == '-') {
       return usageError("run: unknown option '" + a +
-                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --help");
+                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --max-run-steps, --help");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
@@ -164,6 +171,7 @@ int runCommand(const Args& args) {
   ParsedSpec parsed;  // parsed once: the run reads this value
   try {
     parsed = parseSpec(spec);
+    checkRunSteps(spec, parsed.estimate(), static_cast<double>(maxRunSteps));
   } catch (const SpecError& e) {
     return reportSpecError(specPath, e);
   }

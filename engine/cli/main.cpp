@@ -26,7 +26,9 @@ commands:
                                           speed, pressure; broken bonds in red)
   plot RESULT.h5 --series Y[,Y...] [--x X] -o OUT.png|svg|pdf
                                           a run's time series (rupture plot --help says more)
-  validate SPEC.json                      check a spec against its scenario (exit 2 if invalid)
+  validate SPEC.json [--max-run-steps N]  check a spec against its scenario (exit 2 if invalid),
+                                          and its estimated time steps against N (default 100000000,
+                                          as rupture-server's and rupture run's --max-run-steps)
   validate REQUEST.json [--scenario NAME] check a server request file (the body of
                                           POST /processes/NAME/execution): its inputs against NAME
   validate-suite [--quick|--full] [-o DIR] [--case ID]... [--threads N] [--list]

@@ -96,6 +96,7 @@ ParsedSpec parseSpec(const nlohmann::json& spec) {
   parsed.m_scenario = &scenarioWithKnownKeys(spec);
   parsed.m_value = parsed.m_scenario->parse(spec);
   parsed.m_json = std::make_shared<const nlohmann::json>(spec);
+  checkStableStep(spec, parsed.estimate());
   return parsed;
 }
 

@@ -15,6 +15,24 @@ namespace rupture {
 /// A summary scalar that may be unknown: NaN (and ±inf) are written as null.
 inline nlohmann::json nullIfNaN(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+/// The next output time once the clock has passed `next`: next + k interval, the first above
+/// `reached`, as `while (next <= reached) next += interval` finds it, in a bounded number of
+/// additions. That loop never ends when interval falls below the precision of the clock (5e-26 s
+/// after 1e-8 s) and takes billions of rounds when the step is billions of intervals; here a
+/// clock far ahead is caught up in one multiplication, and one that the additions cannot pass is
+/// passed by one ulp.
+inline double nextOutputTime(double next, double reached, double interval) {
+  constexpr double kDirectRounds = 64;  // fewer behind: the additions themselves, bit for bit as before
+  if (const double behind = (reached - next) / interval; behind > kDirectRounds)
+    next += std::floor(behind - 1) * interval;
+  for (int round = 0; next <= reached; ++round) {
+    const double advanced = next + interval;
+    if (!(advanced > next) || round > 4 * kDirectRounds) return std::nextafter(reached, INFINITY);
+    next = advanced;
+  }
+  return next;
+}
+
 /// A stage message for the watcher (progress line, server log), if it listens.
 inline void logStage(const RunControl& control, const std::string& message) {
   if (control.log) control.log(message);

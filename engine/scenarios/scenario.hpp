@@ -61,6 +61,10 @@ const std::vector<Scenario>& scenarioRegistry();
 /// The scenario named by spec["scenario"]; throws SpecError(field "scenario") otherwise.
 const Scenario& scenarioFor(const nlohmann::json& spec);
 
+/// Throws SpecError naming e.timeStepField unless the estimate's stable time step is a finite
+/// positive number (parseSpec checks every spec; run_limits.cpp).
+void checkStableStep(const nlohmann::json& spec, const RunEstimate& e);
+
 /// The embedded JSON Schema text of a scenario (api/schemas/<name>.schema.json); empty if none.
 std::string embeddedSchema(const std::string& name);
 

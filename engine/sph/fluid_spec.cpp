@@ -2,16 +2,42 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/format_number.hpp"
 #include "io/run_estimate.hpp"
+#include "io/run_length.hpp"
+#include "io/physical_ranges.hpp"
 
 namespace rupture::io {
 
 RunEstimate estimateFluidRun(double particles) {
-  return {particles, kRunBaseBytes + kFluidBytesPerParticle * particles, "resolution.spacing",
-          formatNumber(kRunBaseBytes / 1048576.0) + " MiB and " + formatNumber(kFluidBytesPerParticle) + " B per fluid and wall particle"};
+  RunEstimate e;
+  e.particles = particles;
+  e.memoryBytes = kRunBaseBytes + kFluidBytesPerParticle * particles;
+  e.field = "resolution.spacing";
+  e.basis = formatNumber(kRunBaseBytes / 1048576.0) + " MiB and " + formatNumber(kFluidBytesPerParticle) +
+            " B per fluid and wall particle";
+  return e;
+}
+
+double estimatedFluidStep(const ResolutionSpec& r, const FluidRunSpec& run, double soundSpeed, double gravity) {
+  if (run.timeStep) return *run.timeStep;
+  const double h = r.smoothingRatio * r.spacing;
+  const double force = gravity > 0 ? std::sqrt(h / gravity) : std::numeric_limits<double>::infinity();
+  return run.cfl * std::min(h / soundSpeed, force);
+}
+
+void addFluidRunLength(RunEstimate& e, const ResolutionSpec& r, const FluidRunSpec& run, double soundSpeed,
+                       double gravity) {
+  const std::string rule =
+      run.timeStep ? std::string("the fixed run.time_step")
+                   : "time step run.cfl x min(h / c0, sqrt(h / g)) (h = resolution.smoothing_length_ratio x "
+                     "resolution.spacing, c0 the sound speed, g the gravity), which the flow only lowers";
+  addRunLength(e, {{run.endTime, estimatedFluidStep(r, run, soundSpeed, gravity), static_cast<double>(run.maxSteps),
+                    "run.end_time", "run.end_time"}},
+               run.timeStep ? "run.time_step" : "fluid.sound_speed", rule);
 }
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
@@ -19,8 +45,8 @@ FluidSpec parseFluid(const SpecReader& root, double defaultAlpha) {
   f.alpha = defaultAlpha;
   const auto fluid = root.optionalObject("fluid");
   if (!fluid) return f;
-  f.density = fluid->number("density", {1.0, 1e5, false, false}, "kg/m^3", f.density);
-  if (fluid->has("sound_speed")) f.soundSpeed = fluid->number("sound_speed", Range::positive(), "m/s");
+  f.density = fluid->number("density", physical::density(), "kg/m^3", f.density);
+  if (fluid->has("sound_speed")) f.soundSpeed = fluid->number("sound_speed", physical::speed(), "m/s");
   f.equationOfState =
       fluid->choice("equation_of_state", {"tait", "acoustic"}, "tait") == "tait" ? sph::EosKind::Tait : sph::EosKind::Acoustic;
   if (const auto visc = fluid->optionalObject("artificial_viscosity")) {

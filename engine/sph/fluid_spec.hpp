@@ -54,10 +54,20 @@ inline constexpr double kFluidBytesPerParticle = 1e3;
 /// The RunEstimate of an SPH scenario with `particles` fluid and wall particles (field
 /// "resolution.spacing").
 RunEstimate estimateFluidRun(double particles);
-/// The same for a scenario's spec that holds `estimatedParticles` (a Scenario's estimate).
+/// The step of an SPH run, estimated from the spec (s): run.time_step when fixed, else the bound
+/// the Monaghan & Kos rule (SphSystem::stableTimeStep) starts from, C min(h / c0, √(h / g)), which
+/// the flow's own speeds, accelerations and viscosity only lower.
+double estimatedFluidStep(const ResolutionSpec& resolution, const FluidRunSpec& run, double soundSpeed, double gravity);
+/// Adds the length of an SPH run to its estimate: run.end_time over that step, capped by run.max_steps.
+void addFluidRunLength(RunEstimate& e, const ResolutionSpec& resolution, const FluidRunSpec& run, double soundSpeed,
+                       double gravity);
+/// The same for a scenario's spec that holds `estimatedParticles`, `resolution`, `run`,
+/// `soundSpeed` and `gravity` (a Scenario's estimate).
 template <class Spec>
 RunEstimate estimateFluidSpec(const Spec& spec) {
-  return estimateFluidRun(spec.estimatedParticles);
+  RunEstimate e = estimateFluidRun(spec.estimatedParticles);
+  addFluidRunLength(e, spec.resolution, spec.run, spec.soundSpeed, spec.gravity);
+  return e;
 }
 
 FluidSpec parseFluid(const SpecReader& root, double defaultAlpha);

@@ -78,7 +78,21 @@ struct RunEstimate {
   double memoryBytes = 0;  ///< peak resident memory (B), from measured bytes per particle
   std::string field;       ///< the spec field that sets the size, e.g. "sample.element_radius"
   std::string basis;       ///< what the memory estimate counts, for the error that quotes it
+
+  // Length (for --max-run-steps): the run's end (end strain over strain rate, or end time) over
+  // its stable time step, both estimated from the spec by the scenario's own step rule, capped by
+  // the spec's run.max_steps. An estimate, not a count: within a few times of the steps taken.
+  double steps = 0;          ///< time steps the run will take at most (0: the scenario gives no estimate)
+  double timeStep = 0;       ///< the estimated stable step (s) the count divides by
+  std::string stepsField;    ///< the spec field that sets the run's length, e.g. "loading.strain_rate"
+  std::string timeStepField; ///< the spec field that sets the time step, e.g. "material.density"
+  std::string stepsBasis;    ///< how the count was reached (end, step rule), for the error that quotes it
 };
+
+/// The default of --max-run-steps (rupture-server, rupture validate and rupture run): well above
+/// every example and validation case (docs/server.md lists their estimates), well below a run that
+/// would hold a worker for days.
+inline constexpr double kDefaultMaxRunSteps = 1e8;
 
 struct Scenario;
 
@@ -112,6 +126,10 @@ RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunCon
 
 /// parseSpec(spec).estimate(): throws SpecError for an invalid spec.
 RunEstimate estimateRun(const nlohmann::json& spec);
+
+/// Throws SpecError naming estimate.stepsField (the value as `spec` holds it, the estimate and
+/// its basis in what is allowed) when the run would take more than maxSteps time steps.
+void checkRunSteps(const nlohmann::json& spec, const RunEstimate& estimate, double maxSteps);
 
 /// parseSpec without keeping the result: throws SpecError naming the first offending field.
 void validateSpec(const nlohmann::json& spec);

@@ -112,6 +112,11 @@ const std::vector<Option>& options() {
       {"max-elements", "RUPTURE_MAX_ELEMENTS", "N",
        "most elements (or particles) one run may hold, from the spec's size estimate; larger runs get 400",
        "5000000", intSetter(&ServerConfig::maxElements, 1, 5'000'000)},
+      {"max-run-steps", "RUPTURE_MAX_RUN_STEPS", "N",
+       "most time steps one run may take, from the spec's estimate (its end strain or end time over its stable "
+       "time step, capped by run.max_steps); longer runs get 400",
+       "100000000",  // rupture::kDefaultMaxRunSteps
+       intSetter(&ServerConfig::maxRunSteps, 1, std::numeric_limits<long long>::max())},
       {"min-free-bytes", "RUPTURE_MIN_FREE_BYTES", "BYTES",
        "free space the data directory must keep: below it, queued runs wait instead of starting", "268435456",
        intSetter(&ServerConfig::minFreeBytes, 0, std::numeric_limits<long long>::max())},

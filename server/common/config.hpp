@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "rupture/run.hpp"
+
 namespace rupture::server {
 
 struct ServerConfig {
@@ -20,6 +22,7 @@ struct ServerConfig {
   long long maxElements = 5'000'000;      ///< most elements/particles one run may hold (400 above)
   long long minFreeBytes = 256LL << 20;   ///< free disk in the data directory below which no run starts
   long long maxRunMemory = 0;             ///< B one run may need (spec estimate; 400 above); 0 = defaultRunMemory()
+  long long maxRunSteps = static_cast<long long>(rupture::kDefaultMaxRunSteps);  ///< time steps one run may take (spec estimate; 400 above)
   int maxQueuedRuns = 10'000;             ///< accepted runs waiting in the whole server (503 above)
   long long maxQueuedBytes = 1LL << 30;   ///< stored inputs of unfinished jobs in the whole server (503 above)
   int maxRenders = 2;                     ///< renders at once; http-threads - 2 - this may wait, the rest get 503

@@ -197,13 +197,15 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
 }
 
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
-                         double maxMemoryBytes) {
-  for (std::size_t k = 0; k < points.size(); ++k) validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes);
+                         double maxMemoryBytes, double maxSteps) {
+  for (std::size_t k = 0; k < points.size(); ++k)
+    validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes, maxSteps);
 }
 
 void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan& plan, double maxElements,
-                        double maxMemoryBytes) {
+                        double maxMemoryBytes, double maxSteps) {
   double memoryEstimate = -1;  // set when the point is refused for memory
+  double stepsEstimate = -1;   // set when the point is refused for its length
   try {
     const nlohmann::json spec(point.spec);  // one copy at a time
     const rupture::RunEstimate estimate = rupture::estimateRun(spec);  // validates first
@@ -229,6 +231,9 @@ void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan&
       memoryEstimate = estimate.memoryBytes;
       throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
     }
+    stepsEstimate = estimate.steps;  // quoted in the problem when checkRunSteps refuses it
+    rupture::checkRunSteps(spec, estimate, maxSteps);
+    stepsEstimate = -1;
   } catch (const rupture::SpecError& e) {
     Json extra = Json::object();
     extra["in"] = "inputs";
@@ -237,6 +242,10 @@ void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan&
     if (memoryEstimate >= 0) {
       extra["estimated_memory_bytes"] = std::llround(memoryEstimate);
       extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes);
+    }
+    if (stepsEstimate != -1) {  // NaN too: a step count that is not a number
+      extra["estimated_steps"] = std::isfinite(stepsEstimate) ? Json(stepsEstimate) : Json(nullptr);
+      extra["max_run_steps"] = maxSteps;
     }
     std::string where;
     if (!plan.axes.empty()) {

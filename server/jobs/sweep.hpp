@@ -52,15 +52,16 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
                                     const SweepPlan& plan, std::size_t maxRuns);
 
 /// Validates every expanded spec with rupture::validateSpec, and its size (rupture::estimateRun)
-/// against maxElements and its memory estimate against maxMemoryBytes. Throws ApiError(400) for the
-/// first bad point, naming the field, the value, what is allowed (with the estimate in bytes), the
-/// point's index and its swept values.
+/// against maxElements, its memory estimate against maxMemoryBytes and its step estimate against
+/// maxSteps (rupture::checkRunSteps). Throws ApiError(400) for the first bad point, naming the
+/// field, the value, what is allowed (with the estimate in bytes or steps), the point's index and
+/// its swept values.
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
-                         double maxMemoryBytes);
+                         double maxMemoryBytes, double maxSteps);
 
 /// validateSweepPoints for the one point at run index `index`.
 void validateSweepPoint(const SweepPoint& point, std::size_t index, const SweepPlan& plan, double maxElements,
-                        double maxMemoryBytes);
+                        double maxMemoryBytes, double maxSteps);
 
 /// "a.b.0.c" -> {"a","b","0","c"}; empty segments are an error (returns empty vector).
 std::vector<std::string> splitPath(const std::string& path);

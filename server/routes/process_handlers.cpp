@@ -221,7 +221,8 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   const ReplicateExpander replicator(replicates, scenario);
   forEachSweepPoint(scenario, inputs, plan, maxRuns, [&](SweepPoint&& point) {
     replicator.expand(std::move(point), [&](ReplicatedPoint&& rp) {
-      validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory);
+      validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory,
+                         static_cast<double>(ctx.config.maxRunSteps));
       job.runPatches.push_back(Json::diff(base, rp.point.spec).dump());
       job.runs.emplace_back(std::move(rp.point.swept), Json());
       job.replicates.push_back(rp.replicate);

@@ -282,8 +282,10 @@ RefinementRound planRefinementRound(const RefinePlan& plan, std::size_t axis,
 
 // ---------------------------------------------------------------------------------------------
 
-RefinementDriver::RefinementDriver(JobStore& store, Executor& executor, double maxElements, double maxMemoryBytes)
-    : m_store(store), m_executor(executor), m_maxElements(maxElements), m_maxMemoryBytes(maxMemoryBytes) {}
+RefinementDriver::RefinementDriver(JobStore& store, Executor& executor, double maxElements, double maxMemoryBytes,
+                                   double maxSteps)
+    : m_store(store), m_executor(executor), m_maxElements(maxElements), m_maxMemoryBytes(maxMemoryBytes),
+      m_maxSteps(maxSteps) {}
 
 RefinementDriver::~RefinementDriver() { stop(); }
 
@@ -387,7 +389,7 @@ void RefinementDriver::refineJob(std::int64_t jobId) {
       const std::vector<ReplicatedPoint> expanded = expandReplicates(std::move(points), replicates, job->processId);
       std::vector<SweepPoint> specs;
       for (const ReplicatedPoint& rp : expanded) specs.push_back(rp.point);
-      validateSweepPoints(specs, onePoint, m_maxElements, m_maxMemoryBytes);
+      validateSweepPoints(specs, onePoint, m_maxElements, m_maxMemoryBytes, m_maxSteps);
       Json indices = Json::array();
       for (const ReplicatedPoint& rp : expanded) {
         runs.emplace_back(rp.point.swept, rp.point.spec);

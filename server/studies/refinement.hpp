@@ -92,7 +92,8 @@ RefinementRound planRefinementRound(const RefinePlan& plan, std::size_t axis,
 class RefinementDriver {
 public:
   RefinementDriver(JobStore& store, Executor& executor, double maxElements,
-                   double maxMemoryBytes = std::numeric_limits<double>::infinity());
+                   double maxMemoryBytes = std::numeric_limits<double>::infinity(),
+                   double maxSteps = std::numeric_limits<double>::infinity());
   ~RefinementDriver();
   RefinementDriver(const RefinementDriver&) = delete;
   RefinementDriver& operator=(const RefinementDriver&) = delete;
@@ -110,6 +111,7 @@ private:
   Executor& m_executor;
   double m_maxElements;
   double m_maxMemoryBytes;
+  double m_maxSteps;
   std::mutex m_mutex;
   std::condition_variable m_wake;
   bool m_stopping = false;

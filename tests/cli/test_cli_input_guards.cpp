@@ -1,12 +1,23 @@
 // Inputs that used to crash or mislead the CLI: JSON nested deep enough to overflow a recursive
-// dump, numbers beyond the double range, a spec file that cannot be read, and a result file on a
-// full disk (HDF5 used to leave a half-closed file behind and segfault at exit).
+// dump, numbers beyond the double range, a spec file that cannot be read, a result file on a
+// full disk (HDF5 used to leave a half-closed file behind and segfault at exit), and specs that
+// could never finish (issue 56: they spun at 100 % CPU and ignored Ctrl-C).
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "cli_runner.hpp"
+#include "rupture/run.hpp"
 #include "support/small_filesystem.hpp"
 
 namespace {
@@ -63,6 +74,113 @@ TEST(CliInputGuards, AFullDiskFailsTheRunCleanly) {
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("0x"), std::string::npos) << "no buffer addresses in messages: " << r.err;
   EXPECT_TRUE(fs::is_empty(disk.path())) << "nothing half-written is left";
+}
+
+nlohmann::json smallExample() {
+  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+}
+
+TEST(CliInputGuards, SpecsThatCouldNeverFinishExit2NamingTheField) {
+  const std::pair<const char*, double> runaway[] = {{"/loading/strain_rate", 1e20},
+                                                   {"/material/density", 1e308},
+                                                   {"/material/beam/young_modulus", 1e-300}};
+  for (const auto& [pointer, value] : runaway) {
+    nlohmann::json spec = smallExample();
+    spec[nlohmann::json::json_pointer(pointer)] = value;
+    std::string field = std::string(pointer).substr(1);
+    std::replace(field.begin(), field.end(), '/', '.');
+    const std::string path = writeSpec(spec, "runaway.json");
+    for (const std::string& command : {"validate " + path, "run " + path + " -o /dev/null"}) {
+      const auto r = runCli(command);
+      EXPECT_EQ(r.exitCode, 2) << command << ": " << r.err;
+      EXPECT_NE(r.err.find("'" + field + "'"), std::string::npos) << r.err;
+    }
+  }
+}
+
+TEST(CliInputGuards, RunsAboveMaxRunStepsExit2WithTheEstimate) {
+  nlohmann::json spec = smallExample();
+  spec["loading"] = {{"strain_rate", 1e3}, {"initial_velocity", "VL"}};
+  nlohmann::json full = spec;
+  const double steps = rupture::estimateRun(full).steps;
+  const std::string path = writeSpec(spec, "long.json");
+  const std::string edge = std::to_string(static_cast<long long>(std::ceil(steps)));
+  EXPECT_EQ(runCli("validate " + path).exitCode, 0) << "the default admits it";
+  EXPECT_EQ(runCli("validate " + path + " --max-run-steps " + edge).exitCode, 0);
+  const std::string below = std::to_string(static_cast<long long>(steps / 2));
+  for (const std::string& command : {"validate " + path + " --max-run-steps " + below,
+                                     "run " + path + " -o /dev/null --max-run-steps " + below}) {
+    const auto r = runCli(command);
+    EXPECT_EQ(r.exitCode, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("'loading.strain_rate'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-run-steps"), std::string::npos) << r.err;
+  }
+}
+
+/// Spawns `rupture run SPEC -o OUT`, waits until its stderr shows `stage`, presses Ctrl-C and
+/// returns the seconds until it exited (its exit code in `code`), or -1 when it did not show it.
+double secondsToStopOnSigint(const std::string& specPath, const fs::path& out, const std::string& stage, int& code,
+                             std::string& err) {
+  const fs::path stderrPath = out.string() + ".stderr";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int e = ::open(stderrPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int o = ::open("/dev/null", O_WRONLY);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    ::execl(RUPTURE_CLI, RUPTURE_CLI, "run", specPath.c_str(), "-o", out.c_str(), "--threads", "1", "--force",
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (readWhole(stderrPath).find(stage) == std::string::npos && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool seen = readWhole(stderrPath).find(stage) != std::string::npos;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto start = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  err = readWhole(stderrPath);
+  return seen ? seconds : -1;
+}
+
+TEST(CliInputGuards, ALongAdmittedRunStopsOnCtrlCWithinASecond) {
+  nlohmann::json spec = smallExample();
+  spec["loading"] = {{"strain_rate", 1e3}, {"initial_velocity", "VL"}};  // half an hour of one core
+  const fs::path out = fs::temp_directory_path() / ("rupture-cli-guards-long-" + std::to_string(::getpid()) + ".h5");
+  int code = 0;
+  std::string err;
+  const double seconds = secondsToStopOnSigint(writeSpec(spec, "long-run.json"), out, "main run", code, err);
+  std::cout << "[ measured ] rupture run exited " << seconds << " s after SIGINT during stepping\n";
+  ASSERT_GE(seconds, 0) << err;
+  EXPECT_EQ(code, 130) << err;
+  EXPECT_LT(seconds, 2.0) << err;  // the checkpoint of 1,600 elements included
+  for (const char* suffix : {"", ".checkpoint", ".stderr"}) fs::remove(out.string() + suffix);
+  fs::remove(fs::path(out).replace_extension(".xdmf2"));
+}
+
+TEST(CliInputGuards, CtrlCStopsTheBuildingOfALargeSampleWithinASecond) {
+  nlohmann::json spec = smallExample();
+  // About 400,000 elements: the packing alone takes tens of seconds on one core.
+  spec["sample"]["size"] = {4.3e-6, 4.3e-6};
+  spec["sample"]["element_radius"] = 3.3e-9;
+  spec["sample"]["porosity"] = 0;
+  spec["sample"].erase("pore_radius");
+  spec["loading"] = {{"strain_rate", 1e6}, {"initial_velocity", "VL"}};
+  spec["output"] = {{"cache_sample", false}};
+  const fs::path out = fs::temp_directory_path() / ("rupture-cli-guards-packing-" + std::to_string(::getpid()) + ".h5");
+  int code = 0;
+  std::string err;
+  const double seconds = secondsToStopOnSigint(writeSpec(spec, "large-sample.json"), out, "building the sample", code, err);
+  std::cout << "[ measured ] rupture run exited " << seconds << " s after SIGINT during the packing\n";
+  ASSERT_GE(seconds, 0) << err;
+  EXPECT_EQ(code, 130) << err;
+  EXPECT_LT(seconds, 2.0) << err;
+  for (const char* suffix : {"", ".checkpoint", ".stderr"}) fs::remove(out.string() + suffix);
+  fs::remove(fs::path(out).replace_extension(".xdmf2"));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // beam section's failure stress; the only style the calibration fits.
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/material_style.hpp"
+#include "io/physical_ranges.hpp"
 
 namespace rupture {
 
@@ -17,7 +18,7 @@ class BeamStyle final : public MaterialStyle {
 
   void parse(const io::SpecReader& material, const MaterialContext&, MaterialSpec& m) const override {
     const io::SpecReader beam = material.object("beam");
-    m.beam.youngModulus = beam.number("young_modulus", io::Range::positive(), "Pa");
+    m.beam.youngModulus = beam.number("young_modulus", io::physical::beamModulus(), "Pa");
     m.beam.poissonRatio = beam.number("poisson_ratio", {-1.0, 0.5, true, false}, "1");
     m.beam.radiusRatio = beam.number("radius_ratio", {0.0, 1.0, true, false}, "1");
     m.beam.failureStress = beam.number("failure_stress", io::Range::positive(), "Pa");

@@ -8,6 +8,7 @@
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/material_style.hpp"
 #include "bonded/materials/with_criterion.hpp"
+#include "io/physical_ranges.hpp"
 #include "peridynamics/pmb.hpp"
 #include "peridynamics/pmb_law.hpp"
 
@@ -32,7 +33,7 @@ class PmbStyle final : public MaterialStyle {
   void parse(const io::SpecReader& material, const MaterialContext& context, MaterialSpec& m) const override {
     const io::SpecReader block = material.object("pmb");
     PmbSpec& p = m.pmb;
-    p.youngModulus = block.number("young_modulus", io::Range::positive(), "Pa");
+    p.youngModulus = block.number("young_modulus", io::physical::modulus(), "Pa");
     p.horizonFactor = block.number("horizon_factor", io::Range::closed(1.0, 6.0), "1", p.horizonFactor);
     p.criterion = block.choice("criterion", {"critical_stretch", "critical_energy"}, "critical_stretch");
     const bool hasStretch = block.has("critical_stretch"), hasEnergy = block.has("fracture_energy");

@@ -11,6 +11,7 @@
 #include "bonded/bonded_system.hpp"
 #include "bonded/materials/material_style.hpp"
 #include "bonded/materials/with_criterion.hpp"
+#include "io/physical_ranges.hpp"
 #include "lattice/spring_mapping.hpp"
 
 namespace rupture {
@@ -43,7 +44,7 @@ class SpringStyle final : public MaterialStyle {
   void parse(const io::SpecReader& material, const MaterialContext& context, MaterialSpec& m) const override {
     const io::SpecReader block = material.object(std::string(name()));
     LatticeSpringSpec& sp = m.springs;
-    sp.youngModulus = block.number("young_modulus", io::Range::positive(), "Pa");
+    sp.youngModulus = block.number("young_modulus", io::physical::modulus(), "Pa");
     const PoissonRange range = poissonRange(context.lattice, m_born);
     std::ostringstream allowed;
     if (range.fixed) {

@@ -298,7 +298,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       observed.observe(system.time, strain, stress, system.brokenLastStep);
       if (system.time >= nextOutput) {
         record();
-        while (nextOutput <= system.time) nextOutput += outputInterval;
+        nextOutput = nextOutputTime(nextOutput, system.time, outputInterval);
       }
       snapshotsDue();
       if (!observed.separated() && observed.broken() != brokenAtLastCheck &&
@@ -393,7 +393,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 
 Scenario dynamicTensionScenario() {
   return scenarioOf<DynamicTensionSpec>("dynamic-tension", dynamicTensionSummaryFields(), dynamicTensionSeriesFields(),
-                                        parseDynamicTensionSpec, io::estimateBondedSpec<DynamicTensionSpec>,
+                                        parseDynamicTensionSpec, estimateDynamicTension,
                                         runDynamicTension);
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "bonded/bonded_spec.hpp"
+#include "io/physical_ranges.hpp"
+#include "io/run_length.hpp"
 #include "io/spec_reader.hpp"
 
 namespace rupture {
@@ -14,7 +16,7 @@ constexpr const char* kScenarioName = "dynamic-tension";
 TensionLoadingSpec parseLoading(const SpecReader& root) {
   TensionLoadingSpec l;
   const SpecReader loading = root.object("loading");
-  l.strainRate = loading.number("strain_rate", Range::positive(), "1/s");
+  l.strainRate = loading.number("strain_rate", io::physical::strainRate(), "1/s");
   const std::string field = loading.choice("initial_velocity", {"V0", "VL", "VH"}, "VH");
   l.initialVelocity = field == "V0" ? InitialVelocityField::V0
                       : field == "VL" ? InitialVelocityField::VL
@@ -22,9 +24,9 @@ TensionLoadingSpec parseLoading(const SpecReader& root) {
   // Optional numbers without a fixed default: absent = derived at run time (see the header).
   if (loading.has("ramp_time")) l.rampTime = loading.number("ramp_time", Range::positive(), "s");
   l.rampWaveRoundTrips = loading.number("ramp_wave_round_trips", Range::positive(), "1", l.rampWaveRoundTrips);
-  if (loading.has("wave_speed")) l.waveSpeed = loading.number("wave_speed", Range::positive(), "m/s");
+  if (loading.has("wave_speed")) l.waveSpeed = loading.number("wave_speed", io::physical::speed(), "m/s");
   l.vhPreliminaryStrainRate =
-      loading.number("vh_preliminary_strain_rate", Range::positive(), "1/s", l.vhPreliminaryStrainRate);
+      loading.number("vh_preliminary_strain_rate", io::physical::strainRate(), "1/s", l.vhPreliminaryStrainRate);
   if (loading.has("vh_capture_strain"))
     l.vhCaptureStrain = loading.number("vh_capture_strain", {0.0, 1.0, true, true}, "1");
   loading.finish();
@@ -90,6 +92,28 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
     throw SpecError("loading.vh_capture_strain", io::describeValue(*s.loading.vhCaptureStrain),
                     "a strain below run.max_strain (" + io::describeValue(s.run.maxStrain) + ")");
   return s;
+}
+
+RunEstimate estimateDynamicTension(const DynamicTensionSpec& s) {
+  RunEstimate e = io::estimateBondedSpec(s);
+  const double dt = s.run.timeStepSafety * io::estimatedCriticalStep(s.sample, s.material);
+  const double gauge = s.sample.size[0];
+  const double waveSpeed = s.loading.waveSpeed ? *s.loading.waveSpeed : s.material.dampingWaveSpeed;
+  const double roundTrip = 2.0 * gauge / waveSpeed;  // eq. 6's 2 L0 / C0
+  const auto maxSteps = static_cast<double>(s.run.maxSteps);
+  const bool v0 = s.loading.initialVelocity == InitialVelocityField::V0;
+  const double ramp = !v0 ? 0.0 : s.loading.rampTime ? *s.loading.rampTime : s.loading.rampWaveRoundTrips * roundTrip;
+  std::vector<io::RunLoop> loops = {
+      {ramp + s.run.maxStrain / s.loading.strainRate + s.run.settleRoundTrips * roundTrip, dt, maxSteps,
+       "loading.strain_rate", "main run: run.max_strain / loading.strain_rate, ramp and settling"}};
+  const bool preliminary = s.loading.initialVelocity == InitialVelocityField::VH ||
+                           (v0 && !s.loading.rampTime && !s.loading.waveSpeed);
+  if (preliminary)
+    loops.push_back({s.loading.rampWaveRoundTrips * roundTrip + s.run.maxStrain / s.loading.vhPreliminaryStrainRate, dt,
+                     maxSteps, "loading.vh_preliminary_strain_rate",
+                     "preliminary run: run.max_strain / loading.vh_preliminary_strain_rate and its ramp"});
+  io::addRunLength(e, loops, "material.density", io::bondedStepRule());
+  return e;
 }
 
 nlohmann::json toJson(const DynamicTensionSpec& s) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bonded/sample_spec.hpp"
+#include "rupture/run.hpp"
 
 namespace rupture {
 
@@ -70,6 +71,12 @@ struct DynamicTensionSpec {
 /// Reads and checks a whole spec (with "scenario": "dynamic-tension"); throws SpecError naming the
 /// first offending field (dotted path, value, what is allowed). Unknown keys are errors.
 DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& spec);
+
+/// The run's size (the bonded estimate) and length: the main run to run.max_strain at
+/// loading.strain_rate (plus a V0 ramp and the settling after separation) and, when the spec needs
+/// one, the preliminary run to run.max_strain at loading.vh_preliminary_strain_rate, each over the
+/// estimated stable step and capped by run.max_steps.
+RunEstimate estimateDynamicTension(const DynamicTensionSpec& spec);
 
 /// The resolved spec, in the same shape as the input: every default filled in, except the optional
 /// fields derived at run time (ramp_time, wave_speed, vh_capture_strain), which stay absent when

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "io/physical_ranges.hpp"
 #include "samples/material_assignment.hpp"
 #include "samples/sample_builder.hpp"
 #include "bonded/materials/registry.hpp"
@@ -53,7 +54,7 @@ ElasticPropertiesSpec parseElasticPropertiesSpec(const nlohmann::json& json) {
                           " (both or neither)");
     if (young) {
       ElasticTarget t;
-      t.youngModulus = target->number("young_modulus", Range::positive(), "Pa");
+      t.youngModulus = target->number("young_modulus", io::physical::modulus(), "Pa");
       t.poissonRatio = target->number("poisson_ratio", {-1.0, 0.5, true, true}, "1");
       s.target = t;
     }
@@ -214,9 +215,22 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
   return {summary, completed};
 }
 
+namespace {
+
+/// The bonded estimate and the relaxations' time step. No step count: the relaxations end on
+/// convergence or on their fixed budgets (calibration.hpp), which no spec field sets.
+RunEstimate estimateElasticProperties(const ElasticPropertiesSpec& spec) {
+  RunEstimate e = io::estimateBondedSpec(spec);
+  e.timeStep = spec.calibration.timeStepSafety * io::estimatedCriticalStep(spec.sample, spec.material);
+  e.timeStepField = "material.density";
+  return e;
+}
+
+}  // namespace
+
 Scenario elasticPropertiesScenario() {
   return scenarioOf<ElasticPropertiesSpec>(kScenarioName, elasticPropertiesSummaryFields(), {},
-                                           parseElasticPropertiesSpec, io::estimateBondedSpec<ElasticPropertiesSpec>,
+                                           parseElasticPropertiesSpec, estimateElasticProperties,
                                            runElasticProperties);
 }
 

@@ -106,7 +106,7 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     if (s.time >= nextOutput * (1 - 1e-12)) {
       row();
       lastRowStep = s.steps;
-      while (nextOutput <= s.time * (1 + 1e-12)) nextOutput += interval;
+      nextOutput = nextOutputTime(nextOutput, s.time * (1 + 1e-12), interval);
     }
     try {
       snapshotsDue();

@@ -18,7 +18,7 @@ ImpactorSpec parseImpactor(const io::SpecReader& r, double bore, double endTime)
   const std::string model = r.choice("model", {"rigid", "two_body", "elastic_piston"}, toString(s.model));
   s.model = model == "rigid" ? ImpactorModel::Rigid : model == "two_body" ? ImpactorModel::TwoBody : ImpactorModel::ElasticPiston;
   s.mass = r.number("mass", Range::positive(), "kg", s.mass);
-  s.speed = r.number("speed", Range::nonNegative(), "m/s", s.speed);
+  s.speed = r.number("speed", {0.0, 1e5, false, false}, "m/s", s.speed);  // io::physical::speed(), 0 allowed
   if (s.model == ImpactorModel::Rigid) {
     for (const char* key : {"piston", "contact_stiffness", "contact"})
       if (r.has(key))

@@ -267,7 +267,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   while (true) {
     if (system.time >= nextOutput - 1e-12 * spec.endTime) {
       record();
-      while (nextOutput <= system.time + 1e-12 * spec.endTime) nextOutput += spec.interval();
+      nextOutput = nextOutputTime(nextOutput, system.time + 1e-12 * spec.endTime, spec.interval());
     }
     if (nextSnapshot < spec.snapshotTimes.size() && system.time >= spec.snapshotTimes[nextSnapshot]) {
       snapshot("time " + formatNumber(spec.snapshotTimes[nextSnapshot]), damage);
@@ -325,7 +325,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
 
 Scenario impactScenario() {
   return scenarioOf<ImpactSpec>("impact", impactSummaryFields(), impactSeriesFields(), parseImpactSpec,
-                                io::estimateBondedSpec<ImpactSpec>, runImpact);
+                                estimateImpact, runImpact);
 }
 
 }  // namespace rupture

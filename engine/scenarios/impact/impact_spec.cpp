@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bonded/bonded_spec.hpp"
+#include "io/run_length.hpp"
 #include "io/spec_reader.hpp"
 
 namespace rupture {
@@ -86,6 +87,14 @@ ImpactSpec parseImpactSpec(const nlohmann::json& json) {
   run.finish();
   root.finish();
   return s;
+}
+
+RunEstimate estimateImpact(const ImpactSpec& s) {
+  RunEstimate e = io::estimateBondedSpec(s);
+  const double dt = s.timeStepSafety * io::estimatedCriticalStep(s.sample, s.material);
+  io::addRunLength(e, {{s.endTime, dt, static_cast<double>(s.maxSteps), "run.end_time", "run.end_time"}},
+                   "material.density", io::bondedStepRule());
+  return e;
 }
 
 nlohmann::json toJson(const ImpactSpec& s) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bonded/sample_spec.hpp"
+#include "rupture/run.hpp"
 
 namespace rupture {
 
@@ -52,6 +53,9 @@ struct ImpactSpec {
 };
 
 ImpactSpec parseImpactSpec(const nlohmann::json& spec);
+/// The run's size (the bonded estimate) and length: run.end_time over the estimated stable step,
+/// capped by run.max_steps.
+RunEstimate estimateImpact(const ImpactSpec& spec);
 nlohmann::json toJson(const ImpactSpec& spec);
 
 }  // namespace rupture

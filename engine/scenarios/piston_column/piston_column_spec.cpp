@@ -23,10 +23,10 @@ PistonSpec parsePiston(const SpecReader& root) {
   } else if (piston->has("mass")) {
     piston->fail("mass", "no mass for a prescribed piston (its motion ignores the fluid); use motion \"free\"");
   }
-  p.speed = piston->number("speed", Range::nonNegative(), "m/s", p.speed);
+  p.speed = piston->number("speed", {0.0, 1e5, false, false}, "m/s", p.speed);  // io::physical::speed(), 0 allowed
   if (const auto history = piston->optionalObject("speed_history")) {
     p.history.time = history->numbers("time", 1, 10000, Range::nonNegative(), "s");
-    p.history.speed = history->numbers("speed", 1, 10000, Range::nonNegative(), "m/s");
+    p.history.speed = history->numbers("speed", 1, 10000, {0.0, 1e5, false, false}, "m/s");
     if (p.history.speed.size() != p.history.time.size())
       history->fail("speed", "as many speeds as times (" + std::to_string(p.history.time.size()) + ")");
     for (std::size_t k = 1; k < p.history.time.size(); ++k)

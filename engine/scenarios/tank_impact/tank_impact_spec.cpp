@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/format_number.hpp"
+#include "io/physical_ranges.hpp"
 #include "plasticity/material_presets.hpp"
 #include "scenarios/tank_impact/plate_geometry.hpp"
 #include "scenarios/tank_impact/seed_specimens.hpp"
@@ -72,8 +73,8 @@ void parseMaterial(const SpecReader& plate, PlateSpec& p) {
   applyPreset(node ? node->string("preset", p.materialPreset) : p.materialPreset, plate.pathOf("material") + ".preset", p);
   if (!node) return;
   ShellParameters& s = p.shell;
-  s.density = node->number("density", Range::positive(), "kg/m^3", s.density);
-  s.material.youngModulus = node->number("young_modulus", Range::positive(), "Pa", s.material.youngModulus);
+  s.density = node->number("density", io::physical::density(), "kg/m^3", s.density);
+  s.material.youngModulus = node->number("young_modulus", io::physical::modulus(), "Pa", s.material.youngModulus);
   s.material.poissonRatio = node->number("poisson_ratio", {-1.0, 0.5, true, true}, "1", s.material.poissonRatio);
   if (node->has("hardening"))
     s.material.hardening.kind = hardeningKindFromName(node->choice("hardening", {"johnson_cook", "linear"}), node->pathOf("hardening"));

@@ -61,15 +61,20 @@ nlohmann::json resolved(const ValidationSpec& s) {
   return j;
 }
 
-/// The largest member run: the case's runs are made one at a time.
+/// The largest member run, and the longest: the case's runs are made one at a time.
 RunEstimate estimateValidation(const ValidationSpec& s) {
-  RunEstimate largest;
+  RunEstimate largest, longest;
   for (const auto& [name, members] : validation::caseSpecs(*s.validationCase, s.level))
     for (const nlohmann::json& member : members) {
       const RunEstimate e = estimateRun(member);
       if (e.memoryBytes > largest.memoryBytes) largest = e;
+      if (e.steps > longest.steps) longest = e;
     }
   largest.field = "case";
+  largest.steps = longest.steps;
+  largest.timeStep = longest.timeStep;
+  largest.stepsBasis = "its longest run: " + longest.stepsBasis;
+  largest.stepsField = largest.timeStepField = longest.steps > 0 ? "case" : "";
   return largest;
 }
 
