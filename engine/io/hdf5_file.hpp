@@ -40,6 +40,8 @@ public:
 
   /// Idempotent. Every other call on a closed file throws Hdf5Error.
   void close();
+  /// False once closed, or after a close that failed (a full disk: see close()).
+  bool isOpen() const { return m_id >= 0; }
   void flush();
   /// Opens the same path again for writing, after close() (the file was whole on disk in between:
   /// it may have been copied) or closing it first; keeps this object's settings (compression, the

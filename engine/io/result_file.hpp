@@ -36,6 +36,8 @@ public:
   void writeAttributes(const std::string& group, const nlohmann::json& values,
                        const std::map<std::string, std::string>& units);
 
+  /// Where the partial file is written (RESULT.part, or RESULT itself when it is the caller's ".part").
+  const std::string& partPath() const { return m_partPath; }
   /// True when the file continues a checkpoint's partial result.
   bool continued() const { return m_continued; }
   /// Records on "/" that the run continued from `step` (checkpoint_resumes, resumed_from_steps: the

@@ -1,7 +1,9 @@
 #include "scenarios/run_checkpoints.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 
 #include "core/format_number.hpp"
@@ -10,11 +12,33 @@
 
 namespace rupture {
 
+namespace {
+
+namespace fs = std::filesystem;
+
+/// HDF5's own writes at the partial result's close (its metadata cache), beyond the data on disk.
+constexpr std::uintmax_t kCloseSlackBytes = 1u << 20;
+
+bool isCallersTemporary(const std::string& path) {
+  constexpr std::string_view kPart = ".part";
+  return path.size() > kPart.size() && path.ends_with(kPart);
+}
+
+std::uintmax_t fileSize(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  return ec ? 0 : size;
+}
+
+}  // namespace
+
 RunCheckpoints::RunCheckpoints(RunControl& control, const std::string& resultPath, std::string scenario,
                                const nlohmann::json& inputSpec, double specInterval, Clock::time_point& wallStart)
     : m_control(control),
       m_path(io::checkpointPathFor(resultPath)),
+      m_partialPath(isCallersTemporary(resultPath) ? resultPath : resultPath + ".part"),
       m_scenario(std::move(scenario)),
+      m_callerCommits(isCallersTemporary(resultPath)),
       m_specIdentity(io::checkpointSpecIdentity(inputSpec)),
       m_interval(control.checkpointInterval >= 0 ? control.checkpointInterval : specInterval),
       m_wallStart(wallStart),
@@ -33,6 +57,8 @@ void RunCheckpoints::restore(bool partsFollow) {
   m_partsFollow = partsFollow;
   m_resumes = header.resumes + 1;
   m_wallStart -= std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(header.wallTime));
+  m_lastBytes = fileSize(m_path);
+  m_lastGoodStep = header.step;
   m_result->recordResume(header.step);
   m_control.resumedFromStep.store(header.step);
   m_last = Clock::now();
@@ -66,6 +92,8 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
   header.resumes = m_resumes;
   header.wallTime = std::chrono::duration<double>(began - m_wallStart).count();
   const std::uintmax_t bytes = io::writeCheckpoint(*m_result, m_path, header, m_state);
+  m_lastBytes = bytes;
+  m_lastGoodStep = header.step;
   m_last = Clock::now();
   const double seconds = std::chrono::duration<double>(m_last - began).count();
   m_control.checkpointStep.store(header.step);
@@ -75,13 +103,42 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
                           formatNumber(seconds) + " s");
 }
 
+std::uintmax_t RunCheckpoints::bytesForNextCheckpoint() const {
+  // The copy of the partial result as it is now, its state (about what the last checkpoint added
+  // to its own copy: the last checkpoint's size covers both, the partial result only grows), and
+  // what HDF5 still has to write when the partial result is closed for the copy.
+  const std::uintmax_t partial = fileSize(m_partialPath);
+  if (partial == 0) return 0;
+  return partial + std::max(m_lastBytes, partial) + kCloseSlackBytes;
+}
+
 bool RunCheckpoints::tryWrite(std::uint64_t step, double time) {
+  const std::string kept = m_lastGoodStep >= 0 ? "its last checkpoint (step " + std::to_string(m_lastGoodStep) + ") stays"
+                                               : std::string("it has no checkpoint yet");
+  // A disk without room for the copy: skipped before the partial result is touched (closing it on
+  // a full disk would lose it), so the run goes on as if the interval were longer.
+  std::error_code ec;
+  const fs::space_info space = fs::space(fs::path(m_path).parent_path().empty() ? fs::path(".") : fs::path(m_path).parent_path(), ec);
+  if (const std::uintmax_t needed = bytesForNextCheckpoint(); !ec && needed > 0 && space.available < needed) {
+    logStage(m_control, "no room for the checkpoint at step " + std::to_string(step) + " (" +
+                            formatNumber(static_cast<double>(space.available) / 1e6) + " MB free, about " +
+                            formatNumber(static_cast<double>(needed) / 1e6) + " MB needed): skipped, the run goes on and " + kept);
+    m_control.checkpointsSkipped.fetch_add(1);
+    m_last = Clock::now();
+    return false;
+  }
   try {
     write(step, time);
     return true;
   } catch (const std::exception& e) {
+    // The partial result closed for good (the disk filled up as HDF5 wrote it out): this attempt
+    // cannot go on, its last good checkpoint can. Thrown on, so that the server re-queues the run.
+    if (!m_result->file().isOpen())
+      throw std::runtime_error(std::string("the disk filled up while the checkpoint at step ") + std::to_string(step) +
+                               " was written, and the partial result could not be kept (" + e.what() + "); " + kept);
     // A full disk must not end a run that is fine: the previous checkpoint stays as it was.
-    logStage(m_control, std::string("cannot write the checkpoint (the run goes on without it): ") + e.what());
+    logStage(m_control, std::string("cannot write the checkpoint (the run goes on without it; ") + kept + "): " + e.what());
+    m_control.checkpointsSkipped.fetch_add(1);
     m_last = Clock::now();
     return false;
   }
@@ -103,7 +160,7 @@ RunCheckpoints::Action RunCheckpoints::poll(std::uint64_t step, double time) {
 }
 
 void RunCheckpoints::finished(bool completed) {
-  if (!completed) return;
+  if (!completed || m_callerCommits) return;
   std::error_code ec;
   std::filesystem::remove(m_path, ec);
 }

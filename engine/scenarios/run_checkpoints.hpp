@@ -3,7 +3,10 @@
 // state once (a function over a StateArchive), asks poll() at the top of every step, and restores
 // from the checkpoint when the door asked to resume. Written every run.checkpoint_interval_s of
 // wall time, when the run is stopped to be continued (SIGTERM, a server shutting down, a Slurm
-// time limit) and at RunControl::stopAtStep; removed once the run completes.
+// time limit) and at RunControl::stopAtStep; removed once the run completes, unless the result is
+// the caller's own ".part" (io::ResultFile): that caller removes it once it has committed the
+// result (renamed it and its summary into place), so a kill between the engine's end and that
+// commit still finds the checkpoint and loses at most one interval (docs/checkpoints.md).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -50,14 +53,19 @@ public:
   Action poll(std::uint64_t step, double time);
   /// Writes a checkpoint now (throws what the file system throws).
   void write(std::uint64_t step, double time);
-  /// The run is over: a completed run's checkpoint is removed (a stopped one is kept to resume).
+  /// The run is over: a completed run's checkpoint is removed (a stopped one is kept to resume),
+  /// unless the caller commits the result (a ".part" result path): then the caller removes it.
   void finished(bool completed);
 
 private:
   bool tryWrite(std::uint64_t step, double time);
+  /// Free bytes the next checkpoint needs beside the run's files (its copy of the partial result
+  /// and its state), or 0 when the partial result's size cannot be told.
+  std::uintmax_t bytesForNextCheckpoint() const;
 
   RunControl& m_control;
-  std::string m_path, m_scenario;
+  std::string m_path, m_partialPath, m_scenario;
+  bool m_callerCommits;
   nlohmann::json m_specIdentity;
   double m_interval;
   Clock::time_point& m_wallStart;
@@ -66,6 +74,8 @@ private:
   State m_state;
   std::int64_t m_resumes = 0;
   bool m_partsFollow = false;
+  std::uintmax_t m_lastBytes = 0;  ///< size of the last checkpoint written or resumed from
+  std::int64_t m_lastGoodStep = -1;  ///< its step (−1: none)
 };
 
 }  // namespace rupture

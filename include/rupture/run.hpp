@@ -44,6 +44,8 @@ struct RunControl {
   std::atomic<std::int64_t> resumedFromStep{-1};
   std::atomic<std::int64_t> checkpointStep{-1};
   std::atomic<double> checkpointBytes{0}, checkpointSeconds{0};
+  /// Written by the run: checkpoints it could not write (a full disk) and went on without.
+  std::atomic<int> checkpointsSkipped{0};
   int threads = 1;  ///< set by runSpec: the OpenMP threads of the run (a checkpoint records them)
 };
 

@@ -29,31 +29,35 @@ void fsyncPath(const std::filesystem::path& path, int flags) {
 
 }  // namespace
 
+void writeFileSynced(const std::filesystem::path& path, const std::string& content) {
+  int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot create", path);
+  // A failed write (a full disk) leaves no part behind: the file goes too.
+  auto abandon = [&](const char* what) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(path.c_str());
+    errno = err;
+    fail(what, path);
+  };
+  std::size_t done = 0;
+  while (done < content.size()) {
+    ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      abandon("cannot write");
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) abandon("cannot fsync");
+  ::close(fd);
+}
+
+void syncFile(const std::filesystem::path& path) { fsyncPath(path, O_RDONLY); }
+
 void writeFileAtomic(const std::filesystem::path& path, const std::string& content) {
   const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) fail("cannot create", tmp);
-    // A failed write (a full disk) leaves no part behind: the temporary file goes too.
-    auto abandon = [&](const char* what) {
-      const int err = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      errno = err;
-      fail(what, tmp);
-    };
-    std::size_t done = 0;
-    while (done < content.size()) {
-      ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        abandon("cannot write");
-      }
-      done += static_cast<std::size_t>(n);
-    }
-    if (::fsync(fd) != 0) abandon("cannot fsync");
-    ::close(fd);
-  }
+  writeFileSynced(tmp, content);
   if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot rename to", path);
   fsyncPath(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(), O_RDONLY | O_DIRECTORY);
 }

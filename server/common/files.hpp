@@ -11,6 +11,13 @@ namespace rupture::server {
 /// Writes `content` to `path` atomically: a reader sees the old file or the new one, never a part.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& content);
 
+/// Writes `content` to `path` (replacing it) and fsyncs it, without a rename: the first half of
+/// writeFileAtomic, for a caller that renames it itself. A failed write leaves no file.
+void writeFileSynced(const std::filesystem::path& path, const std::string& content);
+
+/// fsyncs a file's content to the disk (throws when it cannot be opened or synced).
+void syncFile(const std::filesystem::path& path);
+
 /// fsyncs `from`, renames it to `to` and fsyncs the directory.
 void renameDurable(const std::filesystem::path& from, const std::filesystem::path& to);
 

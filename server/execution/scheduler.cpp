@@ -6,8 +6,13 @@
 #include <exception>
 #include <system_error>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "common/files.hpp"
+#include "execution/kill_points.hpp"
 #include "io/checkpoint_file.hpp"
+#include "io/hdf5_file.hpp"
 #include "rupture/state_archive.hpp"
 #include "common/log.hpp"
 
@@ -36,14 +41,50 @@ fs::path summaryFile(const fs::path& runFile) {
   return p.replace_extension(".summary.json");
 }
 
+fs::path temporaryOf(const fs::path& file) { return file.string() + ".tmp"; }
+
 void removeQuietly(const fs::path& p) {
   std::error_code ec;
   fs::remove(p, ec);
 }
 
-// A run that failed because the disk filled up goes back to the queue (where it waits for the
-// floor) at most this many times in all before it is recorded failed.
+/// The directory's entries on the disk (a removal or rename that must survive a power cut).
+void syncDirectory(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  [[maybe_unused]] const int rc = ::fsync(fd);
+  ::close(fd);
+}
+
+/// The engine's partial file says the run completed (ResultFile::finish wrote completed = 1 and
+/// closed it): what a commit interrupted after the summary was kept leaves.
+bool isCompleteResult(const fs::path& file) {
+  try {
+    const rupture::io::Hdf5File h5 = rupture::io::Hdf5File::openReadOnly(file.string());
+    return h5.hasAttribute("/", "completed") && h5.readAttributeInt("/", "completed") == 1;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+/// The step of the run's checkpoint (−1: none or unreadable).
+std::int64_t checkpointStepOf(const fs::path& checkpoint) {
+  std::error_code ec;
+  if (!fs::exists(checkpoint, ec)) return -1;
+  try {
+    return rupture::io::readCheckpointHeader(checkpoint.string()).step;
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+// A run that fails because the disk filled up goes back to the queue and waits there for room;
+// this many such failures in a row without its checkpoint advancing (each after room had come
+// back) say that the run itself needs more than the disk has: it is then recorded failed.
 constexpr int kDiskFullAttempts = 3;
+// The least free space such a run waits for, whatever its files' size (one that failed before it
+// wrote anything, on a server without a floor).
+constexpr std::uintmax_t kLeastRoomAfterFullDisk = 1u << 20;
 
 }  // namespace
 
@@ -72,13 +113,26 @@ int Scheduler::running() const {
 void Scheduler::recoverFinishedFiles() {
   // A run whose result and summary files are complete finished, whatever the store says: it may
   // have stopped before the store took the outcome, or the store may have taken a wrong one (a
-  // full disk once made the success unrecordable and the failure recordable).
+  // full disk once made the success unrecordable and the failure recordable). A commit
+  // interrupted between the summary's rename and the result's is finished here (the summary is
+  // kept only once the engine has closed its complete file), and a checkpoint the commit did not
+  // get to remove is removed: nothing is recomputed.
   std::vector<RunKey> candidates = m_store.unfinishedRuns();
   const std::vector<RunKey> failed = m_store.failedRuns();
   candidates.insert(candidates.end(), failed.begin(), failed.end());
   for (RunKey key : candidates) {
     const bool wasFailed = std::find(failed.begin(), failed.end(), key) != failed.end();
     const fs::path file = runFile(key);
+    const fs::path partial = partialFile(file);
+    const bool committedSummary = regularFileSize(summaryFile(file)).has_value();
+    if (!regularFileSize(file) && committedSummary && regularFileSize(partial) && isCompleteResult(partial)) {
+      try {
+        renameDurable(partial, file);
+        logLine(describe(key) + ": its result was complete beside its summary; renamed into place");
+      } catch (const std::exception& e) {
+        logLine(describe(key) + ": cannot rename its complete result into place: " + e.what());
+      }
+    }
     if (!regularFileSize(file)) continue;
     auto text = readFile(summaryFile(file));
     Json summary;
@@ -90,6 +144,11 @@ void Scheduler::recoverFinishedFiles() {
     if (!summary.is_object()) {
       if (!wasFailed) removeQuietly(file);  // not recorded as complete: it runs again
       continue;
+    }
+    const fs::path checkpoint = rupture::io::checkpointPathFor(partial.string());
+    if (fs::exists(checkpoint)) {
+      removeQuietly(checkpoint);
+      syncDirectory(file.parent_path());
     }
     m_store.finishSuccessful(key, summary, fs::relative(file, m_dataDir).string());
     logLine(describe(key) + (wasFailed ? " was recorded failed but its files are complete; recorded successful"
@@ -161,10 +220,12 @@ void Scheduler::shutdown() {
   retryUnrecorded();  // what still fails is repaired from the files on the next start
 }
 
-bool Scheduler::diskHasRoom() const {
-  if (m_minFreeBytes == 0) return true;
-  const std::optional<std::uintmax_t> available = availableBytes(m_dataDir);
-  return !available || *available >= m_minFreeBytes;  // an unknown free space does not stop the queue
+bool Scheduler::diskHasRoom() const { return m_minFreeBytes == 0 || hasFreeBytes(m_minFreeBytes); }
+
+bool Scheduler::waitingForDisk() const {
+  if (m_waitingForDisk.load()) return true;
+  std::lock_guard lock(m_mutex);
+  return !m_waitingForSpace.empty();
 }
 
 int Scheduler::unrecordedOutcomes() const {
@@ -242,20 +303,11 @@ void Scheduler::workerLoop() {
       logLine(describe(key) + ": cannot start: " + e.what());
     }
     if (started) execute(key, control);
-    bool resumeUnrecorded = false;
     {
       std::lock_guard lock(m_mutex);
       m_active.erase(key);
       m_stages.erase(key);
-      resumeUnrecorded = control->resumedFromStep.load() >= 0 && m_resumeRecorded.count(key) == 0;
       m_resumeRecorded.erase(key);
-    }
-    if (resumeUnrecorded) {  // a run that ended before the monitor saw it resume
-      try {
-        m_store.recordResume(key, control->resumedFromStep.load());
-      } catch (const std::exception& e) {
-        logLine(describe(key) + ": cannot record its resume: " + e.what());
-      }
     }
   }
 }
@@ -272,15 +324,14 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     return m_stopping;
   };
   auto removeLeftovers = [&] {
-    for (const fs::path& stale : {file, partial, summaryFile(file)}) removeQuietly(stale);
+    for (const fs::path& stale : {file, partial, summaryFile(file), temporaryOf(summaryFile(file))}) removeQuietly(stale);
     for (const fs::path& stale : legacyPartialFiles(file)) removeQuietly(stale);
   };
   Outcome outcome{Outcome::Kind::Failed, key, Json(), std::string()};
-  int attempts = 0;
+  std::uintmax_t roomNeeded = 0;  // free bytes a run re-queued for a full disk waits for
   try {
     auto run = m_store.run(key);
     if (!run) throw std::runtime_error("run vanished from the store");
-    attempts = run->attempts;
     fs::create_directories(file.parent_path());
     removeLeftovers();  // anything here is left over from an interrupted attempt
     logLine(describe(key) + " started");
@@ -303,9 +354,23 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
                                "); it was removed: retry the run to start it afresh");
     }
     if (result.completed) {
+      // The commit, each step durable before the next (docs/checkpoints.md): the engine's complete
+      // .part, then the summary, then the result renamed into place, and only then the
+      // checkpoint removed. A kill at any step leaves the checkpoint (the restart continues from
+      // it) or a summary beside a complete result (the restart finishes the commit).
+      killPointForTests(kill_point::kAfterEngine);
       Json summary = result.summary.is_object() ? Json(result.summary) : Json::object();
-      writeFileAtomic(summaryFile(file), summary.dump(2) + "\n");
+      syncFile(partial);  // its content on the disk before a summary that vouches for it
+      const fs::path summaryPath = summaryFile(file);
+      writeFileSynced(temporaryOf(summaryPath), summary.dump(2) + "\n");
+      killPointForTests(kill_point::kAfterSummaryTmp);
+      renameDurable(temporaryOf(summaryPath), summaryPath);
+      killPointForTests(kill_point::kAfterSummaryRename);
       renameDurable(partial, file);
+      killPointForTests(kill_point::kAfterResultRename);
+      removeQuietly(checkpoint);
+      syncDirectory(file.parent_path());
+      killPointForTests(kill_point::kAfterCheckpointRemoval);
       // From here the files say the run succeeded, whatever happens to the store.
       outcome = {Outcome::Kind::Successful, key, summary, {}};
       logLine(describe(key) + " successful after " + elapsed() + " s");
@@ -349,14 +414,38 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     }
   } catch (const std::exception& e) {
     const bool diskFull = isDiskFull(e.what()) || !diskHasRoom();
+    const std::uintmax_t partialBytes = regularFileSize(partial).value_or(0);
     removeLeftovers();
     if (control->cancel && stopping()) {
       outcome.kind = Outcome::Kind::Requeued;
     } else if (control->cancel) {
       outcome.kind = Outcome::Kind::Dismissed;
-    } else if (diskFull && attempts < kDiskFullAttempts) {
-      outcome.kind = Outcome::Kind::Requeued;
-      logLine(describe(key) + ": the disk is full (" + e.what() + "); re-queued to wait for space");
+    } else if (diskFull) {
+      // Back to the queue with its last good checkpoint (kept: removeLeftovers leaves it), to start
+      // again once the disk has room for its partial result and a checkpoint's copy of it.
+      const fs::path checkpoint = rupture::io::checkpointPathFor(partial.string());
+      const std::int64_t step = checkpointStepOf(checkpoint);
+      int strikes = 0;
+      {
+        std::lock_guard lock(m_mutex);
+        DiskFullHistory& h = m_diskFull[key];
+        h.strikes = h.strikes == 0 || step > h.checkpointStep ? 1 : h.strikes + 1;
+        h.checkpointStep = step;
+        strikes = h.strikes;
+      }
+      if (strikes <= kDiskFullAttempts) {
+        outcome.kind = Outcome::Kind::Requeued;
+        roomNeeded = std::max({m_minFreeBytes, kLeastRoomAfterFullDisk,
+                               2 * std::max(partialBytes, regularFileSize(checkpoint).value_or(0))});
+        logLine(describe(key) + ": the disk is full (" + e.what() + "); re-queued " +
+                (step >= 0 ? "with its checkpoint at step " + std::to_string(step) : std::string("(no checkpoint yet)")) +
+                " to wait for space");
+      } else {
+        outcome.message = "the disk filled up " + std::to_string(strikes) +
+                          " times in a row without the run's checkpoint advancing, each time after space had come back: "
+                          "the run needs more space than the data disk has (" + std::string(e.what()) + ")";
+        logLine(describe(key) + " failed: " + outcome.message);
+      }
     } else {
       outcome.message = e.what();
       logLine(describe(key) + " failed: " + e.what());
@@ -365,12 +454,39 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     removeLeftovers();
     outcome.message = "unknown error (non-standard exception)";
   }
-  record(outcome);
-  // Re-queued for the disk, not for a shutdown: back in this server's queue, behind the floor.
-  if (outcome.kind == Outcome::Kind::Requeued && !stopping()) {
+  // A run that ended before the monitor saw it resume: its resume in the store before its outcome,
+  // so that a finished run's document always says it continued.
+  bool resumeUnrecorded = false;
+  {
     std::lock_guard lock(m_mutex);
-    m_queue.push_back(key);
+    resumeUnrecorded = control->resumedFromStep.load() >= 0 && m_resumeRecorded.insert(key).second;
   }
+  if (resumeUnrecorded) {
+    try {
+      m_store.recordResume(key, control->resumedFromStep.load());
+    } catch (const std::exception& e) {
+      logLine(describe(key) + ": cannot record its resume: " + e.what());
+    }
+  }
+  record(outcome);
+  std::lock_guard lock(m_mutex);
+  if (outcome.kind != Outcome::Kind::Requeued) m_diskFull.erase(key);
+  // Re-queued for the disk, not for a shutdown: back in this server's queue, behind the floor, or
+  // aside until the disk has the room it needs (the monitor looks every second).
+  if (outcome.kind == Outcome::Kind::Requeued && !m_stopping) {
+    if (roomNeeded > 0 && !hasFreeBytes(roomNeeded)) {
+      m_waitingForSpace.push_back({key, roomNeeded});
+      std::erase(m_queue, key);  // not started from another place in the queue meanwhile
+      logLine(describe(key) + " waits for " + formatBytes(static_cast<double>(roomNeeded)) + " free in " + m_dataDir.string());
+    } else {
+      m_queue.push_back(key);
+    }
+  }
+}
+
+bool Scheduler::hasFreeBytes(std::uintmax_t bytes) const {
+  const std::optional<std::uintmax_t> available = availableBytes(m_dataDir);
+  return !available || *available >= bytes;  // an unknown free space does not stop the queue
 }
 
 void Scheduler::monitorLoop() {
@@ -386,6 +502,19 @@ void Scheduler::monitorLoop() {
       const std::int64_t from = control->resumedFromStep.load();
       if (from >= 0 && m_resumeRecorded.insert(key).second) resumed.emplace_back(key, from);
     }
+    // Runs set aside for a full disk go back to the head of the queue once it has their room.
+    bool room = false;
+    for (auto it = m_waitingForSpace.begin(); it != m_waitingForSpace.end();) {
+      if (!hasFreeBytes(it->bytes)) {
+        ++it;
+        continue;
+      }
+      logLine(describe(it->key) + ": disk space is back; queued again");
+      m_queue.push_front(it->key);
+      it = m_waitingForSpace.erase(it);
+      room = true;
+    }
+    if (room) m_wake.notify_all();
     const bool retry = !m_unrecorded.empty();
     lock.unlock();
     try {

@@ -4,17 +4,23 @@
 // copies progress into the store at most once a second. A run that throws marks only itself failed.
 //
 // Result files: <data-dir>/jobs/<id>/run-<k>.h5 exists only for a finished, complete run. The engine
-// writes run-<k>.h5.part and leaves it there (io::ResultFile: a ".part" result is the caller's to
-// rename); on success the summary goes to run-<k>.summary.json, then the file is renamed to
-// run-<k>.h5 (its one rename), then the store is updated. A crash
-// between the rename and the store update is repaired on the next start from the summary file, so a
-// finished result is never recomputed.
+// writes run-<k>.h5.part and leaves it there, with the run's checkpoint (io::ResultFile: a ".part"
+// result is the caller's to commit); on success the .part is synced, the summary is written to
+// run-<k>.summary.json.tmp and renamed to run-<k>.summary.json, the .part is renamed to run-<k>.h5,
+// the checkpoint run-<k>.h5.checkpoint is removed, then the store is updated, each step durable
+// (fsync) before the next. A kill before the summary's rename leaves the checkpoint: the restart
+// continues from it (at most one checkpoint interval lost). A kill after it leaves a summary beside
+// a complete result: the start-up repair renames the result into place (if it was not yet), removes
+// the checkpoint and records the run from its files, so a finished result is never recomputed.
+// Tests kill the server at each step (RUPTURE_TEST_KILL_AT, execution/kill_points.hpp).
 //
 // The files are the truth about a run's outcome, the store a record of it: an outcome the store
 // cannot take (disk full, database locked) is kept in memory and retried every second, and the
 // start-up repair records as successful every run, failed or unfinished in the store, whose
 // result and summary files are complete. Below the disk-space floor (setMinFreeBytes) no run
-// starts; a run that fails because the disk filled up is re-queued (three attempts) rather than failed.
+// starts; a run that fails because the disk filled up is re-queued with its last good checkpoint
+// and set aside until the disk has room for twice its partial result (or checkpoint) and the
+// floor; only three such failures in a row without its checkpoint advancing fail it.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -62,8 +68,9 @@ public:
   void shutdown() override;
   /// Free bytes the data directory must keep for a run to start (0: no floor). Call before start().
   void setMinFreeBytes(std::uintmax_t bytes) { m_minFreeBytes = bytes; }
-  /// True while queued runs wait for disk space.
-  bool waitingForDisk() const override { return m_waitingForDisk.load(); }
+  /// True while queued runs wait for disk space (the floor, or a run re-queued for a full disk
+  /// waiting for the room it needs).
+  bool waitingForDisk() const override;
   /// Outcomes finished on disk that the store has not taken yet (retried every second).
   int unrecordedOutcomes() const override;
   /// The first half of shutdown(), without waiting: no run starts from now on and running runs are
@@ -89,6 +96,7 @@ private:
   };
   void workerLoop();
   bool diskHasRoom() const;
+  bool hasFreeBytes(std::uintmax_t bytes) const;
   /// Writes an outcome to the store; if the store fails, keeps it for the monitor to retry.
   void record(const Outcome& outcome);
   bool tryRecord(const Outcome& outcome);
@@ -118,6 +126,18 @@ private:
   bool m_stopping = false;
   bool m_started = false;
   std::vector<Outcome> m_unrecorded;  // guarded by m_mutex
+  /// Runs re-queued for a full disk, waiting for `bytes` free (guarded by m_mutex).
+  struct SpaceWait {
+    RunKey key;
+    std::uintmax_t bytes;
+  };
+  std::vector<SpaceWait> m_waitingForSpace;
+  /// Full-disk failures in a row of each run, and its checkpoint's step at the last (guarded by m_mutex).
+  struct DiskFullHistory {
+    int strikes = 0;
+    std::int64_t checkpointStep = -1;
+  };
+  std::map<RunKey, DiskFullHistory, RunKeyLess> m_diskFull;
   std::uintmax_t m_minFreeBytes = 0;
   std::atomic<bool> m_waitingForDisk{false};
   std::vector<std::thread> m_threads;

@@ -106,6 +106,15 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "k=\"$SLURM_ARRAY_TASK_ID\"\n"
     << "cd " << shellQuote(dir.string()) << " || exit 1\n"
     << "export RUPTURE_CACHE_DIR=" << shellQuote((m_settings.sharedDir / "cache").string()) << "\n"
+    << "# The server removed run-k.h5 and run-k.summary.json when it submitted this run: both here mean that this\n"
+    << "# task ran before (Slurm requeued it) and committed its result; a summary beside the .part, that it was\n"
+    << "# stopped between the two renames. Either way the result is complete: finish the commit, do not rerun.\n"
+    << "if [ -f \"run-$k.summary.json\" ] && [ -f \"run-$k.h5.part\" ] && [ ! -f \"run-$k.h5\" ]; then mv -f \"run-$k.h5.part\" \"run-$k.h5\"; fi\n"
+    << "if [ -f \"run-$k.summary.json\" ] && [ -f \"run-$k.h5\" ]; then\n"
+    << "  rm -f \"run-$k.h5.checkpoint\"\n"
+    << "  echo 0 > \"run-$k.status.tmp\" && mv -f \"run-$k.status.tmp\" \"run-$k.status\"\n"
+    << "  exit 0\n"
+    << "fi\n"
     << "rm -f \"run-$k.h5\" \"run-$k.h5.part\" \"run-$k.summary.json\" \"run-$k.status\"\n"
     << "# A run stopped before (its time limit, a preemption) continues from its checkpoint.\n"
     << "resume=\"\"\n"
@@ -122,8 +131,12 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "# A checkpoint refused (exit 2) would be refused again: removed, so that a retry starts afresh.\n"
     << "if [ \"$code\" -eq 2 ] && grep -q \"cannot resume\" \"run-$k.log\"; then rm -f \"run-$k.h5.checkpoint\"; fi\n"
     << "rm -f \"run-$k.h5.part.xdmf2\"\n"
+    << "# The commit: the result and the summary on the disk, the summary renamed, the result renamed, and only\n"
+    << "# then the checkpoint removed (rupture run keeps it for a *.part result), so that a kill at any point\n"
+    << "# leaves a checkpoint to continue from or a complete result.\n"
     << "if [ \"$code\" -eq 0 ]; then\n"
-    << "  mv -f \"run-$k.summary.tmp\" \"run-$k.summary.json\" && mv -f \"run-$k.h5.part\" \"run-$k.h5\" || code=74\n"
+    << "  sync \"run-$k.h5.part\" \"run-$k.summary.tmp\" 2>/dev/null || sync\n"
+    << "  mv -f \"run-$k.summary.tmp\" \"run-$k.summary.json\" && mv -f \"run-$k.h5.part\" \"run-$k.h5\" && rm -f \"run-$k.h5.checkpoint\" || code=74\n"
     << "else\n"
     << "  rm -f \"run-$k.h5.part\" \"run-$k.summary.tmp\"\n"
     << "fi\n"
@@ -299,6 +312,8 @@ void SlurmExecutor::recordFinished(RunKey key, int exitCode, const std::string& 
     } catch (const std::exception&) {
     }
     if (summary.is_object()) {
+      std::error_code ec;
+      fs::remove(runPath(key, ".h5.checkpoint"), ec);  // a commit stopped before it removed it
       m_store.finishSuccessful(key, summary, fs::relative(file, m_settings.sharedDir).string());
       logLine("job " + std::to_string(key.job) + " run " + std::to_string(key.index) + " successful (Slurm)");
       return;

@@ -1,6 +1,7 @@
 #include "jobs/job_store.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -11,6 +12,18 @@
 
 namespace rupture::server {
 namespace {
+
+/// Throws the store's error for SQLite's last failure on `db`: StoreFullError when the disk (or a
+/// quota) is full, whether SQLite says so (SQLITE_FULL) or only reports the system's ENOSPC under
+/// an I/O error (growing the WAL index, syncing), else std::runtime_error.
+[[noreturn]] void throwStoreError(sqlite3* db, int rc, const std::string& message) {
+  const int err = db && (rc & 0xff) == SQLITE_IOERR ? sqlite3_system_errno(db) : 0;
+  if ((rc & 0xff) == SQLITE_FULL || err == ENOSPC || err == EDQUOT) {
+    const bool said = message.find("database or disk is full") != std::string::npos;
+    throw StoreFullError(message + (said ? "" : " (No space left on device)"));
+  }
+  throw std::runtime_error(message);
+}
 
 /// A prepared statement with positional binding and typed column access.
 class Stmt {
@@ -54,7 +67,7 @@ public:
 private:
   void check(int rc) { if (rc != SQLITE_OK) fail("bind"); }
   [[noreturn]] void fail(const char* what) const {
-    throw std::runtime_error(std::string("job store: sqlite ") + what + ": " + sqlite3_errmsg(m_db));
+    throwStoreError(m_db, sqlite3_extended_errcode(m_db), std::string("job store: sqlite ") + what + ": " + sqlite3_errmsg(m_db));
   }
   sqlite3* m_db;
   sqlite3_stmt* m_stmt = nullptr;
@@ -72,10 +85,10 @@ public:
 private:
   void execSql(const char* sql) {
     char* err = nullptr;
-    if (sqlite3_exec(m_db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    if (const int rc = sqlite3_exec(m_db, sql, nullptr, nullptr, &err); rc != SQLITE_OK) {
       std::string msg = err ? err : "unknown";
       sqlite3_free(err);
-      throw std::runtime_error(std::string("job store: ") + sql + ": " + msg);
+      throwStoreError(m_db, rc, std::string("job store: ") + sql + ": " + msg);
     }
   }
   sqlite3* m_db;
@@ -268,10 +281,10 @@ bool JobStore::hasColumn(const std::string& table, const std::string& column) {
 
 void JobStore::exec(const std::string& sql) {
   char* err = nullptr;
-  if (sqlite3_exec(m_db, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+  if (const int rc = sqlite3_exec(m_db, sql.c_str(), nullptr, nullptr, &err); rc != SQLITE_OK) {
     std::string msg = err ? err : "unknown";
     sqlite3_free(err);
-    throw std::runtime_error("job store: " + msg);
+    throwStoreError(m_db, rc, "job store: " + msg);
   }
 }
 

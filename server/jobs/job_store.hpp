@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,13 @@
 struct sqlite3;
 
 namespace rupture::server {
+
+/// The store could not write because its disk (or a quota) is full: nothing was changed, and the
+/// same write can succeed once space is freed (the HTTP API answers 507 with Retry-After).
+class StoreFullError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
 
 /// OGC API - Processes status codes, used for jobs and for their runs alike.
 enum class Status { Accepted, Running, Successful, Failed, Dismissed };

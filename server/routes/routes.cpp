@@ -6,9 +6,11 @@
 
 #include <httplib.h>
 
+#include "common/files.hpp"
 #include "common/log.hpp"
 #include "common/utf8.hpp"
 #include "http/request_guard.hpp"
+#include "jobs/job_store.hpp"
 #include "routes/answers.hpp"
 #include "routes/handlers.hpp"
 #include "rupture/spec_error.hpp"
@@ -20,6 +22,16 @@ using httplib::Response;
 namespace {
 
 const std::string kId = "([^/]+)";
+
+/// A write the data disk has no room for (the job store's, a file's): nothing was changed, and
+/// the same request can succeed once space is freed.
+ApiError noRoomToWrite(const Request& req, const std::string& what) {
+  logLine("disk full answering " + req.method + " " + toValidUtf8(req.path) + ": " + toValidUtf8(what));
+  return ApiError(507, problem::kInsufficientStorage, "Insufficient Storage",
+                  "the server's data disk is full: the request was not carried out (nothing was changed); "
+                  "retry once space is freed",
+                  "", Json{{"retry_after_s", 60}});
+}
 
 struct Route {
   const char* method;  // GET, POST or DELETE (HEAD follows GET)
@@ -101,8 +113,11 @@ void registerRoutes(HttpFrontend& http, ServerContext& context) {
                                        "the server could not get the memory this request needs right now; "
                                        "retry later (other requests or runs are using it)",
                                        "", Json{{"retry_after_s", 30}}));
+      } catch (const StoreFullError& e) {
+        sendProblem(req, res, noRoomToWrite(req, e.what()));
       } catch (const std::exception& e) {
-        sendInternalError(req, res, e.what());
+        if (isDiskFull(e.what())) sendProblem(req, res, noRoomToWrite(req, e.what()));
+        else sendInternalError(req, res, e.what());
       } catch (...) {
         sendInternalError(req, res, "non-standard exception");
       }

@@ -127,6 +127,48 @@ TEST(OutcomeRecording, ARunThatHitAFullDiskIsRequeuedNotFailed) {
   scheduler.shutdown();
 }
 
+TEST(OutcomeRecording, ARunReQueuedForAFullDiskWaitsForSpaceInsteadOfBeingFailed) {
+  SmallFilesystem disk(8u << 20);
+  if (!disk.mounted()) GTEST_SKIP() << disk.whyNot();
+  test::TempDir dir;  // the store elsewhere: only the runs' files on the full disk
+  JobStore store((dir.path() / "db.sqlite").string());
+  const auto id = store.createJob(jobOf(1));
+  const fs::path ballast = disk.path() / "ballast";
+  RecordingExecutor fake;
+  fake.before = [&](int call) {
+    if (call == 1) {  // the disk fills up under the run, and stays full
+      SmallFilesystem::fillUp(ballast);
+      throw std::runtime_error("HDF5: cannot write file 'x' (its content is lost): No space left on device");
+    }
+  };
+  Scheduler scheduler(store, disk.path(), 1, 1, fake.executor());  // no floor: the run's own wait
+  scheduler.start();  // queues the store's accepted run
+  ASSERT_TRUE(test::waitFor([&] { return scheduler.waitingForDisk(); }, 10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // tries, were it not waiting
+  EXPECT_EQ(fake.calls, 1) << "started again on a disk still full";
+  EXPECT_EQ(store.run({id, 0})->status, Status::Accepted) << "waiting, not failed";
+  fs::remove(ballast);
+  ASSERT_TRUE(test::waitFor([&] { return store.run({id, 0})->status == Status::Successful; }, 30));
+  EXPECT_EQ(fake.calls, 2);
+  EXPECT_FALSE(scheduler.waitingForDisk());
+  scheduler.shutdown();
+}
+
+TEST(OutcomeRecording, ARunThatFillsTheDiskEveryTimeWithoutProgressFailsAfterThreeSayingSo) {
+  test::TempDir dir;
+  JobStore store((dir.path() / "db.sqlite").string());
+  const auto id = store.createJob(jobOf(1));
+  RecordingExecutor fake;
+  fake.before = [](int) { throw std::runtime_error("cannot write: No space left on device"); };
+  Scheduler scheduler(store, dir.path(), 1, 1, fake.executor());
+  scheduler.start();  // queues the store's accepted run
+  ASSERT_TRUE(test::waitFor([&] { return store.run({id, 0})->status == Status::Failed; }, 30));
+  EXPECT_EQ(fake.calls, 4);
+  EXPECT_NE(store.run({id, 0})->error.find("needs more space than the data disk has"), std::string::npos)
+      << store.run({id, 0})->error;
+  scheduler.shutdown();
+}
+
 TEST(OutcomeRecording, QueuedRunsWaitBelowTheDiskFloor) {
   SmallFilesystem disk(8u << 20);
   if (!disk.mounted()) GTEST_SKIP() << disk.whyNot();
