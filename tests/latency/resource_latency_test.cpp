@@ -122,16 +122,23 @@ TEST(ResourceLatency, AThousandRunJobWithAMegabyteDescriptionIsStoredOnceAndHeal
 
 // -- bounded renders ---------------------------------------------------------------------------
 
+/// Submits one quick run of the small example and waits for it: the job's id, or 0 when it did not
+/// succeed (the caller asserts).
+std::int64_t finishedQuickJob(httplib::Client& client) {
+  const auto knob = test::runLengthKnob();
+  const Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
+  const std::int64_t id = test::submit(client, body);
+  if (id <= 0) return 0;
+  return test::waitForJob(client, id, {"successful", "failed"}, 120)["status"] == "successful" ? id : 0;
+}
+
 TEST(ResourceLatency, RendersAreCappedInPixelsAndInConcurrencyAndHealthStaysAnswered) {
   ASSERT_TRUE(test::scenarioAvailable());
   LiveServer live;
   auto client = live.client();
-  const auto knob = test::runLengthKnob();
-  Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
-  const std::int64_t id = test::submit(*client, body);
-  ASSERT_GT(id, 0);
-  ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
-  const std::string plot = "/jobs/" + std::to_string(id) + "/summary.svg?x=" + knob.path + "&y=peak_stress&format=png";
+  const std::int64_t id = finishedQuickJob(*client);
+  ASSERT_GT(id, 0) << "the quick run did not succeed";
+  const std::string plot = "/jobs/" + std::to_string(id) + "/summary.svg?x=" + test::runLengthKnob().path + "&y=peak_stress&format=png";
   // 4000 x 3000 at scale 4: 192 Mpx, refused before any work, naming the parameter.
   expectProblem(client->Get((plot + "&scale=4&width=4000&height=3000").c_str()), 400, "scale");
   expectProblem(client->Get((plot + "&width=4000&height=3000").c_str()), 400, "width");
@@ -191,11 +198,8 @@ TEST(ResourceLatency, ThumbnailsAndSeriesPngsWaitForRenderSlotsAndHealthStaysAns
   ASSERT_TRUE(test::scenarioAvailable());
   LiveServer live;  // 8 HTTP threads, 2 renders at once and 4 waiting
   auto client = live.client();
-  const auto knob = test::runLengthKnob();
-  Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
-  const std::int64_t id = test::submit(*client, body);
-  ASSERT_GT(id, 0);
-  ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
+  const std::int64_t id = finishedQuickJob(*client);
+  ASSERT_GT(id, 0) << "the quick run did not succeed";
   const std::string run = "/jobs/" + std::to_string(id) + "/runs/0";
   // The probe: 32 thumbnails of 4000 x 2000 (the most the pixel cap allows), then 32
   // series PNGs of that size, all at once.
@@ -223,11 +227,8 @@ TEST(ResourceLatency, SigtermWithRendersInFlightExitsWithinTwoSeconds) {
   test::TempDir data;
   test::ChildServer server(data.path());
   auto client = server.client();
-  const auto knob = test::runLengthKnob();
-  Json body = {{"inputs", test::smallInputs()}, {"sweep", {{knob.path, Json::array({knob.quick})}}}};
-  const std::int64_t id = test::submit(*client, body);
-  ASSERT_GT(id, 0);
-  ASSERT_EQ(test::waitForJob(*client, id, {"successful", "failed"}, 120)["status"], "successful");
+  const std::int64_t id = finishedQuickJob(*client);
+  ASSERT_GT(id, 0) << "the quick run did not succeed";
   const std::string field = "/jobs/" + std::to_string(id) + "/runs/0/field?bonds=all&width=4000&height=2000";
   // Six large pictures: two drawing, four waiting for a turn, as /health shows them.
   std::vector<std::thread> renders;

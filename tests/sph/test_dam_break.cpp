@@ -133,17 +133,17 @@ TEST(DamBreak, BadInputsAreRejectedNamingFieldValueAndRange) {
       {&dam, "/resolution/spacing", 0.0, "resolution.spacing", "0", "> 0"},
       {&dam, "/resolution/spacing", -0.001, "resolution.spacing", "-0.001", "> 0"},
       {&dam, "/resolution/spacing", 0.05, "resolution.spacing", "0.05", "<= 0.01425 m"},
-      {&dam, "/fluid/sound_speed", -10.0, "fluid.sound_speed", "-10", "> 0"},
+      {&dam, "/fluid/sound_speed", -10.0, "fluid.sound_speed", "-10", "(0, 100000] (m/s)"},
       {&dam, "/probes/1", {0.5, 0.01}, "probes[1]", "[0.5,0.01]", "inside the tank"},
       {&dam, "/run/end_time", 0.0, "run.end_time", "0", "> 0"},
       {&dam, "/run/end_time", -1.0, "run.end_time", "-1", "> 0"},
       {&dam, "/geometry/column_width", 0.5, "geometry.tank_length", "0.4", ">= 0.5"},
       {&piston, "/resolution/spacing", 0.0, "resolution.spacing", "0", "> 0"},
       {&piston, "/resolution/spacing", 0.1, "resolution.spacing", "0.1", "<= 0.02 m"},
-      {&piston, "/fluid/sound_speed", -1450.0, "fluid.sound_speed", "-1450", "> 0"},
+      {&piston, "/fluid/sound_speed", -1450.0, "fluid.sound_speed", "-1450", "(0, 100000] (m/s)"},
       {&piston, "/probes", {{0.05, 0.1}}, "probes[0]", "[0.05,0.1]", "inside the water column"},
       {&piston, "/run/end_time", 0.0, "run.end_time", "0", "> 0"},
-      {&piston, "/piston/speed", -5.0, "piston.speed", "-5", ">= 0"},
+      {&piston, "/piston/speed", -5.0, "piston.speed", "-5", "[0, 100000] (m/s)"},
   };
   for (const Case& c : cases) {
     std::string message;
