@@ -138,5 +138,37 @@ TEST(HtmlSubmitForm, EveryScenariosFormAsOpenedIsAValidJob) {
   EXPECT_EQ(formInputs(impact, posted), posted);
 }
 
+// Issue 55: Compare pressed with nothing ticked is a page saying what to tick (JSON clients still
+// get the problem); the comparison plot claims "mean, 95 % CI" only when a job has replicates.
+TEST(HtmlCompare, AnEmptyChoiceIsAPageAndTheTitleClaimsIntervalsOnlyWithReplicates) {
+  if (!test::scenarioAvailable()) GTEST_SKIP();
+  LiveServer live([](ServerConfig& c) { c.minFreeBytes = std::numeric_limits<long long>::max(); });  // nothing runs
+  auto client = live.client();
+  for (const auto& [path, headers] : {std::pair<std::string, httplib::Headers>{"/summary?f=html", {}},
+                                      {"/summary", {{"Accept", "text/html"}}}}) {
+    auto res = client->Get(path.c_str(), headers);
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->status, 400) << path;
+    EXPECT_EQ(res->get_header_value("Content-Type"), "text/html; charset=utf-8") << path;
+    EXPECT_NE(res->body.find("<p id=\"choice\">Nothing to compare: tick the <em>Compare</em> box"), std::string::npos)
+        << res->body;
+    EXPECT_NE(res->body.find("href=\"/jobs?f=html\""), std::string::npos) << "the way back to the job list";
+    EXPECT_EQ(res->body.find("\"type\""), std::string::npos) << "not a problem document: " << res->body;
+  }
+  test::expectProblem(client->Get("/summary"), 400, "jobs");  // JSON stays a problem document
+
+  const Json sweep = {{"loading.strain_rate", test::twoStrainRates()}};
+  const std::int64_t plain = test::submit(*client, {{"inputs", test::smallInputs()}, {"sweep", sweep}});
+  const std::int64_t replicated = test::submit(
+      *client, {{"inputs", test::smallInputs()}, {"sweep", sweep}, {"replicates", {{"count", 2}, {"vary", "sample.seed"}}}});
+  auto title = [&](const std::string& jobs) {
+    auto res = client->Get(("/plot?y=peak_stress&jobs=" + jobs).c_str());
+    EXPECT_TRUE(res && res->status == 200) << jobs << ": " << (res ? res->body.substr(0, 300) : "no answer");
+    return res ? res->body : std::string();
+  };
+  EXPECT_EQ(title(std::to_string(plain)).find("mean, 95 % CI"), std::string::npos) << "one run per point, no interval";
+  EXPECT_NE(title(std::to_string(plain) + "," + std::to_string(replicated)).find("mean, 95 % CI"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rupture::server
