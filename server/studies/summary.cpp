@@ -154,7 +154,7 @@ Json resolvedInput(const JobRecord& job, const RunRecord& run, const Json& base,
   return at(base);
 }
 
-/// The seed column's path in `scenario`'s schema, or "" when it has none or the sweep names it.
+/// The seed column's path ("sample.seed") in a scenario's `schema`; "" when it has none or the sweep names it.
 std::string seedColumn(const nlohmann::json& schema, const std::vector<std::string>& sweptPaths) {
   static const std::string kSeed = "sample.seed";
   if (!schemaNodeAt(schema, kSeed)) return "";
@@ -169,12 +169,11 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
   for (const auto& p : job.sweptPaths) table.sweptPaths.push_back(p.get<std::string>());
   table.replicated = job.study.is_object() && job.study.contains("replicates");
   const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
-  const nlohmann::json plainSchema = scenario ? nlohmann::json(rupture::scenarioSchema(job.processId)) : nlohmann::json::object();
-  const nlohmann::json& schema = plainSchema;
-  if (const std::string seed = seedColumn(plainSchema, table.sweptPaths); !seed.empty()) table.inputPaths.push_back(seed);
+  const nlohmann::json schema = scenario ? rupture::scenarioSchema(job.processId) : nlohmann::json::object();
+  if (const std::string seed = seedColumn(schema, table.sweptPaths); !seed.empty()) table.inputPaths.push_back(seed);
   std::vector<Json> fallbacks;
   for (const std::string& p : table.inputPaths) {
-    const nlohmann::json* node = schemaNodeAt(plainSchema, p);
+    const nlohmann::json* node = schemaNodeAt(schema, p);
     fallbacks.push_back(node && node->contains("default") ? Json((*node)["default"]) : Json());
   }
   const Json base = table.inputPaths.empty() ? Json() : jobBaseSpec(job.processId, job.inputs);
