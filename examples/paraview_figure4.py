@@ -2,7 +2,8 @@
 """Render the seed's Figure 4 from a run: the virial stress sigma_xx of every element, with the
 broken bonds (the cracks) drawn as black lines, at one snapshot.
 
-    rupture xdmf RUN.h5                     # or download RUN.xdmf2 / the bundle from the server
+    rupture xdmf RUN.h5                     # a downloaded RUN.h5 (rupture run writes RUN.xdmf2 itself);
+                                            # or download RUN.xdmf2 / the bundle from the server
     xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch examples/paraview_figure4.py RUN.xdmf2 figure4.png [SNAPSHOT] [WIDTH HEIGHT]
 
 SNAPSHOT is the index of the snapshot (default -1, the last). Headless machines need a display:

@@ -13,9 +13,14 @@ real rupture-server (started here on a free port with its own data directory).
    the files, a comparison of two jobs, a download of a valid HDF5 file, the job's RO-Crate (read with
    zipfile and checked against RO-Crate's and the Workflow Run Crate's required entities), a plot, and the errors: a
    misspelled key raises RuptureError with the server's message and status 400, an unknown job 404.
+3. Runs the README's walk-through (its ```python blocks) as written, against the same server: the
+   runs' table has each replicate's sample.seed, the files it names are written.
 """
+import ast
 import json
+import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -68,6 +73,58 @@ def check_crate(path, job, runs):
             assert spec["loading"]["strain_rate"] in (1e6, 1e7) and spec["scenario"] == "dynamic-tension", spec
             assert action["actionStatus"]["@id"] == "http://schema.org/CompletedActionStatus", action
     return path
+
+
+def readme_statements(readme):
+    """The statements of the README's ```python blocks, in order: their >>> and ... lines without
+    the prompts (the lines they print are left out)."""
+    lines = []
+    for block in re.findall(r"```python\n(.*?)```", readme, re.S):
+        for line in block.splitlines():
+            if line.startswith((">>> ", "... ")) or line in (">>>", "..."):
+                lines.append(line[4:])
+    return ast.parse("\n".join(lines)).body
+
+
+def run_readme(source, base, data):
+    """Runs clients/python/README.md's walk-through as written, against the server at `base` (for
+    its http://127.0.0.1:8080), from a directory whose examples/ is the repository's; then checks
+    what the README says it shows: the runs' table with each replicate's seed, the units."""
+    statements = readme_statements((source / "clients" / "python" / "README.md").read_text())
+    assert len(statements) > 10, "the README's walk-through is not where the test looks"
+    work = pathlib.Path(data) / "readme"
+    work.mkdir()
+    (work / "examples").symlink_to(source / "examples")
+    try:
+        import matplotlib  # noqa: F401  (only DataFrame.plot needs it)
+        matplotlib.use("Agg")
+        plotting = True
+    except ImportError:
+        plotting = False
+    here = os.getcwd()
+    os.chdir(work)
+    try:
+        scope = {}
+        for statement in statements:
+            text = ast.unparse(statement).replace("http://127.0.0.1:8080", base)
+            try:
+                exec(compile(text, "README.md", "exec"), scope)
+            except ImportError as e:
+                if plotting or "matplotlib" not in str(e):
+                    raise
+                print(f"skipped without matplotlib: {text}")
+    finally:
+        os.chdir(here)
+    runs = scope["runs"]
+    shown = runs[["loading.strain_rate", "sample.seed", "peak_stress"]]
+    seed = json.loads((source / "examples" / "dynamic-tension-small.json").read_text())["sample"]["seed"]
+    for rate in (1e6, 1e7):
+        assert sorted(shown.loc[shown["loading.strain_rate"] == rate, "sample.seed"]) == [seed, seed + 1, seed + 2], shown
+    assert runs.attrs["units"]["peak_stress"] == "Pa" and runs.attrs["units"]["sample.seed"] == "1", runs.attrs
+    assert (work / "rates.h5").read_bytes()[:8] == b"\x89HDF\r\n\x1a\n"
+    assert (work / "peak.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert len(scope["points"]) == 2 and (scope["points"]["peak_stress.n"] == 3).all(), scope["points"]
+    print(f"ok: the README's {len(statements)} statements ran")
 
 
 def checks(server_binary, source, data):
@@ -153,6 +210,7 @@ def checks(server_binary, source, data):
         except RuptureError as e:
             assert e.status == 404 and "no job '999'" in str(e), str(e)
         print(f"ok: job {job}, {len(runs)} runs, {path.stat().st_size} bytes downloaded")
+        run_readme(source, base, data)
     finally:
         server.terminate()
         server.wait(timeout=30)

@@ -1,5 +1,6 @@
 // rupture xdmf: a ParaView sidecar for any result file, a run file or a job's merged file (one
-// sidecar per run inside it), e.g. one downloaded from the server.
+// sidecar per run inside it), e.g. one downloaded from the server. An existing sidecar is replaced
+// only with --force, as run and plot replace their outputs.
 #include <filesystem>
 #include <iostream>
 
@@ -11,21 +12,28 @@ namespace rupture::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+constexpr const char* kUsage = "usage: rupture xdmf RESULT.h5 [-o OUT.xdmf2] [--force]";
+}
+
 int xdmfCommand(const Args& args) {
   std::string input, output;
+  bool force = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "-o" || args[i] == "--output") {
+    if (args[i] == "--force") {
+      force = true;
+    } else if (args[i] == "-o" || args[i] == "--output") {
       if (i + 1 >= args.size()) return usageError("xdmf: -o needs a file name");
       output = args[++i];
     } else if (!args[i].empty() && args[i][0] == '-') {
-      return usageError("xdmf: unknown option '" + args[i] + "'; usage: rupture xdmf RESULT.h5 [-o OUT.xdmf2]");
+      return usageError("xdmf: unknown option '" + args[i] + "'; " + kUsage);
     } else if (input.empty()) {
       input = args[i];
     } else {
-      return usageError("xdmf: usage: rupture xdmf RESULT.h5 [-o OUT.xdmf2]");
+      return usageError(std::string("xdmf: ") + kUsage);
     }
   }
-  if (input.empty()) return usageError("xdmf: usage: rupture xdmf RESULT.h5 [-o OUT.xdmf2]");
+  if (input.empty()) return usageError(std::string("xdmf: ") + kUsage);
   std::error_code ec;
   if (!fs::is_regular_file(input, ec)) {
     return usageError("xdmf: cannot read '" + input + "': " +
@@ -45,13 +53,20 @@ int xdmfCommand(const Args& args) {
     return usageError("xdmf: '" + input + "' holds " + std::to_string(roots.size()) +
                       " runs; leave out -o (one sidecar per run is written beside it)");
   }
+  std::vector<std::string> paths;
   for (const std::string& root : roots) {
     // ParaView 5.11 opens *.xdmf with its broken Xdmf3 readers; *.xdmf2 picks the working one.
-    const std::string path = !output.empty() ? output
-                             : root.empty()  ? stem.string() + ".xdmf2"
-                                             : stem.string() + "." + root.substr(1) + ".xdmf2";
-    io::writeXdmfSidecar(input, path, root);
-    std::cout << path << "\n";
+    paths.push_back(!output.empty() ? output
+                    : root.empty()  ? stem.string() + ".xdmf2"
+                                    : stem.string() + "." + root.substr(1) + ".xdmf2");
+    // All or nothing: every sidecar is checked before the first is written.
+    if (!force && fs::exists(paths.back(), ec))
+      return usageError("xdmf: '" + paths.back() + "' exists; pass --force to replace it" +
+                        (roots.size() == 1 ? ", or name another -o" : ""));
+  }
+  for (std::size_t k = 0; k < roots.size(); ++k) {
+    io::writeXdmfSidecar(input, paths[k], roots[k]);
+    std::cout << paths[k] << "\n";
   }
   return 0;
 }

@@ -17,8 +17,9 @@ commands:
                                           JSON; an existing RUN.h5 is replaced only with --force;
                                           --resume continues a run stopped by Ctrl-C or SIGTERM
                                           from RUN.h5.checkpoint (rupture run --help says more)
-  xdmf RESULT.h5 [-o OUT.xdmf2]           write a ParaView sidecar for a run file, or one per run
-                                          for a job's merged file (RESULT.run-<k>.xdmf2)
+  xdmf RESULT.h5 [-o OUT.xdmf2] [--force] write a ParaView sidecar for a run file, or one per run
+                                          for a job's merged file (RESULT.run-<k>.xdmf2); an
+                                          existing sidecar is replaced only with --force
   plot RESULT.h5 -o OUT.png|svg|pdf [--field F] [--snapshot K|--time T] [--view xy|xz|yz]
        [--body all|fluid|N] [--slice D] [--bonds broken|all|none] [--min V] [--max V]
        [--width W] [--height H] [--run K] [--force]

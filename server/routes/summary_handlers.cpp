@@ -1,5 +1,7 @@
 // Summaries and plots: one job's table (JSON, CSV, replicate statistics, rate dependence) and
 // plot, and the comparison of several jobs.
+#include <algorithm>
+
 #include <httplib.h>
 
 #include "routes/answers.hpp"
@@ -154,7 +156,16 @@ void getJobSummary(ServerContext& ctx, const Request& req, Response& res) {
 
 /// GET /summary?jobs=3,5,7: the rows (or, with aggregate=replicates, the points) of several jobs.
 void getComparedSummary(ServerContext& ctx, const Request& req, Response& res) {
-  const std::vector<ComparedJob> jobs = loadComparedJobs(ctx, req);
+  std::vector<ComparedJob> jobs;
+  try {
+    jobs = loadComparedJobs(ctx, req);
+  } catch (const ApiError& e) {
+    // Compare pressed with nothing (or too much) ticked: a page saying what to tick, not a problem
+    // document in the browser. Clients asking for JSON or CSV still get the problem.
+    if (!wantsHtml(req) || e.field() != "jobs") throw;
+    res.status = e.status();
+    return sendHtml(res, compareChoiceHtml(e.what(), kMaxComparedJobs));
+  }
   const bool aggregate = aggregateParam(req);
   if (wantsHtml(req)) {
     std::string ids;
@@ -190,8 +201,11 @@ void getComparedPlot(ServerContext& ctx, const Request& req, Response& res) {
   readPlotOptions(req, table, plot);
   std::string ids;
   for (const ComparedJob& j : jobs) ids += (ids.empty() ? "" : ", ") + std::to_string(j.job.id);
+  // Means with 95 % intervals only where some job has replicates; otherwise each point is one run.
+  const bool replicated = std::any_of(jobs.begin(), jobs.end(), [](const ComparedJob& j) { return j.table.replicated; });
   if (plot.title.empty())
-    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids + " - mean, 95 % CI";
+    plot.title = columnLabel(table, plot.y) + " vs " + columnLabel(table, plot.x) + " - jobs " + ids +
+                 (replicated ? " - mean, 95 % CI" : "");
   sendPlot(req, res, table, plot, *ctx.renders);
 }
 

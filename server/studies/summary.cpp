@@ -1,5 +1,7 @@
 #include "studies/summary.hpp"
 
+#include "jobs/replicates.hpp"
+#include "jobs/sweep.hpp"
 #include "rupture/run.hpp"
 
 #include <algorithm>
@@ -71,12 +73,16 @@ Json SummaryTable::value(const SummaryRow& row, const std::string& column) const
   for (std::size_t i = 0; i < sweptPaths.size(); ++i) {
     if (sweptPaths[i] == column) return i < row.swept.size() ? row.swept[i] : Json();
   }
+  for (std::size_t i = 0; i < inputPaths.size(); ++i) {
+    if (inputPaths[i] == column) return i < row.inputs.size() ? row.inputs[i] : Json();
+  }
   auto it = row.scalars.find(column);
   return it == row.scalars.end() ? Json() : *it;
 }
 
 bool SummaryTable::hasColumn(const std::string& column) const {
   return std::find(sweptPaths.begin(), sweptPaths.end(), column) != sweptPaths.end() ||
+         std::find(inputPaths.begin(), inputPaths.end(), column) != inputPaths.end() ||
          std::find(scalarNames.begin(), scalarNames.end(), column) != scalarNames.end();
 }
 
@@ -123,6 +129,38 @@ bool repeatsSweptValue(const SummaryTable& table, const std::string& path, const
   return true;
 }
 
+/// True when a JSON Patch operation may change the value at `pointer` (it writes there, above or below).
+bool touches(const Json& op, const std::string& pointer) {
+  const std::string opName = op.value("op", "");
+  if (opName != "add" && opName != "remove" && opName != "replace" && opName != "test") return true;  // move, copy
+  const std::string path = op.value("path", "");
+  return path == pointer || pointer.rfind(path + "/", 0) == 0 || path.rfind(pointer + "/", 0) == 0;
+}
+
+/// The value `run` used at the dotted `path`: its spec's, else the schema's `fallback` (null: none).
+/// Runs are stored as patches against the job's `base` spec: one that leaves the path alone reads
+/// it from the base, without building its spec.
+Json resolvedInput(const JobRecord& job, const RunRecord& run, const Json& base, const std::string& path,
+                   const Json& fallback) {
+  auto at = [&](const Json& spec) {
+    const Json* v = findAtPath(spec, path);
+    return v ? *v : fallback;
+  };
+  if (!run.spec.is_null() || !run.specPatch.is_array()) return at(run.spec);
+  std::string pointer = '/' + path;  // "sample.seed" -> "/sample/seed" (spec keys hold no '.', '/' or '~')
+  std::replace(pointer.begin(), pointer.end(), '.', '/');
+  for (const Json& op : run.specPatch)
+    if (touches(op, pointer)) return at(runSpec(job, run));
+  return at(base);
+}
+
+/// The seed column's path ("sample.seed") in a scenario's `schema`; "" when it has none or the sweep names it.
+std::string seedColumn(const nlohmann::json& schema, const std::vector<std::string>& sweptPaths) {
+  static const std::string kSeed = "sample.seed";
+  if (!schemaNodeAt(schema, kSeed)) return "";
+  return std::find(sweptPaths.begin(), sweptPaths.end(), kSeed) == sweptPaths.end() ? kSeed : "";
+}
+
 }  // namespace
 
 SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs) {
@@ -130,12 +168,24 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
   table.jobId = job.id;
   for (const auto& p : job.sweptPaths) table.sweptPaths.push_back(p.get<std::string>());
   table.replicated = job.study.is_object() && job.study.contains("replicates");
+  const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
+  const nlohmann::json schema = scenario ? rupture::scenarioSchema(job.processId) : nlohmann::json::object();
+  if (const std::string seed = seedColumn(schema, table.sweptPaths); !seed.empty()) table.inputPaths.push_back(seed);
+  std::vector<Json> fallbacks;
+  for (const std::string& p : table.inputPaths) {
+    const nlohmann::json* node = schemaNodeAt(schema, p);
+    fallbacks.push_back(node && node->contains("default") ? Json((*node)["default"]) : Json());
+  }
+  const Json base = table.inputPaths.empty() ? Json() : jobBaseSpec(job.processId, job.inputs);
   std::vector<std::string> seen;
   for (const RunRecord& run : runs) {
     SummaryRow row;
     row.run = run.key.index;
     row.status = run.status;
     row.swept = run.swept.is_array() ? run.swept : Json::array();
+    row.inputs = Json::array();
+    for (std::size_t i = 0; i < table.inputPaths.size(); ++i)
+      row.inputs.push_back(resolvedInput(job, run, base, table.inputPaths[i], fallbacks[i]));
     row.scalars = Json::object();
     if (run.summary.is_object()) flattenInto(run.summary, "", row.scalars);
     row.error = run.error;
@@ -146,17 +196,19 @@ SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& ru
     table.rows.push_back(std::move(row));
   }
   // Column metadata from the scenario's declarations and its schema.
-  const rupture::ScenarioInfo* scenario = rupture::findScenario(job.processId);
-  Json schema = Json::object();
-  if (scenario) schema = rupture::scenarioSchema(job.processId);
   const int dimension = rupture::specDimension(schema, runs.empty() ? Json::object() : runSpec(job, runs.front()));
   for (const std::string& p : table.sweptPaths) {
     table.info[p] = {rupture::specFieldUnit(schema, p), rupture::specFieldLabel(schema, p), ""};
   }
+  for (const std::string& p : table.inputPaths) {
+    table.info[p] = {rupture::specFieldUnit(schema, p), rupture::specFieldLabel(schema, p),
+                     "The value this run used (its spec's, else the schema's default)"};
+  }
   auto keep = [&](const std::string& name) {
     for (const std::string& p : table.sweptPaths)
       if (repeatsSweptValue(table, p, name)) return false;
-    return std::find(table.sweptPaths.begin(), table.sweptPaths.end(), name) == table.sweptPaths.end();
+    return std::find(table.sweptPaths.begin(), table.sweptPaths.end(), name) == table.sweptPaths.end() &&
+           std::find(table.inputPaths.begin(), table.inputPaths.end(), name) == table.inputPaths.end();
   };
   if (scenario) {
     for (const rupture::ResultField& f : scenario->summary) {
@@ -193,6 +245,7 @@ Json summaryJson(const SummaryTable& table) {
     units[name] = info.unit;
   };
   for (const auto& p : table.sweptPaths) column(p, "swept");
+  for (const auto& p : table.inputPaths) column(p, "input");
   for (const auto& s : table.scalarNames) column(s, "result");
   doc["columns"] = columns;
   doc["units"] = units;
@@ -205,6 +258,7 @@ Json summaryJson(const SummaryTable& table) {
     for (std::size_t i = 0; i < table.sweptPaths.size(); ++i) {
       r[table.sweptPaths[i]] = i < row.swept.size() ? row.swept[i] : Json();
     }
+    for (const auto& p : table.inputPaths) r[p] = table.value(row, p);
     for (const auto& s : table.scalarNames) r[s] = table.value(row, s);
     if (!row.error.empty()) r["error"] = row.error;
     rows.push_back(std::move(r));
@@ -217,12 +271,14 @@ std::string summaryCsv(const SummaryTable& table) {
   std::ostringstream out;
   out << "run,status" << (table.replicated ? ",replicate" : "");
   for (const auto& p : table.sweptPaths) out << ',' << csvTextCell(rupture::nameWithUnit(p, table.columnInfo(p).unit));
+  for (const auto& p : table.inputPaths) out << ',' << csvTextCell(rupture::nameWithUnit(p, table.columnInfo(p).unit));
   for (const auto& s : table.scalarNames) out << ',' << csvTextCell(rupture::nameWithUnit(s, table.columnInfo(s).unit));
   out << ",error\r\n";
   for (const SummaryRow& row : table.rows) {
     out << row.run << ',' << toString(row.status);
     if (table.replicated) out << ',' << row.replicate;
     for (const auto& p : table.sweptPaths) out << ',' << csvCell(table.value(row, p));
+    for (const auto& p : table.inputPaths) out << ',' << csvCell(table.value(row, p));
     for (const auto& s : table.scalarNames) out << ',' << csvCell(table.value(row, s));
     out << ',' << csvTextCell(row.error) << "\r\n";
   }

@@ -22,6 +22,7 @@ struct SummaryRow {
   int run = 0;
   Status status = Status::Accepted;
   Json swept;    ///< array aligned with SummaryTable::sweptPaths
+  Json inputs;   ///< array aligned with SummaryTable::inputPaths
   Json scalars;  ///< flat object name -> value (nested objects flattened with dots)
   std::string error;
   int replicate = 0;  ///< replicate index within the sweep point (replicate_statistics.hpp)
@@ -30,6 +31,10 @@ struct SummaryRow {
 struct SummaryTable {
   std::int64_t jobId = 0;
   std::vector<std::string> sweptPaths;
+  /// Inputs each run resolved that the sweep does not name, one column each: the sample seed the
+  /// run used ("sample.seed": its spec's, a replicate's base + r, else the schema's default), in
+  /// scenarios that have one.
+  std::vector<std::string> inputPaths;
   /// Result scalars: the scenario's declared ones in declaration order, then undeclared ones as
   /// they appear. A scalar that repeats a swept value (strain_rate when loading.strain_rate is
   /// swept, same value in every row) is left out.
@@ -54,10 +59,10 @@ struct SummaryTable {
 SummaryTable buildSummary(const JobRecord& job, const std::vector<RunRecord>& runs);
 
 /// {"jobID", "columns": [{name, kind, unit, label, description}], "units": {name: unit},
-///  "rows": [{run, status, <columns>..., error?}]}
+///  "rows": [{run, status, <columns>..., error?}]}; kind "swept", "input" (inputPaths) or "result".
 Json summaryJson(const SummaryTable& table);
 
-/// RFC 4180 CSV: header run,status,<swept paths>,<scalars>,error, each column named
+/// RFC 4180 CSV: header run,status,<swept paths>,<input paths>,<scalars>,error, each column named
 /// "name [unit]" (rupture::nameWithUnit: "peak_stress [Pa]", "fragments [1]", text columns bare);
 /// one line per run.
 std::string summaryCsv(const SummaryTable& table);

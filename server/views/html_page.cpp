@@ -89,6 +89,7 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
   struct Column {
     std::string name, unit, label;
     bool swept;
+    bool input = false;  ///< an input every run shares: under "All columns" only
   };
   std::vector<Column> columns;
   for (const auto& col : summary.value("columns", Json::array())) {
@@ -99,7 +100,13 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
       k.unit = summary["units"][k.name].get<std::string>();
     k.label = col.is_object() ? col.value("label", "") : "";
     if (k.label.empty()) k.label = k.name;
-    k.swept = col.is_object() && (col.value("kind", "") == "swept" || col.value("kind", "") == "job");
+    const std::string kind = col.is_object() ? col.value("kind", "") : "";
+    k.swept = kind == "swept" || kind == "job";
+    // An input column (the sample seed) heads the table when it tells the runs apart (replicates).
+    if (kind == "input")
+      for (const auto& row : summary.value("rows", Json::array()))
+        k.swept = k.swept || row.value(k.name, Json()) != summary["rows"][0].value(k.name, Json());
+    k.input = kind == "input" && !k.swept;
     columns.push_back(std::move(k));
   }
   const Json rows = summary.value("rows", Json::array());
@@ -136,7 +143,7 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
   std::size_t results = 0;
   for (const Column& k : columns) {
     all.push_back(&k);
-    if (k.swept || results++ < shownResults) headline.push_back(&k);
+    if (k.swept || (!k.input && results++ < shownResults)) headline.push_back(&k);
   }
   std::string out = table(id, headline);
   if (headline.size() < all.size())

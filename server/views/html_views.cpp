@@ -260,4 +260,13 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
   return page("Compare jobs " + ids, c);
 }
 
+HtmlPage compareChoiceHtml(const std::string& detail, std::size_t maxJobs) {
+  const std::string c =
+      "<p id=\"choice\">Nothing to compare: tick the <em>Compare</em> box of each job you want side by side in the "
+      "<a href=\"/jobs?f=html\">job list</a> (up to " + std::to_string(maxJobs) +
+      "; one job alone shows its rows), then press <em>Compare the chosen jobs</em>.</p>"
+      "<p class=\"hint\">" + xmlEscape(detail) + "</p>";
+  return page("Compare jobs", c);
+}
+
 }  // namespace rupture::server

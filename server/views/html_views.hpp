@@ -24,4 +24,8 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
 /// column and the comparison plot.
 HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath);
 
+/// The page a person gets who pressed Compare with no job ticked (or a choice the server cannot
+/// compare, `detail` saying why): what to tick (at most `maxJobs`), and the way back to the job list.
+HtmlPage compareChoiceHtml(const std::string& detail, std::size_t maxJobs);
+
 }  // namespace rupture::server

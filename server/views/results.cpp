@@ -38,6 +38,7 @@ void writeSummaryTable(Hdf5File& out, const SummaryTable& table) {
   out.writeDataset("/summary/status", status, "");
   describe("/summary/status", "Status", "Final status of the run");
   std::vector<std::string> names = table.sweptPaths;
+  names.insert(names.end(), table.inputPaths.begin(), table.inputPaths.end());
   names.insert(names.end(), table.scalarNames.begin(), table.scalarNames.end());
   for (const std::string& name : names) {
     const ColumnInfo info = table.columnInfo(name);
@@ -67,7 +68,7 @@ void writeSummaryTable(Hdf5File& out, const SummaryTable& table) {
   }
   out.setAttribute("/summary", "columns", columns.dump());
   out.setAttribute("/summary", "description",
-                   "One row per run of the job: its swept values and result scalars, one dataset per column "
+                   "One row per run of the job: its swept values, sample seed and result scalars, one dataset per column "
                    "(listed in order in \"columns\"), each with its SI unit in the attribute \"unit\"");
 }
 

@@ -63,11 +63,24 @@ std::string shown(const Json& v, const std::string& kind) {
   return shortest(v);
 }
 
+/// `value` at the dotted `path` in `root`, making the objects on the way (the script's setPath).
+void setPath(Json& root, const std::string& path, const Json& value) {
+  Json* node = &root;
+  std::size_t from = 0;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; from = dot + 1, dot = path.find('.', from)) {
+    Json& next = (*node)[path.substr(from, dot - from)];
+    if (!next.is_object()) next = Json::object();
+    node = &next;
+  }
+  (*node)[path.substr(from)] = value;
+}
+
 struct FormBuilder {
   std::string html;
   std::vector<std::string> sweepable;  // leaf paths a sweep may vary
+  Json inputs = Json::object();        // what the script posts when nothing is changed
 
-  void fields(const Json& schema, const Json& start, const std::string& prefix, bool present, int depth) {
+  void fields(const Json& schema, const Json& start, const std::string& prefix, int depth) {
     if (!schema.is_object() || !schema.contains("properties") || depth > 5) return;
     const Json required = schema.value("required", Json::array());
     for (const auto& [key, sub] : schema["properties"].items()) {
@@ -81,13 +94,18 @@ struct FormBuilder {
         // if something in it is filled in).
         html += std::string("<details") + (given ? " open" : "") + "><summary><code>" + xmlEscape(path) + "</code> " +
                 xmlEscape(sub.value("description", "")).substr(0, 160) + "</summary><div class=\"group\">";
-        fields(sub, given ? start[key] : Json(), path, given, depth + 1);
+        fields(sub, given ? start[key] : Json(), path, depth + 1);
         html += "</div></details>\n";
         continue;
       }
       const std::string kind = kindOf(sub);
-      // The starting value, else the schema's default where the enclosing object is in use.
-      Json value = given ? start[key] : (present && sub.contains("default") ? sub["default"] : Json());
+      // Only the starting spec fills a field. A schema default is shown, not filled in: sent, it
+      // would be a choice nobody made, and it may not apply to the chosen model or shape at all
+      // (bond_gap on a lattice, a crack count on a plain hole); left empty, the server applies it
+      // where it belongs.
+      const Json value = given ? start[key] : Json();
+      const std::string placeholder = sub.contains("default") ? "default " + shown(sub["default"], kind) : std::string();
+      if (!value.is_null() && !(value.is_string() && value.get<std::string>().empty())) setPath(inputs, path, value);
       const std::string id = "in-" + path;
       html += "<div class=\"field\"><label for=\"" + xmlEscape(id) + "\" title=\"" +
               xmlEscape(sub.value("description", "")) + "\"><code>" + xmlEscape(path) + "</code>" +
@@ -95,7 +113,8 @@ struct FormBuilder {
       const std::string attributes = "id=\"" + xmlEscape(id) + "\" data-path=\"" + xmlEscape(path) +
                                      "\" data-kind=\"" + kind + "\"";
       if (kind == "enum" || kind == "boolean") {
-        html += "<select " + attributes + "><option value=\"\"></option>";
+        html += "<select " + attributes + "><option value=\"\">" + xmlEscape(placeholder.empty() ? "" : "(" + placeholder + ")") +
+                "</option>";
         const Json options = kind == "enum" ? sub["enum"] : Json::array({true, false});
         for (const auto& o : options) {
           const std::string text = o.is_string() ? o.get<std::string>() : o.dump();
@@ -104,11 +123,15 @@ struct FormBuilder {
         }
         html += "</select>";
       } else if (kind == "json") {
-        html += "<textarea rows=\"2\" cols=\"60\" " + attributes + " placeholder=\"JSON\">" +
+        html += "<textarea rows=\"2\" cols=\"60\" " + attributes + " placeholder=\"" +
+                xmlEscape(placeholder.empty() ? "JSON" : placeholder) + "\">" +
                 xmlEscape(value.is_null() ? "" : value.dump()) + "</textarea>";
       } else {
         html += "<input size=\"24\" " + attributes + " value=\"" + xmlEscape(shown(value, kind)) + "\"" +
-                (kind == "numbers" ? " placeholder=\"a, b, ...\"" : "") + ">";
+                (!placeholder.empty() ? " placeholder=\"" + xmlEscape(placeholder) + "\""
+                 : kind == "numbers"  ? std::string(" placeholder=\"a, b, ...\"")
+                                      : std::string()) +
+                ">";
       }
       if (const std::string unit = schemaUnit(sub); !unit.empty() && unit != "1")
         html += " <span class=\"unit\">" + xmlEscape(unit) + "</span>";
@@ -154,11 +177,8 @@ form.addEventListener('submit',async e=>{e.preventDefault();out.textContent='';
  if(d.field){const el=form.querySelector('[data-path="'+CSS.escape(d.field)+'"]');if(el){el.classList.add('bad');el.focus();}}});
 )js";
 
-}  // namespace
-
-HtmlPage processHtml(const Json& process, const Json& start) {
-  const std::string id = process.value("id", "");
-  const Json schema = process.value("inputsSchema", Json::object());
+/// The form for `process`, filled from `start` (empty: the schema's first example).
+FormBuilder buildForm(const Json& schema, const Json& start) {
   Json inputs = start;
   if (!inputs.is_object() || inputs.empty()) {
     inputs = Json::object();
@@ -166,13 +186,27 @@ HtmlPage processHtml(const Json& process, const Json& start) {
       inputs = schema["examples"][0];
   }
   FormBuilder form;
-  form.fields(schema, inputs, "", true, 0);
+  form.fields(schema, inputs, "", 0);
+  return form;
+}
+
+}  // namespace
+
+Json formInputs(const Json& process, const Json& start) {
+  return buildForm(process.value("inputsSchema", Json::object()), start).inputs;
+}
+
+HtmlPage processHtml(const Json& process, const Json& start) {
+  const std::string id = process.value("id", "");
+  const Json schema = process.value("inputsSchema", Json::object());
+  const FormBuilder form = buildForm(schema, start);
 
   std::string c = "<p>" + esc(process.value("description", Json(""))) + "</p>\n"
                   "<h2>Submit a job</h2><p>The form starts from " +
                   std::string(start.is_object() && !start.empty() ? "the job it was opened from"
                                                                   : "the scenario's example") +
-                  " and the schema's defaults; an empty field is left to the server's default. Units are SI. "
+                  "; an empty field is left to the server, which applies the default shown in it where it applies to the "
+                  "chosen model or shape. Units are SI. "
                   "The same request as JSON: <code>POST /processes/" + xmlEscape(id) +
                   "/execution</code> (docs/server.md).</p>"
                   "<form id=\"submit-form\" data-action=\"" + href("/processes/" + id + "/execution") + "\">\n" +

@@ -5,9 +5,11 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "server_test_support.hpp"
 #include "views/html_views.hpp"
+#include "views/submit_form.hpp"
 
 namespace rupture::server {
 namespace {
@@ -100,6 +102,72 @@ TEST(HtmlJobPage, AFailedJobSaysWhyAndOffersNoFileThatDoesNotExist) {
   Json running = status;
   running["status"] = "running";
   EXPECT_EQ(jobHtml(running, Json(), "").body.find("/crate"), std::string::npos) << "not before its last run (409)";
+}
+
+// Issue 55: every scenario's form, submitted as opened, is a job (not a 400 over a default the form
+// filled in for a model or shape that was not chosen: bond_gap on a lattice, a crack count on a hole).
+TEST(HtmlSubmitForm, EveryScenariosFormAsOpenedIsAValidJob) {
+  LiveServer live([](ServerConfig& c) { c.minFreeBytes = std::numeric_limits<long long>::max(); });  // nothing runs
+  auto client = live.client();
+  const auto scenarios = rupture::listScenarios();
+  EXPECT_GE(scenarios.size(), 7u);
+  for (const auto& s : scenarios) {
+    SCOPED_TRACE(s.name);
+    const Json process = getJson(*client, "/processes/" + s.name);
+    const Json inputs = formInputs(process, Json::object());
+    ASSERT_TRUE(inputs.is_object() && !inputs.empty()) << "the form starts from the schema's example";
+    // The page holds what formInputs says it posts: each top-level field's inputs are on it.
+    const std::string page = getHtml(*client, "/processes/" + s.name + "?f=html");
+    for (const auto& [key, value] : inputs.items())
+      EXPECT_NE(page.find("data-path=\"" + key), std::string::npos) << key;
+    auto res = test::postJson(*client, "/processes/" + s.name + "/execution", Json{{"inputs", inputs}});
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 201) << inputs.dump() << "\n" << res->body;
+  }
+  // A default is shown, not sent: impact's example is a square lattice, where bond_gap does not apply.
+  const Json impact = getJson(*client, "/processes/impact");
+  EXPECT_FALSE(formInputs(impact, Json::object())["sample"].contains("bond_gap"));
+  const std::string page = processHtml(impact, Json::object()).body;
+  const std::size_t gap = page.find("data-path=\"sample.bond_gap\"");
+  ASSERT_NE(gap, std::string::npos);
+  const std::string input = page.substr(gap, page.find('>', gap) - gap);
+  EXPECT_NE(input.find("value=\"\""), std::string::npos) << input;
+  EXPECT_NE(input.find("placeholder=\"default 0.1\""), std::string::npos) << input;
+  // A job's variant starts from what that job posted, and posts it back unchanged.
+  const Json posted = formInputs(impact, Json::object());
+  EXPECT_EQ(formInputs(impact, posted), posted);
+}
+
+// Issue 55: Compare pressed with nothing ticked is a page saying what to tick (JSON clients still
+// get the problem); the comparison plot claims "mean, 95 % CI" only when a job has replicates.
+TEST(HtmlCompare, AnEmptyChoiceIsAPageAndTheTitleClaimsIntervalsOnlyWithReplicates) {
+  if (!test::scenarioAvailable()) GTEST_SKIP();
+  LiveServer live([](ServerConfig& c) { c.minFreeBytes = std::numeric_limits<long long>::max(); });  // nothing runs
+  auto client = live.client();
+  for (const auto& [path, headers] : {std::pair<std::string, httplib::Headers>{"/summary?f=html", {}},
+                                      {"/summary", {{"Accept", "text/html"}}}}) {
+    auto res = client->Get(path.c_str(), headers);
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->status, 400) << path;
+    EXPECT_EQ(res->get_header_value("Content-Type"), "text/html; charset=utf-8") << path;
+    EXPECT_NE(res->body.find("<p id=\"choice\">Nothing to compare: tick the <em>Compare</em> box"), std::string::npos)
+        << res->body;
+    EXPECT_NE(res->body.find("href=\"/jobs?f=html\""), std::string::npos) << "the way back to the job list";
+    EXPECT_EQ(res->body.find("\"type\""), std::string::npos) << "not a problem document: " << res->body;
+  }
+  test::expectProblem(client->Get("/summary"), 400, "jobs");  // JSON stays a problem document
+
+  const Json sweep = {{"loading.strain_rate", test::twoStrainRates()}};
+  const std::int64_t plain = test::submit(*client, {{"inputs", test::smallInputs()}, {"sweep", sweep}});
+  const std::int64_t replicated = test::submit(
+      *client, {{"inputs", test::smallInputs()}, {"sweep", sweep}, {"replicates", {{"count", 2}, {"vary", "sample.seed"}}}});
+  auto title = [&](const std::string& jobs) {
+    auto res = client->Get(("/plot?y=peak_stress&jobs=" + jobs).c_str());
+    EXPECT_TRUE(res && res->status == 200) << jobs << ": " << (res ? res->body.substr(0, 300) : "no answer");
+    return res ? res->body : std::string();
+  };
+  EXPECT_EQ(title(std::to_string(plain)).find("mean, 95 % CI"), std::string::npos) << "one run per point, no interval";
+  EXPECT_NE(title(std::to_string(plain) + "," + std::to_string(replicated)).find("mean, 95 % CI"), std::string::npos);
 }
 
 }  // namespace

@@ -154,8 +154,9 @@ TEST(ResultUnits, EveryScenarioDeclaresAndWritesAUnitForEveryResult) {
     }
     const auto csv = test::parseCsv(summaryCsv(table));
     ASSERT_EQ(csv.size(), 2u);
+    ASSERT_EQ(csv[0].size(), 3 + doc["columns"].size());  // run, status, the columns, error
     for (std::size_t c = 2; c + 1 < csv[0].size(); ++c) {
-      const std::string name = table.scalarNames[c - 2];
+      const std::string name = doc["columns"][c - 2]["name"];
       const std::string unit = doc["units"][name];
       EXPECT_EQ(headerUnit(csv[0][c]), unit.empty() ? "(none)" : unit) << csv[0][c];
     }
@@ -210,6 +211,9 @@ TEST(MergedResults, SummaryTableWithUnitsAndNoServerPaths) {
     EXPECT_EQ(h5.readDatasetInt("/summary/run"), (std::vector<std::int64_t>{0, 1, 2}));
     EXPECT_EQ(h5.readDatasetString("/summary/status"), (std::vector<std::string>{"successful", "successful", "failed"}));
     EXPECT_EQ(h5.readDatasetString("/summary/loading.initial_velocity"), (std::vector<std::string>{"V0", "VL", "V0"}));
+    const double seed = spec["sample"].contains("seed") ? spec["sample"]["seed"].get<double>() : 1.0;  // schema default 1
+    EXPECT_EQ(h5.readDatasetDouble("/summary/sample.seed"), (std::vector<double>{seed, seed, seed}));
+    EXPECT_EQ(h5.readAttributeString("/summary/sample.seed", "unit"), "1");
     EXPECT_EQ(h5.readAttributeString("/summary/loading.strain_rate", "unit"), "1/s");
     EXPECT_EQ(h5.readAttributeString("/summary/loading.strain_rate", "label"), "Strain rate");
     const std::vector<double> peak = h5.readDatasetDouble("/summary/peak_stress");

@@ -3,11 +3,13 @@
 // and an adaptive refinement that adds exactly its budget.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
 #include "io/hdf5_file.hpp"
 #include "server_test_support.hpp"
+#include "views/html_page.hpp"
 
 namespace rupture::server {
 namespace {
@@ -185,6 +187,65 @@ TEST_F(StudyHttp, RefinementAddsItsBudgetBetweenTheNeighboursAndRecordsWhy) {
   ASSERT_EQ(done["runs_total"], 3);
   EXPECT_EQ(done["runs"][2]["swept"]["loading.strain_rate"], point["value"]);
   EXPECT_EQ(done["runs"][2]["status"], "successful");
+}
+
+// Issue 55: every table says which sample seed each run used (replicates: base + r; a spec without
+// one: the schema's default), in JSON, CSV and on the job page. Admission only: nothing runs.
+TEST_F(StudyHttp, TheSummaryCarriesTheSeedEachRunUsed) {
+  LiveServer live([](ServerConfig& c) { c.minFreeBytes = std::numeric_limits<long long>::max(); });
+  auto client = live.client();
+  Json inputs = test::smallInputs();
+  inputs["sample"]["seed"] = 40;
+  const Json rates = test::twoStrainRates();
+  const std::int64_t id = test::submit(*client, {{"inputs", inputs},
+                                                 {"sweep", {{"loading.strain_rate", rates}}},
+                                                 {"replicates", {{"count", 3}, {"vary", "sample.seed"}}}});
+  ASSERT_GT(id, 0);
+  const std::string base = "/jobs/" + std::to_string(id) + "/summary";
+  const Json doc = getJson(*client, base);
+  const auto column = std::find_if(doc["columns"].begin(), doc["columns"].end(),
+                                   [](const Json& c) { return c["name"] == "sample.seed"; });
+  ASSERT_NE(column, doc["columns"].end()) << doc["columns"].dump();
+  EXPECT_EQ((*column)["kind"], "input");
+  EXPECT_EQ((*column)["unit"], "1");
+  ASSERT_EQ(doc["rows"].size(), 6u);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(doc["rows"][k]["sample.seed"], 40 + k % 3) << doc["rows"][k].dump();
+
+  auto csv = client->Get((base + "?format=csv").c_str());
+  ASSERT_TRUE(csv);
+  const auto table = test::parseCsv(csv->body);
+  ASSERT_EQ(table.size(), 7u);
+  const auto at = std::find(table[0].begin(), table[0].end(), "sample.seed [1]");
+  ASSERT_NE(at, table[0].end()) << csv->body.substr(0, 300);
+  const std::size_t c = at - table[0].begin();
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(table[k + 1][c], std::to_string(40 + k % 3));
+
+  // The job page's table (once the runs have ended) from the same document: seeds that tell
+  // replicates apart head it; a seed shared by every run waits under "All columns".
+  const std::string headline = html::summaryTable(doc, "summary");
+  EXPECT_NE(headline.substr(0, headline.find("</table>")).find("<th title=\"sample.seed\">"), std::string::npos)
+      << headline;
+  Json oneSeed = doc;
+  for (auto& row : oneSeed["rows"]) row["sample.seed"] = 40;
+  const std::string plain = html::summaryTable(oneSeed, "summary");
+  EXPECT_EQ(plain.substr(0, plain.find("</table>")).find("<th title=\"sample.seed\">"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("<th title=\"sample.seed\">"), std::string::npos) << plain;
+
+  // Without a seed in the spec, the schema's default (1) is the base.
+  inputs["sample"].erase("seed");
+  const std::int64_t defaulted =
+      test::submit(*client, {{"inputs", inputs}, {"replicates", {{"count", 2}, {"vary", "sample.seed"}}}});
+  const Json rows = getJson(*client, "/jobs/" + std::to_string(defaulted) + "/summary")["rows"];
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["sample.seed"], 1);
+  EXPECT_EQ(rows[1]["sample.seed"], 2);
+  // A swept seed is its swept column, not a second one.
+  const std::int64_t swept = test::submit(*client, {{"inputs", inputs}, {"sweep", {{"sample.seed", {7, 9}}}}});
+  const Json sweptDoc = getJson(*client, "/jobs/" + std::to_string(swept) + "/summary");
+  EXPECT_EQ(std::count_if(sweptDoc["columns"].begin(), sweptDoc["columns"].end(),
+                          [](const Json& c) { return c["name"] == "sample.seed"; }),
+            1);
+  EXPECT_EQ(sweptDoc["rows"][1]["sample.seed"], 9);
 }
 
 }  // namespace

@@ -68,9 +68,14 @@ TEST(Summary, RowsHoldSweptValuesAndScalarsInAStableOrder) {
   // Units and labels: swept fields from the schema's "x-unit", scalars from the scenario's declarations.
   EXPECT_EQ(doc["columns"][0]["unit"], "1/s");
   EXPECT_EQ(doc["columns"][1]["unit"], "");  // initial_velocity is text
-  EXPECT_EQ(doc["columns"][2]["name"], "peak_stress");
-  EXPECT_EQ(doc["columns"][2]["unit"], "Pa");
-  EXPECT_EQ(doc["columns"][2]["label"], "Peak stress");
+  // The seed each run used, after the swept values (these runs have no spec: the schema's default).
+  EXPECT_EQ(doc["columns"][2]["name"], "sample.seed");
+  EXPECT_EQ(doc["columns"][2]["kind"], "input");
+  EXPECT_EQ(doc["columns"][2]["unit"], "1");
+  EXPECT_EQ(doc["rows"][3]["sample.seed"], 1);
+  EXPECT_EQ(doc["columns"][3]["name"], "peak_stress");
+  EXPECT_EQ(doc["columns"][3]["unit"], "Pa");
+  EXPECT_EQ(doc["columns"][3]["label"], "Peak stress");
   EXPECT_EQ(doc["units"]["peak_stress"], "Pa");
   EXPECT_EQ(doc["units"]["fragments"], "1");
   EXPECT_EQ(doc["units"]["wall_time_s"], "s");
@@ -87,13 +92,15 @@ TEST(Summary, CsvIsRectangularAndQuotesWhatItMust) {
   EXPECT_EQ(rows[0][0], "run");
   EXPECT_EQ(rows[0][2], "loading.strain_rate [1/s]");
   EXPECT_EQ(rows[0][3], "loading.initial_velocity");
-  EXPECT_EQ(rows[0][4], "peak_stress [Pa]");
-  EXPECT_EQ(rows[0][5], "fragments [1]");
+  EXPECT_EQ(rows[0][4], "sample.seed [1]");
+  EXPECT_EQ(rows[0][5], "peak_stress [Pa]");
+  EXPECT_EQ(rows[0][6], "fragments [1]");
   EXPECT_EQ(rows[0].back(), "error");
   EXPECT_DOUBLE_EQ(std::stod(rows[1][2]), 1e5);
-  EXPECT_DOUBLE_EQ(std::stod(rows[2][4]), 2e8);
+  EXPECT_EQ(rows[1][4], "1");
+  EXPECT_DOUBLE_EQ(std::stod(rows[2][5]), 2e8);
   EXPECT_EQ(rows[6].back(), "diverged, \"badly\"");
-  EXPECT_EQ(rows[6][4], "");
+  EXPECT_EQ(rows[6][5], "");
 }
 
 TEST(SvgPlot, LogScaleOnlyWhenValuesSpanDecades) {
