@@ -19,9 +19,7 @@ using rupture::testing::writeSpec;
 
 TEST(CliPlot, DrawsTheFieldAndTheSeriesOfARun) {
   ScratchDir dir;
-  nlohmann::json spec =
-      nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
-  spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
+  const nlohmann::json spec = rupture::testing::quickSmallSpec();
   const fs::path run = dir.path() / "run.h5";
   ASSERT_EQ(runCli("run " + writeSpec(spec, "cli-plot.json") + " -o " + run.string() + " --threads 1").exitCode, 0);
 
