@@ -147,19 +147,25 @@ double secondsToStopOnSigint(const std::string& specPath, const fs::path& out, c
   return seen ? seconds : -1;
 }
 
+/// Runs `spec` with `rupture run`, presses Ctrl-C once its stderr shows `stage`, and expects it to
+/// exit with 130 within 2 s (the checkpoint of the run so far included); removes what it wrote.
+void expectCtrlCStopsWithinASecond(const nlohmann::json& spec, const std::string& name, const std::string& stage) {
+  const fs::path out = fs::temp_directory_path() / ("rupture-cli-guards-" + name + "-" + std::to_string(::getpid()) + ".h5");
+  int code = 0;
+  std::string err;
+  const double seconds = secondsToStopOnSigint(writeSpec(spec, name + ".json"), out, stage, code, err);
+  std::cout << "[ measured ] rupture run exited " << seconds << " s after SIGINT during '" << stage << "'\n";
+  EXPECT_GE(seconds, 0) << err;
+  EXPECT_EQ(code, 130) << err;
+  EXPECT_LT(seconds, 2.0) << err;  // the issue asks for 1 s; the margin is for a loaded CI machine
+  for (const char* suffix : {"", ".checkpoint", ".stderr"}) fs::remove(out.string() + suffix);
+  fs::remove(fs::path(out).replace_extension(".xdmf2"));
+}
+
 TEST(CliInputGuards, ALongAdmittedRunStopsOnCtrlCWithinASecond) {
   nlohmann::json spec = smallExample();
   spec["loading"] = {{"strain_rate", 1e3}, {"initial_velocity", "VL"}};  // half an hour of one core
-  const fs::path out = fs::temp_directory_path() / ("rupture-cli-guards-long-" + std::to_string(::getpid()) + ".h5");
-  int code = 0;
-  std::string err;
-  const double seconds = secondsToStopOnSigint(writeSpec(spec, "long-run.json"), out, "main run", code, err);
-  std::cout << "[ measured ] rupture run exited " << seconds << " s after SIGINT during stepping\n";
-  ASSERT_GE(seconds, 0) << err;
-  EXPECT_EQ(code, 130) << err;
-  EXPECT_LT(seconds, 2.0) << err;  // the checkpoint of 1,600 elements included
-  for (const char* suffix : {"", ".checkpoint", ".stderr"}) fs::remove(out.string() + suffix);
-  fs::remove(fs::path(out).replace_extension(".xdmf2"));
+  expectCtrlCStopsWithinASecond(spec, "long-run", "main run");
 }
 
 TEST(CliInputGuards, CtrlCStopsTheBuildingOfALargeSampleWithinASecond) {
@@ -171,16 +177,7 @@ TEST(CliInputGuards, CtrlCStopsTheBuildingOfALargeSampleWithinASecond) {
   spec["sample"].erase("pore_radius");
   spec["loading"] = {{"strain_rate", 1e6}, {"initial_velocity", "VL"}};
   spec["output"] = {{"cache_sample", false}};
-  const fs::path out = fs::temp_directory_path() / ("rupture-cli-guards-packing-" + std::to_string(::getpid()) + ".h5");
-  int code = 0;
-  std::string err;
-  const double seconds = secondsToStopOnSigint(writeSpec(spec, "large-sample.json"), out, "building the sample", code, err);
-  std::cout << "[ measured ] rupture run exited " << seconds << " s after SIGINT during the packing\n";
-  ASSERT_GE(seconds, 0) << err;
-  EXPECT_EQ(code, 130) << err;
-  EXPECT_LT(seconds, 2.0) << err;
-  for (const char* suffix : {"", ".checkpoint", ".stderr"}) fs::remove(out.string() + suffix);
-  fs::remove(fs::path(out).replace_extension(".xdmf2"));
+  expectCtrlCStopsWithinASecond(spec, "large-sample", "building the sample");
 }
 
 }  // namespace
