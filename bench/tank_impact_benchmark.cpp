@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -50,6 +51,58 @@ nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options) {
           {"checkpoint_bytes", control.checkpointBytes.load()},
           {"checkpoint_seconds", control.checkpointSeconds.load()},
           {"checkpoint_overhead_at_300_s", control.checkpointSeconds.load() / 300.0}};
+}
+
+nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
+  const std::string path = std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5-step.json";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("bench TANK-SEED: cannot read " + path);
+  nlohmann::json spec = nlohmann::json::parse(in);
+  spec["resolution"]["spacing"] = 0.002;              // the seed's fluid, about 2 mm (§4.2)
+  spec["plate"]["bottom"]["step_spacing"] = 0.0005;  // the seed's 0.5 mm where it tears (§5.3.1)
+  spec["run"]["end_time"] = options.endTime;
+  spec["run"].erase("snapshot_times");
+  if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / ("rupture-bench-tank-seed-" + std::to_string(::getpid()) + ".h5");
+  RunControl control;
+  const auto start = std::chrono::steady_clock::now();
+  const RunOutcome outcome = runSpec(spec, out.string(), control, options.threads);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::filesystem::remove(out);
+  std::filesystem::remove(out.string() + ".checkpoint");
+  const nlohmann::json& s = outcome.summary;
+  const double steps = s["steps"].get<double>(), fineSteps = s["shell_steps"].get<double>();
+  const double particles = s["particles"].get<double>(), nodes = s["plate_nodes"].get<double>();
+  const double shellSeconds = s["shell_time_s"].get<double>(), fluidSeconds = s["fluid_time_s"].get<double>();
+  return {{"workload", "TANK-SEED (tank-impact TF14A5 at the seed's inputs)"},
+          {"threads", options.threads},
+          {"subcycling", s["shell_coarsest_class"].get<int>() > 0},
+          {"end_time_s", options.endTime},
+          {"sph_particles", particles},
+          {"plate_nodes", nodes},
+          {"fluid_steps", steps},
+          {"shell_fine_steps", fineSteps},
+          {"shell_fine_steps_per_fluid_step", fineSteps / steps},
+          {"shell_coarsest_class", s["shell_coarsest_class"]},
+          {"shell_points_per_class", s["shell_points_per_class"]},
+          {"shell_point_evaluations", s["shell_point_evaluations"]},
+          {"wall_seconds", wall},
+          {"fluid_seconds", fluidSeconds},
+          {"shell_seconds", shellSeconds},
+          {"contact_seconds", s["contact_time_s"]},
+          {"shell_profile_s",
+           {{"gradients", s["shell_gradients_time_s"]}, {"layers", s["shell_layers_time_s"]},
+            {"forces", s["shell_forces_time_s"]}, {"integration", s["shell_integration_time_s"]},
+            {"fracture", s["shell_fracture_time_s"]}}},
+          {"fluid_particle_steps_per_s", particles * steps / fluidSeconds},
+          {"shell_node_updates_per_s", nodes * fineSteps / shellSeconds},
+          {"shell_point_evaluations_per_s", s["shell_point_evaluations"].get<double>() / shellSeconds},
+          {"time_to_fracture_s", s["time_to_fracture"]},
+          {"fracture_radius_m", s["fracture_radius"]},
+          {"first_pressure_peak_pa", s["first_pressure_peak"]},
+          {"fractured_nodes", s["fractured_nodes"]},
+          {"rim_torn_fraction", s["rim_torn_fraction"]}};
 }
 
 }  // namespace rupture::bench

@@ -19,4 +19,19 @@ struct TankImpactOptions {
 /// seconds of fluid, shell and contact, fluid_particle_steps_per_s, shell_node_steps_per_s.
 nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options);
 
+/// TANK-SEED: the seed's TF14A5 at the seed's inputs (examples/tank-impact-TF14A5-step.json with the
+/// fluid at 2 mm and the plate's band at the step at 0.5 mm, Caleyron et al. 2013 §4.2, §5.3.1),
+/// run whole to `endTime` (the seed's window: 2.5 ms), the shell single-rate or subcycled.
+struct TankSeedOptions {
+  int threads = 1;
+  double endTime = 2.5e-3;  ///< s
+  int subcycling = -1;      ///< 1 on, 0 off, -1 the spec's default
+};
+
+/// Runs it and returns one JSON object: the wall time and its split, the fluid's particle-steps
+/// and the shell's node-updates per second, the shell's fine steps per fluid step and its points
+/// per class, and the physics the seed is compared on (time and place of the first fracture, the
+/// first pressure peak).
+nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options);
+
 }  // namespace rupture::bench

@@ -52,11 +52,42 @@ int benchThreadsAndSteps(const Args& args, nlohmann::json (*run)(const Options&)
   return 0;
 }
 
+/// rupture bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]: the seed's TF14A5
+/// at the seed's inputs, run whole (bench/README.md).
+int benchTankSeed(const Args& args) {
+  bench::TankSeedOptions options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
+    const std::string& value = args[k + 1];
+    if (args[k] == "--threads") {
+      long long v = 0;
+      if (!parseIntOption("--threads", value, 1, 1024, v)) return 2;
+      options.threads = static_cast<int>(v);
+    } else if (args[k] == "--end-time") {
+      char* end = nullptr;
+      const double t = std::strtod(value.c_str(), &end);
+      if (end == value.c_str() || *end != '\0' || !(t > 0.0 && t <= 0.01))
+        return usageError("bench TANK-SEED: --end-time = '" + value + "'; allowed: a time in (0, 0.01] s");
+      options.endTime = t;
+    } else if (args[k] == "--subcycling") {
+      if (value != "on" && value != "off")
+        return usageError("bench TANK-SEED: --subcycling = '" + value + "'; allowed: on, off");
+      options.subcycling = value == "on" ? 1 : 0;
+    } else {
+      return usageError("bench TANK-SEED: unknown option '" + args[k] + "'; allowed: --threads, --end-time, --subcycling");
+    }
+    ++k;
+  }
+  printReport(bench::runTankSeedBenchmark(options));
+  return 0;
+}
+
 }  // namespace
 
 int benchCommand(const Args& args) {
   if (!args.empty() && args[0] == "W2") return benchThreadsAndSteps(args, bench::runW2);  // peridynamics
   if (!args.empty() && args[0] == "W3") return benchThreadsAndSteps(args, bench::runW3);  // SPH
+  if (!args.empty() && args[0] == "TANK-SEED") return benchTankSeed(args);
   if (!args.empty() && args[0] == "TANK") {  // another tank-impact spec with --spec (the seed-resolution example)
     bench::TankImpactOptions options;
     if (int code = readThreadsAndSteps(args, args[0], options.threads, options.steps, &options.spec)) return code;
@@ -65,7 +96,7 @@ int benchCommand(const Args& args) {
   }
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
-                      "'; allowed: W1, W2, W3, TANK");
+                      "'; allowed: W1, W2, W3, TANK, TANK-SEED");
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");

@@ -49,6 +49,8 @@ commands:
   bench W3 [--threads N] [--steps N]
   bench TANK [--threads N] [--steps N] [--spec FILE]
                                           tank-impact FXA5 (or FILE), fluid and shell timed apart
+  bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]
+                                          the seed's TF14A5 at the seed's inputs, run whole
                                           run a benchmark, print one JSON line
   -o, --output FILE                       the output file of run and xdmf
   --help, -h                              this text (rupture run --help: run's options in full)

@@ -38,10 +38,7 @@ void FluidShellCoupling::step(double dt) {
   }
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
-  const double shellStep = m_shell.stableTimeStep();
-  m_subcycles = std::max(1, static_cast<int>(std::ceil(dt / shellStep * (1.0 - 1e-12))));
-  const double sub = dt / m_subcycles;
-  for (int k = 0; k < m_subcycles; ++k) m_shell.step(sub);
+  m_subcycles = static_cast<int>(m_shell.advanceInterval(dt));
   m_shellSteps += static_cast<std::size_t>(m_subcycles);
   const auto shellDone = Clock::now();
   // 2. The fluid; 3. the contact at t + dt.

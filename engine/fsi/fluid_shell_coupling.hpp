@@ -1,9 +1,10 @@
 #pragma once
 // Time stepping of SPH water against an SPH shell (docs/fsi-contact.md, "Coupled step"). One
 // coupled step of the fluid's size dt:
-//   1. the shell is sub-cycled to t + dt in n = ⌈dt / dt_shell⌉ equal steps, each node loaded by
-//      the constant force I_n / dt, I_n the impulse the fluid gave it at the end of the last step:
-//      the plate receives exactly I_n over the step (the shell's step is usually the smaller one);
+//   1. the shell is sub-cycled to t + dt (SphShell::advanceInterval: n = ⌈dt / dt_shell⌉ equal
+//      steps, or with plate subcycling fine steps in which each node's terms fire at their own
+//      class's rate), each node loaded by the constant force I_n / dt, I_n the impulse the fluid
+//      gave it at the end of the last step: the plate receives exactly I_n over the step;
 //   2. the fluid makes its kick–drift–kick step to t + dt (SphSystem::step), not seeing the plate;
 //   3. the contact (pinball or master–slave) corrects the fluid velocities (and positions, for
 //      master–slave) against the plate at t + dt and records the new impulses I_n.

@@ -37,6 +37,9 @@ struct ShellParameters {
   double stepRotaryInertia = 1.0;
   double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
   double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
+  /// true: SphShell::advanceInterval steps each node's terms at its own power-of-two multiple of
+  /// the finest step (multi-rate, shell/step_classes.hpp); false: every node at the finest step.
+  bool subcycling = false;
 };
 
 /// Layers of `layers` that must have failed for a stress point to fracture: ⌈fraction · layers⌉,

@@ -1,6 +1,7 @@
 #include "shell/sph_shell.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -144,6 +145,7 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
     m_hourglass[i] = {alpha * m.youngModulus * ti, alpha * m.youngModulus * ti * ti * ti / (12.0 * (1.0 - nu * nu)),
                       alpha * (shearModulus * ti)};
   }
+  computePairHourglass();
 
   // Time step: the central-difference limit 2/ω_max with ω_max from the stiffest translation
   // (membrane P-wave, wave number k = 2.5/Δ, which bounds the corrected-kernel gradient operator
@@ -156,6 +158,68 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
       std::sqrt((12.0 * shearModulus / (rho * t * t) + cp2 * k * k) / m_params.rotaryInertiaScale);
   const double omegaStepRotation = std::sqrt(stepRotation2);
   m_stableStep = m_params.courantFactor * 2.0 / std::max({omegaTranslation, omegaRotation, omegaStepRotation});
+  computeOwnSteps();
+  m_pointStrain.assign(n, {});
+  m_newlyFractured.assign(n, 0);
+  m_classes.assignSingleRate(n);
+}
+
+void SphShell::computePairHourglass() {
+  // A pair's hourglass stiffnesses are its thinner node's (symmetric, and a thin plate next to a
+  // thick step is not stiffened by its neighbour), times the pair's kernel weight hw.
+  const std::size_t n = m_reference.size();
+  m_pairHourglass.resize(m_neighbour.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t j = m_neighbour[p];
+      const auto& X = m_separation[p];
+      const double hw = m_kernel[p] * m_volume[i] * m_volume[j] / (X[0] * X[0] + X[1] * X[1]);
+      const auto& k = m_hourglass[m_thickness[j] < m_thickness[i] ? j : i];
+      m_pairHourglass[p] = {k[0] * hw, k[1] * hw, k[2] * hw};
+    }
+}
+
+void SphShell::computeOwnSteps() {
+  // The constructor's estimate with one node's or one stress point's own data instead of the
+  // extremes over the plate (which stay the single-rate step, never above any of these).
+  //  - A term of stress point j acting on node i: the pair's finer spacing (k = 2.5/Δ), j's
+  //    thickness against i's mass (the translation's √(t_j / t_i), at least 1) and j's bending
+  //    and shear stiffness against i's rotary inertia (ρ/12 × max(t_i³, f t_i t_thickest²)).
+  //  - A node: the finest of the terms that reach it (its kernel's spacing, the thickest point).
+  // A clamped node does not move and constrains nothing.
+  const std::size_t n = m_reference.size();
+  const ElasticPlasticMaterial& m = m_params.material;
+  const double rho = m_params.density, nu = m.poissonRatio;
+  const double cp2 = m.youngModulus / (rho * (1.0 - nu * nu));
+  const double shearModulus = m_params.shearCorrection * m.shearModulus();
+  const double sI = m_params.rotaryInertiaScale, hourglass = 1.0 + m_params.hourglassCoefficient;
+  std::vector<double> inertia(n);  // × ρ/12 per unit area, as the constructor set m_inertia
+  for (std::size_t i = 0; i < n; ++i) {
+    double thickest = m_thickness[i];
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) thickest = std::max(thickest, m_thickness[m_neighbour[p]]);
+    const double ti = m_thickness[i];
+    inertia[i] = std::max(ti * ti * ti, thickest > ti ? m_params.stepRotaryInertia * ti * thickest * thickest : 0.0);
+  }
+  auto termStep = [&](std::size_t j, std::size_t i) {
+    const double k = 2.5 / std::min(m_nodeSpacing[i], m_nodeSpacing[j]);
+    const double tj = m_thickness[j], ti = m_thickness[i];
+    const double translation2 = cp2 * k * k * hourglass * hourglass * std::max(1.0, tj / ti);
+    const double rotation2 = (12.0 * shearModulus * tj / rho + cp2 * k * k * tj * tj * tj) / (sI * inertia[i]);
+    return m_params.courantFactor * 2.0 / std::sqrt(std::max(translation2, rotation2));
+  };
+  const double never = std::numeric_limits<double>::infinity();
+  m_ownStep.assign(n, never);
+  m_pointStep.assign(n, never);
+  for (std::size_t j = 0; j < n; ++j) {
+    auto reach = [&](std::size_t i) {
+      if (m_clamped[i]) return;
+      const double h = std::max(termStep(j, i), m_stableStep);
+      m_pointStep[j] = std::min(m_pointStep[j], h);
+      m_ownStep[i] = std::min(m_ownStep[i], h);
+    };
+    reach(j);
+    for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p) reach(m_neighbour[p]);
+  }
 }
 
 void SphShell::buildNeighbours() {
@@ -277,18 +341,23 @@ void SphShell::buildCorrections() {
     }
 }
 
-void SphShell::computeForces(double dt) {
+void SphShell::computeForces(double dt, int firing) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   const std::size_t n = m_position.size();
   const std::size_t layers = m_rule.xi.size();
   const ElasticPlasticMaterial& mat = m_params.material;
   const double shearModulus = m_params.shearCorrection * mat.shearModulus();  // κ_s G
   const bool plastic = m_params.plasticity, damaging = m_params.damage && m_params.plasticity;
   const bool shearYield = plastic && m_params.transverseShearYield;
-  std::vector<std::uint8_t> newlyFractured(n, 0);
+  const std::uint32_t* pointOrder = m_classes.pointOrder.data();
+  const std::size_t points = m_classes.pointsUpTo[static_cast<std::size_t>(firing)];
+  m_pointEvaluations += points;
 
-  // Pass 1: gradients, strains, layer stresses, resultants at every stress point.
+  // Pass 1a: gradients and strains at the points that fire.
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t q = 0; q < points; ++q) {
+    const std::size_t i = pointOrder[q];
     std::array<double, 6> A{}, G{};
     if (m_hasGradient[i]) {
       const ShellVec3 xi = m_position[i], ni = m_normal[i];
@@ -307,15 +376,9 @@ void SphShell::computeForces(double dt) {
     }
     m_gradX[i] = A;
     m_gradN[i] = G;
-    std::array<double, 6> P{}, R{};
-    std::array<double, 2> Qout{0.0, 0.0};
-    PlaneTensor Mout{0.0, 0.0, 0.0};
-    const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
-    if (stressPoint) {
+    if (m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i]) {
       const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
       const ShellVec3& nrm = m_normal[i];
-      const PlaneTensor eps = {0.5 * (dot(a0, a0) - 1.0), 0.5 * (dot(a1, a1) - 1.0), 0.5 * dot(a0, a1)};
-      const PlaneTensor kap = {dot(a0, g0), dot(a1, g1), 0.5 * (dot(a0, g1) + dot(a1, g0))};
       // Pair-averaged transverse shear γ_i = T_i⁻¹ Σ_j V_j W_ij s_ij X_ij, s_ij = (x_j − x_i)·n̄_ij:
       // exact for a uniform shear, and zero for any quadratic deflection with matching directors
       // (trapezoidal rule), so it does not lock where the node gradient of w is one-sided.
@@ -327,6 +390,32 @@ void SphShell::computeForces(double dt) {
         gam0 += sp * m_shearCoeff[p][0];
         gam1 += sp * m_shearCoeff[p][1];
       }
+      m_pointStrain[i] = {0.5 * (dot(a0, a0) - 1.0), 0.5 * (dot(a1, a1) - 1.0), 0.5 * dot(a0, a1),
+                          dot(a0, g0),               dot(a1, g1),               0.5 * (dot(a0, g1) + dot(a1, g0)),
+                          gam0,                      gam1};
+    }
+  }
+  const auto gradientsDone = Clock::now();
+
+  // Pass 1b: the layers through the thickness and the resultants, each point's weighted by its
+  // class's 2^c (exact: a power of two); the points that do not fire give no force this step.
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t q = 0; q < points; ++q) {
+    const std::size_t i = pointOrder[q];
+    std::array<double, 6> P{}, R{};
+    std::array<double, 2> Qout{0.0, 0.0};
+    PlaneTensor Mout{0.0, 0.0, 0.0};
+    const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
+    if (stressPoint) {
+      const double weight = std::ldexp(1.0, m_classes.point[i]);
+      const double pointDt = dt * weight;  // the interval this evaluation stands for
+      const auto& A = m_gradX[i];
+      const auto& G = m_gradN[i];
+      const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
+      const auto& strain = m_pointStrain[i];
+      const PlaneTensor eps = {strain[0], strain[1], strain[2]};
+      const PlaneTensor kap = {strain[3], strain[4], strain[5]};
+      const double gam0 = strain[6], gam1 = strain[7];
       PlaneTensor N{0.0, 0.0, 0.0}, M{0.0, 0.0, 0.0};
       const double t = m_thickness[i], scale = t / m_params.thickness;
       double intact = 0.0;
@@ -353,7 +442,7 @@ void SphShell::computeForces(double dt) {
           }
           if (damaging) {  // tau is zero unless the layers yield in shear
             const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
-            advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, dt);
+            advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, pointDt);
           }
         } else {
           sig = planeStressElastic(mat, E);
@@ -368,9 +457,9 @@ void SphShell::computeForces(double dt) {
           M[c] += w * z * f * sig[c];
         }
       }
-      if (broken >= m_layersToFracture) newlyFractured[i] = 1;
+      if (broken >= m_layersToFracture) m_newlyFractured[i] = 1;
       Mout = M;
-      const double om = m_area[i];
+      const double om = m_area[i] * weight;
       // Elastic shear: κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
       const double shearStiffness = shearModulus * t;
       const double Q0 = om * (shearYield ? Q[0] : shearStiffness * gam0 * intact / t);
@@ -389,20 +478,48 @@ void SphShell::computeForces(double dt) {
     m_moment[i] = stressPoint ? std::array<double, 3>{Mout[0], Mout[1], Mout[2]} : std::array<double, 3>{0.0, 0.0, 0.0};
     m_shearQ[i] = Qout;
   }
-
-  // Pass 2: gather the forces on the free nodes (no scatter, no atomics).
-  const double pressure = m_pressure;
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t q = points; q < n; ++q) {
+    const std::size_t i = pointOrder[q];
+    m_stressP[i] = {};
+    m_stressR[i] = {};
+    m_shearQ[i] = {0.0, 0.0};
+  }
+  const auto layersDone = Clock::now();
+
+  // Pass 2: gather the forces on the free nodes (no scatter, no atomics); a node that no firing
+  // term reaches keeps only its external force.
+  const double pressure = m_pressure;
+  const std::uint32_t* gatherOrder = m_classes.gatherOrder.data();
+  const std::uint8_t* nodeClass = m_classes.node.data();
+  const std::size_t gathered = m_classes.gatherUpTo[static_cast<std::size_t>(firing)];
+  // The nodes a term reaches are the first of gatherOrder: shared out on their own, so that both
+  // threads gather at a step where only the finest class fires.
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = gathered; q < n; ++q) {
+    const std::size_t i = gatherOrder[q];
+    ShellVec3 f{0.0, 0.0, 0.0};
+    if (!m_clamped[i])
+      for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
+    m_force[i] = f;
+    m_directorForce[i] = {0.0, 0.0, 0.0};
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = 0; q < gathered; ++q) {
+    const std::size_t i = gatherOrder[q];
     ShellVec3 f{0.0, 0.0, 0.0}, g{0.0, 0.0, 0.0};
     if (m_clamped[i]) { m_force[i] = f; m_directorForce[i] = g; continue; }
     const auto& Pi = m_stressP[i];
     const auto& Ri = m_stressR[i];
     const auto& Ai = m_gradX[i];
     const auto& Gi = m_gradN[i];
+    const bool ownPointFires = m_classes.point[i] <= firing;
     for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
       if (!m_active[p]) continue;
       const std::size_t j = m_neighbour[p];
+      // A pair none of whose terms fires (point i's, point j's, the hourglass) adds nothing.
+      const int pairClass = std::min(nodeClass[i], nodeClass[j]);
+      if (!ownPointFires && m_classes.point[j] > firing && pairClass > firing) continue;
       const auto& c = m_coeff[p];
       const auto& b = m_coeffBack[p];
       const auto& Pj = m_stressP[j];
@@ -410,10 +527,11 @@ void SphShell::computeForces(double dt) {
       const auto& Aj = m_gradX[j];
       const auto& Gj = m_gradN[j];
       const auto& X = m_separation[p];
-      const double hw = m_kernel[p] * m_volume[i] * m_volume[j] / (X[0] * X[0] + X[1] * X[1]);
-      // A pair's hourglass stiffnesses are its thinner node's (symmetric, and a thin plate next to
-      // a thick step is not stiffened by its neighbour).
-      const auto& [kx, kn, ks] = m_hourglass[m_thickness[j] < m_thickness[i] ? j : i];
+      // The hourglass stiffnesses (times hw) of a pair that fires, times its class's 2^c; a pair
+      // that does not fire this step gives only the points' forces.
+      const double pairWeight = pairClass <= firing ? std::ldexp(1.0, pairClass) : 0.0;
+      const auto& stiffness = m_pairHourglass[p];
+      const double kx = stiffness[0] * pairWeight, kn = stiffness[1] * pairWeight, ks = stiffness[2] * pairWeight;
       // Hourglass control. Tangential: error of the separation predicted by the mean gradient
       // (exact for quadratic fields). Normal: the separation along the mean director, a pair
       // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even
@@ -435,28 +553,55 @@ void SphShell::computeForces(double dt) {
         g[a] += Ri[a] * c[0] + Ri[3 + a] * c[1] - Rj[a] * b[0] - Rj[3 + a] * b[1];
         const double en = 0.5 * ((Gi[a] + Gj[a]) * X[0] + (Gi[3 + a] + Gj[3 + a]) * X[1]) -
                           (m_normal[j][a] - m_normal[i][a]);
-        f[a] -= kx * hw * (ex[a] - exNormal * mean[a]);
+        f[a] -= kx * (ex[a] - exNormal * mean[a]);
         // E = ½ k_s hw (Δx·n̄)², n̄ = (n_i + n_j)/|n_i + n_j|: −∂E/∂x_i and −∂E/∂n_i.
-        f[a] += (ks * hw * dxNormal + q) * mean[a];
-        g[a] -= (ks * hw * dxNormal + q) * (dx[a] - dxNormal * mean[a]) / meanLength;
-        g[a] -= kn * hw * en;
+        f[a] += (ks * dxNormal + q) * mean[a];
+        g[a] -= (ks * dxNormal + q) * (dx[a] - dxNormal * mean[a]) / meanLength;
+        g[a] -= kn * en;
       }
     }
-    if (pressure != 0.0 && !m_fractured[i]) {
+    if (pressure != 0.0 && !m_fractured[i] && m_classes.point[i] <= firing) {
       const ShellVec3 areaNormal = m_hasGradient[i] ? cross(column(Ai, 0), column(Ai, 1)) : m_normal[i];
-      for (int a = 0; a < 3; ++a) f[a] += pressure * m_area[i] * areaNormal[a];
+      const double load = pressure * std::ldexp(1.0, m_classes.point[i]);
+      for (int a = 0; a < 3; ++a) f[a] += load * m_area[i] * areaNormal[a];
     }
     for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
     m_force[i] = f;
     m_directorForce[i] = g;
   }
 
-  for (std::size_t i = 0; i < n; ++i)
-    if (newlyFractured[i] && !m_fractured[i]) fractureNode(i);
+  const auto forcesDone = Clock::now();
+  m_timings.gradients += std::chrono::duration<double>(gradientsDone - start).count();
+  m_timings.layers += std::chrono::duration<double>(layersDone - gradientsDone).count();
+  m_timings.forces += std::chrono::duration<double>(forcesDone - layersDone).count();
 }
 
 void SphShell::step(double dt) {
-  computeForces(dt);
+  if (!m_classes.singleRate()) m_classes.assignSingleRate(m_position.size());
+  fineStep(dt, 0);
+}
+
+long SphShell::advanceInterval(double dt) {
+  const std::size_t n = m_position.size();
+  SubcyclingPlan plan;
+  if (m_params.subcycling) {
+    plan = planSubcycling(m_pointStep, m_stableStep, dt);
+  } else {
+    plan.fineSteps = std::max(1L, static_cast<long>(std::ceil(dt / m_stableStep * (1.0 - 1e-12))));
+    plan.fineStep = dt / static_cast<double>(plan.fineSteps);
+  }
+  if (plan.coarsest == 0) {
+    if (!m_classes.singleRate()) m_classes.assignSingleRate(n);
+  } else {
+    m_classes.assign(m_ownStep, m_pointStep, plan, m_offset, m_neighbour);
+  }
+  for (long k = 0; k < plan.fineSteps; ++k) fineStep(plan.fineStep, firingClass(k, plan.coarsest));
+  return plan.fineSteps;
+}
+
+void SphShell::fineStep(double dt, int firing) {
+  computeForces(dt, firing);
+  const auto start = std::chrono::steady_clock::now();
   const std::size_t n = m_position.size();
   const double c = m_params.dampingRate;
   const double keep = (1.0 - 0.5 * c * dt) / (1.0 + 0.5 * c * dt), push = dt / (1.0 + 0.5 * c * dt);
@@ -488,7 +633,17 @@ void SphShell::step(double dt) {
       for (int a = 0; a < 3; ++a) n0[a] = rotated[a] / len;
     }
   }
+  const auto integrated = std::chrono::steady_clock::now();
+  // Fracture after the motion, as before the passes were split (the same state either way: the
+  // fracture cuts links, it does not move nodes).
+  for (std::size_t i = 0; i < n; ++i)
+    if (m_newlyFractured[i]) {
+      m_newlyFractured[i] = 0;
+      if (!m_fractured[i]) fractureNode(i);
+    }
   m_time += dt;
+  m_timings.integration += std::chrono::duration<double>(integrated - start).count();
+  m_timings.fracture += std::chrono::duration<double>(std::chrono::steady_clock::now() - integrated).count();
 }
 
 void SphShell::setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal,
@@ -537,6 +692,84 @@ double SphShell::kineticEnergy() const {
   for (std::size_t i = 0; i < m_position.size(); ++i)
     e += 0.5 * m_mass[i] * dot(m_velocity[i], m_velocity[i]) + 0.5 * m_inertia[i] * dot(m_spin[i], m_spin[i]);
   return e;
+}
+
+double SphShell::strainEnergy() const {
+  const std::size_t n = m_position.size();
+  const std::size_t layers = m_rule.xi.size();
+  const ElasticPlasticMaterial& mat = m_params.material;
+  const double G = mat.shearModulus(), shearModulus = m_params.shearCorrection * G;
+  const bool shearYield = m_params.plasticity && m_params.transverseShearYield;
+  // The gradients at the current positions (a subcycled point's stored ones may be older).
+  std::vector<std::array<double, 6>> gradX(n), gradN(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<double, 6> A{}, N{};
+    if (!m_hasGradient[i]) { gradX[i] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0}; gradN[i] = N; continue; }
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) continue;
+      const std::size_t j = m_neighbour[p];
+      for (int a = 0; a < 3; ++a) {
+        const double dx = m_position[j][a] - m_position[i][a], dn = m_normal[j][a] - m_normal[i][a];
+        A[a] += dx * m_coeff[p][0]; A[3 + a] += dx * m_coeff[p][1];
+        N[a] += dn * m_coeff[p][0]; N[3 + a] += dn * m_coeff[p][1];
+      }
+    }
+    gradX[i] = A, gradN[i] = N;
+  }
+  double energy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i])) continue;
+    const ShellVec3 a0 = column(gradX[i], 0), a1 = column(gradX[i], 1);
+    const ShellVec3 g0 = column(gradN[i], 0), g1 = column(gradN[i], 1);
+    const PlaneTensor eps = {0.5 * (dot(a0, a0) - 1.0), 0.5 * (dot(a1, a1) - 1.0), 0.5 * dot(a0, a1)};
+    const PlaneTensor kap = {dot(a0, g0), dot(a1, g1), 0.5 * (dot(a0, g1) + dot(a1, g0))};
+    double gam0 = 0.0, gam1 = 0.0;
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      if (!m_active[p]) continue;
+      const double sp = pairShear(m_position[i], m_position[m_neighbour[p]], m_normal[i], m_normal[m_neighbour[p]]);
+      gam0 += sp * m_shearCoeff[p][0], gam1 += sp * m_shearCoeff[p][1];
+    }
+    const double t = m_thickness[i], scale = t / m_params.thickness;
+    double density = 0.0, intact = 0.0;  // per unit area
+    for (std::size_t k = 0; k < layers; ++k) {
+      const double z = scale * m_rule.xi[k], w = scale * m_rule.weight[k];
+      const std::size_t idx = i * layers + k;
+      const auto& Ep = m_plasticStrainTensor[idx];
+      const PlaneTensor Ee = {eps[0] + z * kap[0] - Ep[0], eps[1] + z * kap[1] - Ep[1], eps[2] + z * kap[2] - Ep[2]};
+      const PlaneTensor sig = planeStressElastic(mat, Ee);
+      const double f = stressFactor(m_damage[idx]);
+      intact += w * f;
+      density += 0.5 * w * f * (sig[0] * Ee[0] + sig[1] * Ee[1] + 2.0 * sig[2] * Ee[2]);
+      if (shearYield) {
+        const double zeta = z / t, profile = 1.5 * (1.0 - 4.0 * zeta * zeta) * m_params.shearCorrection;
+        const double e0 = 0.5 * profile * gam0 - m_plasticShear[idx][0], e1 = 0.5 * profile * gam1 - m_plasticShear[idx][1];
+        density += 0.5 * w * f * 2.0 * G * 2.0 * (e0 * e0 + e1 * e1);
+      }
+    }
+    if (!shearYield) density += 0.5 * shearModulus * intact * (gam0 * gam0 + gam1 * gam1);
+    energy += m_area[i] * density;
+  }
+  // The hourglass springs, once per pair: ½ hw (k_x |e_x,t|² + k_n |e_n|² + k_s (Δx·n̄)²).
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t j = m_neighbour[p];
+      if (j < i || !m_active[p]) continue;
+      const auto& X = m_separation[p];
+      const auto& [kx, kn, ks] = m_pairHourglass[p];  // × hw
+      ShellVec3 dx, ex, en, mean;
+      for (int a = 0; a < 3; ++a) {
+        dx[a] = m_position[j][a] - m_position[i][a];
+        ex[a] = 0.5 * ((gradX[i][a] + gradX[j][a]) * X[0] + (gradX[i][3 + a] + gradX[j][3 + a]) * X[1]) - dx[a];
+        en[a] = 0.5 * ((gradN[i][a] + gradN[j][a]) * X[0] + (gradN[i][3 + a] + gradN[j][3 + a]) * X[1]) -
+                (m_normal[j][a] - m_normal[i][a]);
+        mean[a] = m_normal[i][a] + m_normal[j][a];
+      }
+      const double meanLength = std::sqrt(dot(mean, mean));
+      for (int a = 0; a < 3; ++a) mean[a] /= meanLength;
+      const double exNormal = dot(ex, mean), dxNormal = dot(dx, mean);
+      energy += 0.5 * (kx * (dot(ex, ex) - exNormal * exNormal) + kn * dot(en, en) + ks * dxNormal * dxNormal);
+    }
+  return energy;
 }
 
 void SphShell::fractureNode(std::size_t i) {
@@ -662,6 +895,9 @@ void SphShell::exchangeState(StateArchive& archive) {
   archive.records("coeff_back", m_coeffBack), archive.records("shear_coeff", m_shearCoeff);
   archive.records("shear_back", m_shearBack);
   archive.array("kernel", m_kernel);
+  archive.value("point_evaluations", m_pointEvaluations);
+  archive.record("timings", m_timings);
+  computePairHourglass();  // derived from the arrays just read (or written)
 }
 
 }  // namespace rupture

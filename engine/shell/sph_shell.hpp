@@ -36,6 +36,7 @@
 #include "damage/lemaitre_chaboche.hpp"
 #include "shell/shell_nodes.hpp"
 #include "shell/shell_parameters.hpp"
+#include "shell/step_classes.hpp"
 #include "shell/through_thickness.hpp"
 #include "rupture/state_archive.hpp"
 
@@ -66,8 +67,32 @@ public:
   /// (m), pseudo-normal (normalised here) and velocity (m/s).
   void setNodeState(std::size_t i, const ShellVec3& position, const ShellVec3& normal, const ShellVec3& velocity);
 
-  /// One explicit central-difference step of size dt.
+  /// Node i's own critical time step (s), times the Courant factor: the estimate of
+  /// stableTimeStep() with node i's spacing (the finest of its kernel's), thickness and step
+  /// inertia; infinite for a clamped node. The classes of the multi-rate scheme come from it.
+  double nodeStableStep(std::size_t i) const { return m_ownStep[i]; }
+  /// Stress point i's own critical step (s), times the Courant factor: the shortest over the
+  /// nodes its kernel reaches of its stiffness against their mass and rotary inertia.
+  double pointStableStep(std::size_t i) const { return m_pointStep[i]; }
+
+  /// One explicit central-difference step of size dt, every node and stress point at dt.
   void step(double dt);
+  /// Advances the shell by the interval dt (s), to be in step with another solver at its end (the
+  /// fluid, once per fluid step). Single rate (ShellParameters::subcycling false): K = ⌈dt /
+  /// stableTimeStep()⌉ equal steps. Multi-rate: K fine steps, each stress point and hourglass pair
+  /// evaluated every 2^c of them by its class (shell/step_classes.hpp). Returns K.
+  long advanceInterval(double dt);
+  /// The classes of the last interval (all 0 after step() or a single-rate interval).
+  const ShellStepClasses& stepClasses() const { return m_classes; }
+  /// Stress-point evaluations so far (each point once per firing of its class): with
+  /// nodes × fine steps, what the subcycling saved.
+  std::uint64_t pointEvaluations() const { return m_pointEvaluations; }
+  /// Wall-clock seconds so far in each pass of a step (docs/shell-and-damage.md, "Profile"):
+  /// gradients and strains, the through-thickness layers (return mapping, damage, resultants),
+  /// the forces (stress divergence, transverse shear, hourglass, pressure), the integrator, and
+  /// fracture (cutting links and rebuilding the corrected gradients).
+  struct Timings { double gradients = 0, layers = 0, forces = 0, integration = 0, fracture = 0; };
+  const Timings& timings() const { return m_timings; }
   /// `steps` steps of size dt; polls `cancel` every step (throws RunCancelled).
   void advance(int steps, double dt, const Cancellation& cancel);
 
@@ -76,6 +101,10 @@ public:
   const std::vector<ShellVec3>& positions() const { return m_position; }
   const std::vector<ShellVec3>& velocities() const { return m_velocity; }
   const std::vector<ShellVec3>& normals() const { return m_normal; }
+  /// Angular velocities of the directors (rad/s), perpendicular to them.
+  const std::vector<ShellVec3>& spins() const { return m_spin; }
+  /// Rotary inertia of node i's director (kg m²).
+  double rotaryInertia(std::size_t i) const { return m_inertia[i]; }
   /// Transverse displacement (z) of a node (m).
   double deflection(std::size_t i) const { return m_position[i][2]; }
   /// Largest accumulated plastic strain over the layers of a node.
@@ -112,6 +141,9 @@ public:
   std::size_t linksCrossing(const std::array<double, 2>& a, const std::array<double, 2>& b) const;
   /// Kinetic energy of translation and of the director rotation (J).
   double kineticEnergy() const;
+  /// Elastic energy stored at the current positions (J): the layers' ½ σ:(E − Eᵖ) weighted by
+  /// their (1 − D), the transverse shear's and the hourglass springs' (docs/shell-and-damage.md).
+  double strainEnergy() const;
 
   /// Every per-node, per-layer and per-pair array and the clock (docs/checkpoints.md): cracks cut
   /// pairs and change the corrections, so even the geometric ones are state.
@@ -125,7 +157,12 @@ private:
   }
   void buildNeighbours();
   void buildCorrections();
-  void computeForces(double dt);
+  /// The forces of the terms whose class is at most `firing` (all of them in the single rate),
+  /// each weighted by its 2^c: the impulse of its interval over the fine step dt.
+  void computeForces(double dt, int firing);
+  void fineStep(double dt, int firing);
+  void computeOwnSteps();
+  void computePairHourglass();
   void cutLinksOf(std::size_t i);
   void rebuildAfterCuts();
 
@@ -150,6 +187,13 @@ private:
   std::vector<std::array<double, 3>> m_moment;              ///< M per unit length (output only)
   std::vector<std::array<double, 3>> m_hourglass;           ///< k_x, k_n, k_s of the node's thickness
 
+  std::vector<std::array<double, 8>> m_pointStrain;        ///< ε (3), κ (3), γ (2) of the last pass
+  std::vector<double> m_ownStep, m_pointStep;               ///< nodeStableStep, pointStableStep
+  std::vector<std::uint8_t> m_newlyFractured;
+  ShellStepClasses m_classes;
+  std::uint64_t m_pointEvaluations = 0;
+  Timings m_timings;
+
   // Per node and layer (node-major, m_rule.xi.size() layers).
   std::vector<std::array<double, 3>> m_plasticStrainTensor;
   std::vector<double> m_plasticStrain;
@@ -165,6 +209,9 @@ private:
   std::vector<std::array<double, 2>> m_shearCoeff;  ///< T_i⁻¹ V_j W_ij X_ij
   std::vector<std::array<double, 2>> m_shearBack;   ///< T_j⁻¹ V_i W_ij X_ji
   std::vector<double> m_kernel;                     ///< W(|X_ij|)
+  /// The pair's hourglass stiffnesses times hw = W_ij V_i V_j / |X_ij|² (its thinner node's k_x,
+  /// k_n, k_s): constant, derived from the reference (pairHourglassStiffness).
+  std::vector<std::array<double, 3>> m_pairHourglass;
 };
 
 }  // namespace rupture

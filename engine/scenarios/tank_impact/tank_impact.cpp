@@ -307,6 +307,14 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"fluid_time_s", coupling.timings().fluid},
       {"shell_time_s", coupling.timings().shell},
       {"contact_time_s", coupling.timings().contact},
+      {"shell_point_evaluations", static_cast<std::int64_t>(plate.pointEvaluations())},
+      {"shell_coarsest_class", plate.stepClasses().coarsest},
+      {"shell_points_per_class", pointsPerClass(plate.stepClasses())},
+      {"shell_gradients_time_s", plate.timings().gradients},
+      {"shell_layers_time_s", plate.timings().layers},
+      {"shell_forces_time_s", plate.timings().forces},
+      {"shell_integration_time_s", plate.timings().integration},
+      {"shell_fracture_time_s", plate.timings().fracture},
       {"contact_method", contactMethodName(spec.contact.method)}};
   // The seed's measurements on this specimen, beside ours (null where the seed gives none).
   const SeedSpecimen* seed = spec.specimen.empty() ? nullptr : findSeedSpecimen(spec.specimen);

@@ -118,6 +118,7 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.smoothingRatio = node->number("smoothing_ratio", Range::closed(1.0, 2.5), "1", p.shell.smoothingRatio);
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
+  p.shell.subcycling = node->boolean("subcycling", p.shell.subcycling);
   p.precrack = parsePrecrack(*node);
   p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
   p.bottom->stepSpacing = p.spacing;
@@ -319,6 +320,7 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"smoothing_ratio", sh.smoothingRatio},
                 {"hourglass_coefficient", sh.hourglassCoefficient},
                 {"courant_factor", sh.courantFactor},
+                {"subcycling", sh.subcycling},
                 {"precrack", precrack}};
   j["plate"]["clamp"] = p.bottom ? "bottom" : "rim";
   if (p.bottom) j["plate"]["bottom"] = {{"thickness", p.bottom->thickness}, {"clamp_diameter", p.bottom->clampDiameter},

@@ -1,0 +1,47 @@
+// `rupture bench TANK-SEED` through the real binary: the documented keys, the seed's inputs, the
+// shell's classes with subcycling on, and the options' errors (exit 2 naming the option).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace {
+
+using rupture::testing::runCli;
+
+TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
+  const auto r = runCli("bench TANK-SEED --end-time 1e-6 --subcycling on --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  for (const char* key : {"workload", "threads", "subcycling", "end_time_s", "sph_particles", "plate_nodes", "fluid_steps",
+                          "shell_fine_steps", "shell_fine_steps_per_fluid_step", "shell_coarsest_class",
+                          "shell_points_per_class", "shell_point_evaluations", "wall_seconds", "fluid_seconds",
+                          "shell_seconds", "contact_seconds", "shell_profile_s", "fluid_particle_steps_per_s",
+                          "shell_node_updates_per_s", "shell_point_evaluations_per_s", "time_to_fracture_s",
+                          "first_pressure_peak_pa", "host"})
+    EXPECT_TRUE(out.contains(key)) << key;
+  // The seed's plate: 0.5 mm rings at the step, 2 mm elsewhere (docs/tank-impact.md: 13,034 nodes).
+  EXPECT_EQ(out["plate_nodes"], 13034);
+  EXPECT_EQ(out["subcycling"], true);
+  EXPECT_GE(out["shell_coarsest_class"].get<int>(), 2);
+  // Fewer stress-point evaluations than nodes × shell steps: what the classes save.
+  EXPECT_LT(out["shell_point_evaluations"].get<double>(),
+            0.5 * out["plate_nodes"].get<double>() * out["shell_fine_steps"].get<double>());
+  for (const char* part : {"gradients", "layers", "forces", "integration", "fracture"})
+    EXPECT_GE(out["shell_profile_s"][part].get<double>(), 0.0) << part;
+}
+
+TEST(CliBenchTankSeed, BadOptionsExitTwoNamingThem) {
+  for (const auto& [args, name] : {std::pair{"--end-time 0", "--end-time"}, std::pair{"--end-time 1", "--end-time"},
+                                   std::pair{"--subcycling maybe", "--subcycling"}, std::pair{"--threads 0", "--threads"},
+                                   std::pair{"--steps 3", "--steps"}}) {
+    const auto r = runCli(std::string("bench TANK-SEED ") + args);
+    EXPECT_EQ(r.exitCode, 2) << args;
+    EXPECT_NE(r.err.find(name), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+}  // namespace
