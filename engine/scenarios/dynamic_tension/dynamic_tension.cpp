@@ -19,6 +19,7 @@
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "scenarios/dynamic_tension/tension_recorder.hpp"
+#include "scenarios/dynamic_tension/tension_stop_forecast.hpp"
 #include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 #include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
@@ -131,6 +132,7 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
   const double r = 0.7 * spec.loading.strainRate / plan.params.strainRate;  // cost ratio, roughly
   out.progressWeight = r / (1.0 + r);
   logStage(control, "preliminary run from rest at " + formatNumber(plan.params.strainRate) + " /s");
+  enterPhase(control, "preliminary run");
   out.result = runPreliminary(system, geometry, plan.params, control,
                               [&](double f) { reportProgress(control, out.progressWeight * f); });
   if (!out.result) {
@@ -255,9 +257,29 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   };
   auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested strains
     if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
+    const auto began = Clock::now();
     recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
                            "strain " + formatNumber(snapshotStrains[nextSnapshot]));
+    control.phases.charge("writing snapshots", seconds(began));
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
+  };
+
+  // The progress is the time done over the forecast stop time (tension_stop_forecast.hpp).
+  TensionStopRules stopRules;
+  stopRules.settleTime = settleTime;
+  stopRules.capTime = std::min(loading.ramp().timeToReach(spec.run.maxStrain * geometry.gaugeLength),
+                               static_cast<double>(spec.run.maxSteps) * dt);
+  auto publishStatus = [&] {
+    RunStatus now;
+    now.step = static_cast<std::int64_t>(system.steps);
+    now.time = system.time;
+    now.strain = strain;
+    now.headlineName = "mean stress";
+    now.headlineUnit = "Pa";
+    now.headline = stress.mean;
+    now.brokenBonds = static_cast<std::int64_t>(observed.broken());
+    now.particles = static_cast<double>(system.particles.size());
+    reportStatus(control, now);
   };
 
   double nextOutput = outputInterval;
@@ -278,13 +300,15 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 
   if (!pre.cancelled) {
     logStage(control, "main run: " + toString(field) + " at " + formatNumber(spec.loading.strainRate) + " /s, V_max " +
-                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s");
+                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s, stops " +
+                     formatNumber(settleTime) + " s after the separation and the last break");
     if (checkpoints.resuming()) {
       checkpoints.restore();
     } else {
       record();
       snapshotsDue();
     }
+    enterPhase(control, kSteppingPhase);
     auto lastReport = Clock::now();
     while (true) {
       if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
@@ -326,13 +350,19 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       if (strain >= spec.run.maxStrain) { stopReason = "max_strain"; break; }
       if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
         lastReport = Clock::now();
-        const double main = observed.progress(system.time, loading.ramp(), geometry.gaugeLength, spec.run.maxStrain,
-                                              system.maxFailureRatio());
+        // The worst bond's stress over its strength grows about linearly with ε: where it reaches 1.
+        const double worstRatio = system.maxFailureRatio();
+        const double onsetEstimate =
+            worstRatio > 1e-3 ? loading.ramp().timeToReach(strain / worstRatio * geometry.gaugeLength) : kNaN;
+        const double main = system.time / forecastStopTime(system.time, observed, stopRules, onsetEstimate);
         reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
+        publishStatus();
       }
     }
     if (lastRowStep != system.steps) record();  // the last state is always a row
+    publishStatus();
   }
+  enterPhase(control, "final snapshot and fragments");
   recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
   const bool completed = stopReason != "cancelled";
 
