@@ -309,14 +309,7 @@ int runCommand(const Args& args) {
   observeStatus();
   if (!failure) view.update(control.progress.load(), true);
   view.close();
-  {
-    const std::vector<RunPhases::Phase> phases = control.phases.totals();
-    double total = 0;
-    for (const RunPhases::Phase& p : phases) total += std::max(p.seconds, 0.0);
-    for (const std::string& line : io::timingBreakdown(phases, control.status.latest(), total,
-                                                       control.resumedFromStep.load()))
-      std::cerr << "rupture run: " << line << "\n";
-  }
+  for (const std::string& line : io::timingBreakdown(control)) std::cerr << "rupture run: " << line << "\n";
   progressFile.write(control.progress.load(), true);
 
   if (failure) {

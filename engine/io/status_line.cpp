@@ -15,12 +15,19 @@ std::string percent(double fraction) {
   return text;
 }
 
+/// A rate's number as formatQuantity writes a rate (three digits, 8.13e6): not a count, which it
+/// would write whole (8130000).
+std::string rateNumber(double perSecond) {
+  const std::string text = formatQuantity(perSecond, "1/s");
+  return text.substr(0, text.find(' '));
+}
+
 /// " | steps/s | particle-steps/s" for `steps` over `seconds` (nothing when not measurable).
 std::string speedFields(double steps, double seconds, double particles) {
   if (!(seconds > 0) || !(steps >= 0)) return "";
   const double rate = steps / seconds;
-  std::string out = " | " + formatQuantity(rate, "1") + " steps/s";
-  if (particles > 0) out += " | " + formatQuantity(rate * particles, "1") + " particle-steps/s";
+  std::string out = " | " + rateNumber(rate) + " steps/s";
+  if (particles > 0) out += " | " + rateNumber(rate * particles) + " particle-steps/s";
   return out;
 }
 
@@ -71,6 +78,13 @@ std::vector<std::string> timingBreakdown(const std::vector<RunPhases::Phase>& ph
   }
   lines.push_back(total);
   return lines;
+}
+
+std::vector<std::string> timingBreakdown(const RunControl& control) {
+  const std::vector<RunPhases::Phase> phases = control.phases.totals();
+  double total = 0;
+  for (const RunPhases::Phase& p : phases) total += std::max(p.seconds, 0.0);
+  return timingBreakdown(phases, control.status.latest(), total, control.resumedFromStep.load());
 }
 
 }  // namespace rupture::io

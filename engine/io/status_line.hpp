@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rupture/run.hpp"
 #include "rupture/run_status.hpp"
 
 namespace rupture::io {
@@ -33,5 +34,9 @@ private:
 /// mean speed over the phase kSteppingPhase.
 std::vector<std::string> timingBreakdown(const std::vector<RunPhases::Phase>& phases, const RunStatus& last,
                                          double totalSeconds, std::int64_t firstStep);
+
+/// The breakdown of a run that has ended, from its RunControl: its phases over their sum, its last
+/// status, the steps since the checkpoint it resumed from.
+std::vector<std::string> timingBreakdown(const RunControl& control);
 
 }  // namespace rupture::io
