@@ -3,6 +3,7 @@
 // interval refused naming the flag; and the required check of issue 55 on a run that stops at
 // separation: the reported progress never runs more than 10 points ahead of the steps done and
 // the ETA is never 0 before the end.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -114,9 +115,14 @@ TEST(CliStatusLines, EveryIntervalAParsableLineOfTheRunsStateThenATimingBreakdow
     EXPECT_NEAR(quantity(f.at("strain")), run.summary["strain_rate"].get<double>() * quantity(f.at("time")),
                 0.01 * quantity(f.at("strain")) + 1e-12);
   }
-  // The speed is measured from the second stepping line on.
-  EXPECT_TRUE(stepping.back().count("steps/s")) << run.cli.err;
-  EXPECT_GT(std::stod(stepping.back().at("steps/s")), 0.0);
+  // The speed, over the steps since the previous line, is measured from the second stepping line
+  // on (the last may say 0: the run was writing its file since the line before).
+  double fastest = 0;
+  for (std::size_t k = 1; k < stepping.size(); ++k) {
+    EXPECT_TRUE(stepping[k].count("steps/s")) << run.cli.err;
+    if (stepping[k].count("steps/s")) fastest = std::max(fastest, std::stod(stepping[k].at("steps/s")));
+  }
+  EXPECT_GT(fastest, 0.0) << run.cli.err;
   // The last line is the end of the run, as the summary says it.
   const Fields& last = stepping.back();
   EXPECT_EQ(last.at("progress"), "100 %");

@@ -99,8 +99,37 @@ struct PreliminaryOutcome {
   std::optional<PreliminaryResult> result;  ///< empty when not needed, or cancelled
   bool fromCache = false, cancelled = false;
   std::string cacheFile;                    ///< where it was read or stored ("" if not cached)
-  double progressWeight = 0;                ///< share of the progress bar taken by computing it
+  double steps = 0;                         ///< steps the computed preliminary run took (0: none, or cached)
 };
+
+/// The rules the main run stops by (tension_stop_forecast.hpp), with the settle time from
+/// `waveSpeed` (the preliminary run's C0, else the affine bound).
+TensionStopRules mainStopRules(const DynamicTensionSpec& spec, const TensionGeometry& geometry,
+                               const VelocityRamp& ramp, double waveSpeed, double timeStep) {
+  TensionStopRules rules;
+  rules.settleTime = spec.run.settleRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed;
+  rules.capTime = std::min(ramp.timeToReach(spec.run.maxStrain * geometry.gaugeLength),
+                           static_cast<double>(spec.run.maxSteps) * timeStep);
+  return rules;
+}
+
+/// The whole run's progress while its preliminary run steps: the steps done over the preliminary's
+/// and the main run's together, the main run forecast with the preliminary's target strain as its
+/// onset (its field carries the same sample to the same first break, faster). `preliminaryStep`
+/// and `timeStep`: the two runs' time steps (s).
+double progressDuringPreliminary(const DynamicTensionSpec& spec, const BondedSystem& system,
+                                 const TensionGeometry& geometry, double preliminaryStep, double timeStep,
+                                 const PreliminaryProgress& pre) {
+  const double waveSpeed = affineWaveSpeed(system, geometry);
+  const bool ramped = spec.loading.initialVelocity == InitialVelocityField::V0;
+  const VelocityRamp ramp{spec.loading.strainRate * geometry.gaugeLength,
+                          ramped ? spec.loading.rampWaveRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed : 0.0};
+  const double onset = ramp.timeToReach(pre.targetStrain * geometry.gaugeLength);
+  const double mainStop = forecastStopTime(0.0, TensionObservables(0), mainStopRules(spec, geometry, ramp, waveSpeed, timeStep),
+                                           onset > 0 ? onset : std::numeric_limits<double>::quiet_NaN());
+  const double total = std::max(pre.endTime, pre.time) / preliminaryStep + mainStop / timeStep;
+  return total > 0 ? pre.time / preliminaryStep / total : 0.0;
+}
 
 /// The preliminary run when this spec needs it (VH, or V0 without ramp_time nor wave_speed): read
 /// from the cache, else computed on a copy of the sample and stored.
@@ -129,12 +158,12 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
       return out;
     }
   }
-  const double r = 0.7 * spec.loading.strainRate / plan.params.strainRate;  // cost ratio, roughly
-  out.progressWeight = r / (1.0 + r);
   logStage(control, "preliminary run from rest at " + formatNumber(plan.params.strainRate) + " /s");
   enterPhase(control, "preliminary run");
-  out.result = runPreliminary(system, geometry, plan.params, control,
-                              [&](double f) { reportProgress(control, out.progressWeight * f); });
+  out.result = runPreliminary(system, geometry, plan.params, control, [&](const PreliminaryProgress& p) {
+    reportProgress(control, progressDuringPreliminary(spec, system, geometry, plan.params.timeStep, timeStep, p));
+  });
+  if (out.result) out.steps = static_cast<double>(out.result->steps);
   if (!out.result) {
     out.cancelled = true;
   } else if (spec.output.cachePreliminary && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
@@ -264,11 +293,9 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
   };
 
-  // The progress is the time done over the forecast stop time (tension_stop_forecast.hpp).
-  TensionStopRules stopRules;
-  stopRules.settleTime = settleTime;
-  stopRules.capTime = std::min(loading.ramp().timeToReach(spec.run.maxStrain * geometry.gaugeLength),
-                               static_cast<double>(spec.run.maxSteps) * dt);
+  // The progress is the steps done over the steps to the forecast stop time
+  // (tension_stop_forecast.hpp), a computed preliminary run's included.
+  const TensionStopRules stopRules = mainStopRules(spec, geometry, loading.ramp(), settleWaveSpeed, dt);
   auto publishStatus = [&] {
     RunStatus now;
     now.step = static_cast<std::int64_t>(system.steps);
@@ -354,8 +381,8 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
         const double worstRatio = system.maxFailureRatio();
         const double onsetEstimate =
             worstRatio > 1e-3 ? loading.ramp().timeToReach(strain / worstRatio * geometry.gaugeLength) : kNaN;
-        const double main = system.time / forecastStopTime(system.time, observed, stopRules, onsetEstimate);
-        reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
+        const double stop = forecastStopTime(system.time, observed, stopRules, onsetEstimate);
+        reportProgress(control, (pre.steps + system.time / dt) / (pre.steps + stop / dt));
         publishStatus();
       }
     }
