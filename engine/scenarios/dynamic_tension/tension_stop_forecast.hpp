@@ -13,10 +13,12 @@
 //   linearly with the strain, which extrapolates the onset), and t_separation = t_onset + the
 //   crack's crossing, forecast as kCrossingOverOnset × t_onset;
 // - after the first break and before the separation, that crossing from the onset on, at least
-//   the time since the onset so far (a crack that has run that long runs about as long again);
+//   twice the time since the onset (a crack that has run that long runs about as long again);
 // - after the separation, the breaking that goes on (fragments and debris ringing) forecast as
-//   kBreakingOverSettle × S, or, once it has gone on longer, as long again as it has gone on;
-// and T is at most the time of run.max_strain or run.max_steps.
+//   kBreakingOverSettle × S, or, once it has gone on for g, kBreakingGrowth × g more; shrinking
+//   over a quiet spell as the run nears its stop;
+// and T is at most the time of run.max_strain or run.max_steps. A VH preliminary run's steps are
+// added by the caller (dynamic_tension.cpp).
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 
 namespace rupture {
