@@ -99,6 +99,7 @@ RuptureServer::RuptureServer(ServerConfig config) {
     auto local = std::make_unique<Scheduler>(*m_store, m_context.dataDir, effectiveWorkers(m_context.config),
                                              m_context.config.threadsPerRun);
     local->setMinFreeBytes(static_cast<std::uintmax_t>(m_context.config.minFreeBytes));
+    local->setStatusInterval(m_context.config.statusInterval);
     m_context.resultsDir = m_context.dataDir;
     m_scheduler = std::move(local);
   }

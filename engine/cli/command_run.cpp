@@ -1,8 +1,11 @@
 // rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]
+//                                 [--status-interval SECONDS]
 //
 // Validates the spec (exit 2 naming the field), refuses to replace an existing RUN.h5 unless
 // --force, runs the spec on a worker thread through rupture::runSpec while this thread shows the
-// progress on stderr (a bar with an ETA on a terminal, a plain line at most every 10 s otherwise),
+// progress on stderr (a bar with an ETA on a terminal; otherwise a status line every
+// --status-interval seconds, as LAMMPS' thermo output: time, strain or step, the scenario's
+// headline quantity, broken bonds, speed; io/status_line.hpp), then the run's timing breakdown,
 // writes RUN.xdmf2 beside RUN.h5 for ParaView, and prints the summary once on stdout: a table in
 // engineering units for a reader, or with --json the JSON at full precision for scripts. Ctrl-C (SIGINT) or SIGTERM (what Slurm's scancel sends) asks the run to stop:
 // a checkpoint of the state is written first (RUN.h5.checkpoint, docs/checkpoints.md), then the file,
@@ -34,6 +37,7 @@
 #include "cli/spec_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/status_line.hpp"
 #include "io/xdmf_writer.hpp"
 #include "rupture/quantity_text.hpp"
 #include "rupture/progress.hpp"
@@ -65,6 +69,27 @@ void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const n
 }
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
+
+/// Seconds between status lines off a terminal unless --status-interval says otherwise: often
+/// enough to see a run is healthy, rarely enough that a day's log stays readable.
+constexpr double kDefaultStatusInterval = 10.0;
+constexpr double kLongestStatusInterval = 86400.0;
+
+/// --status-interval: seconds in (0, 1 day]; prints why and returns false otherwise.
+bool parseStatusInterval(const std::string& text, double& seconds) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && value > 0 && value <= kLongestStatusInterval) {
+      seconds = value;
+      return true;
+    }
+  } catch (const std::exception&) {  // not a number: said below
+  }
+  std::cerr << "rupture: option --status-interval = '" << text << "'; allowed: seconds in (0, "
+            << kLongestStatusInterval << "], e.g. 10\n";
+  return false;
+}
 
 
 /// {"progress": 0.42, "stage": "...", "elapsed_s": 12.3, "completed": false} written to a temporary
@@ -110,6 +135,7 @@ std::string sidecarPath(const std::string& h5Path) {
 
 constexpr const char* kRunUsage =
     "usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]\n"
+    "                  [--max-run-steps N] [--status-interval S]\n"
     "  -o, --output RUN.h5     the result file (HDF5; RUN.xdmf2 is written beside it for ParaView)\n"
     "  --threads N             OpenMP threads (default: all cores)\n"
     "  --progress-file FILE    keep FILE up to date (about once a second) with the progress as JSON\n"
@@ -120,6 +146,9 @@ constexpr const char* kRunUsage =
     "                          run.checkpoint_interval_s and when Ctrl-C or SIGTERM stops it)\n"
     "  --max-run-steps N       refuse (exit 2) a spec whose estimated time steps exceed N\n"
     "                          (default 100000000, as rupture-server's --max-run-steps)\n"
+    "  --status-interval S     when stderr is not a terminal (a log, nohup, Slurm), print a status\n"
+    "                          line every S seconds (default 10): progress, ETA, step, time, strain,\n"
+    "                          the headline quantity, broken bonds and speed\n"
     "  -h, --help              this text\n";
 
 }  // namespace
@@ -128,6 +157,7 @@ int runCommand(const Args& args) {
   std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
   long long maxRunSteps = static_cast<long long>(kDefaultMaxRunSteps);
+  double statusInterval = kDefaultStatusInterval;
   bool json = false, force = false, resume = false;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
@@ -135,13 +165,16 @@ int runCommand(const Args& args) {
       std::cout << kRunUsage;
       return 0;
     }
-    if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file" || a == "--max-run-steps") {
+    if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file" || a == "--max-run-steps" ||
+        a == "--status-interval") {
       if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; see rupture run --help");
       if (a == "--threads") {
         if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
       } else if (a == "--max-run-steps") {
         if (!parseIntOption("--max-run-steps", args[k + 1], 1, std::numeric_limits<long long>::max(), maxRunSteps))
           return 2;
+      } else if (a == "--status-interval") {
+        if (!parseStatusInterval(args[k + 1], statusInterval)) return 2;
       } else if (a == "--progress-file") {
         progressPath = args[k + 1];
       } else {
@@ -156,7 +189,8 @@ int runCommand(const Args& args) {
       resume = true;
     } else if (!a.empty() && a[0] == '-') {
       return usageError("run: unknown option '" + a +
-                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --max-run-steps, --help");
+                        "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --max-run-steps, "
+                        "--status-interval, --help");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
@@ -219,7 +253,14 @@ int runCommand(const Args& args) {
   RunControl control;
   control.resume = resume;
   control.checkpointOnCancel = true;  // Ctrl-C, SIGTERM: keep the work for --resume
-  ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1);
+  ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1, statusInterval);
+  io::StatusLine statusLine;
+  const auto runStart = std::chrono::steady_clock::now();
+  auto observeStatus = [&] {
+    statusLine.observe(control.status.latest(),
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count());
+  };
+  view.setLineText([&statusLine](double fraction, double eta) { return statusLine.line(fraction, eta); });
   ProgressFile progressFile(progressPath);
   // The interrupt notice comes before anything the run says about stopping: whichever thread sees
   // the cancel flag first prints it, once.
@@ -247,20 +288,28 @@ int runCommand(const Args& args) {
       finished.store(true);
     });
     auto lastProgressWrite = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    // Looked at every 0.2 s, or at every status line when they are asked for more often.
+    const auto poll = std::chrono::duration<double>(std::min(0.2, statusInterval));
     while (!finished.load()) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      std::this_thread::sleep_for(poll);
       if (std::chrono::steady_clock::now() - lastProgressWrite >= std::chrono::seconds(1)) {
         lastProgressWrite = std::chrono::steady_clock::now();
         progressFile.write(runningFraction(control.progress.load()));
       }
       noticeInterrupt();
-      if (!finished.load()) view.update(runningFraction(control.progress.load()));
+      // The progress first, then the status: the run reports its status just after its progress,
+      // so the line's step is never older than its fraction.
+      const double fraction = runningFraction(control.progress.load());
+      observeStatus();
+      if (!finished.load()) view.update(fraction);
     }
     worker.join();
     noticeInterrupt();
   }
+  observeStatus();
   if (!failure) view.update(control.progress.load(), true);
   view.close();
+  for (const std::string& line : io::timingBreakdown(control)) std::cerr << "rupture run: " << line << "\n";
   progressFile.write(control.progress.load(), true);
 
   if (failure) {

@@ -11,12 +11,15 @@ constexpr const char* kUsage = R"(usage: rupture <command> [options]
 
 commands:
   run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]
+      [--status-interval S]
                                           run a scenario, write one HDF5 file (+ .xdmf2 sidecar) and
                                           print its summary: a table, or with --json the JSON;
                                           --progress-file keeps FILE up to date with the progress as
                                           JSON; an existing RUN.h5 is replaced only with --force;
                                           --resume continues a run stopped by Ctrl-C or SIGTERM
-                                          from RUN.h5.checkpoint (rupture run --help says more)
+                                          from RUN.h5.checkpoint; off a terminal, a status line
+                                          every --status-interval S seconds (default 10) and a
+                                          timing breakdown at the end (rupture run --help says more)
   xdmf RESULT.h5 [-o OUT.xdmf2] [--force] write a ParaView sidecar for a run file, or one per run
                                           for a job's merged file (RESULT.run-<k>.xdmf2); an
                                           existing sidecar is replaced only with --force

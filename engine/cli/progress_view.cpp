@@ -17,8 +17,9 @@ std::string clockText(double seconds) {
   return buffer;
 }
 
-ProgressView::ProgressView(std::string prefix, bool terminal)
-    : m_prefix(std::move(prefix)), m_terminal(terminal), m_start(std::chrono::steady_clock::now()) {}
+ProgressView::ProgressView(std::string prefix, bool terminal, double lineInterval)
+    : m_prefix(std::move(prefix)), m_terminal(terminal), m_lineInterval(lineInterval),
+      m_start(std::chrono::steady_clock::now()) {}
 
 void ProgressView::message(const std::string& text) {
   std::lock_guard lock(m_mutex);
@@ -44,8 +45,12 @@ void ProgressView::update(double fraction, bool force, const std::string& label,
                   100.0 * fraction, clockText(elapsed).c_str(), etaText.c_str());
     std::cerr << line << std::flush;
     m_barShown = true;
-  } else if (force || elapsed - m_lastLine >= 10.0) {
+  } else if (force || elapsed - m_lastLine >= m_lineInterval) {
     m_lastLine = elapsed;
+    if (m_lineText) {
+      std::cerr << m_prefix << ": " << m_lineText(fraction, withEta ? eta : -1.0) << "\n" << std::flush;
+      return;
+    }
     std::snprintf(line, sizeof line, "%s: %s%.0f %% (elapsed %s%s%s)\n", m_prefix.c_str(), what.c_str(),
                   100.0 * fraction, clockText(elapsed).c_str(), withEta ? ", " : "", etaText.c_str());
     std::cerr << line << std::flush;

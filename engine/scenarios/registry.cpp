@@ -114,6 +114,12 @@ RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunCon
   // OpenMP's thread count is per calling thread: each server worker sets its own.
   omp_set_num_threads(std::max(1, threads));
   control.threads = std::max(1, threads);
+  control.phases.enter("setting up");
+  // The breakdown's last phase ends with the run, however it ends.
+  struct PhasesFinisher {
+    RunPhases& phases;
+    ~PhasesFinisher() { phases.finish(); }
+  } finisher{control.phases};
   if (control.resume) {
     const std::string checkpoint = io::checkpointPathFor(resultPath);
     io::checkCheckpointFits(io::readCheckpointHeader(checkpoint), checkpoint, spec.scenarioName(), spec.json());

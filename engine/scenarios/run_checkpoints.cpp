@@ -99,6 +99,7 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
   m_control.checkpointStep.store(header.step);
   m_control.checkpointBytes.store(static_cast<double>(bytes));
   m_control.checkpointSeconds.store(seconds);
+  m_control.phases.charge("writing checkpoints", seconds);
   logStage(m_control, "checkpoint at step " + std::to_string(step) + ": " + formatNumber(bytes / 1e6) + " MB in " +
                           formatNumber(seconds) + " s");
 }

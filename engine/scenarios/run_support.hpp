@@ -38,6 +38,12 @@ inline void logStage(const RunControl& control, const std::string& message) {
   if (control.log) control.log(message);
 }
 
+/// Starts a phase of the run's timing breakdown (RunPhases): it lasts until the next one.
+inline void enterPhase(RunControl& control, const std::string& name) { control.phases.enter(name); }
+
+/// Where the run is now, for the watcher's periodic status line.
+inline void reportStatus(RunControl& control, const RunStatus& status) { control.status.publish(status); }
+
 /// Monotone progress in [0, 1]: a value below the last one reported is ignored.
 inline void reportProgress(RunControl& control, double fraction) {
   fraction = std::clamp(fraction, 0.0, 1.0);
@@ -50,6 +56,7 @@ inline void reportProgress(RunControl& control, double fraction) {
 template <class File>
 RunOutcome finishRun(File& file, const nlohmann::json& summary, const std::map<std::string, std::string>& units,
                      bool completed, const std::string& stopReason, RunControl& control) {
+  enterPhase(control, "writing the result");
   file.writeAttributes("/summary", summary, units);
   file.finish(completed);
   if (completed) reportProgress(control, 1.0);

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Passes the case's cancel and checkpoint-on-cancel on to the member run under way, and its
-/// progress back, every 50 ms.
+/// progress and status (for the status line) back, every 50 ms.
 class ControlRelay {
 public:
   ControlRelay(RunControl& outer, RunControl& inner, double done, double total)
@@ -26,6 +26,7 @@ public:
             }
             const double fraction = (done + inner.progress.load()) / total;
             if (fraction > outer.progress.load()) outer.progress.store(fraction);
+            outer.status.publish(inner.status.latest());
             std::this_thread::sleep_for(std::chrono::milliseconds(50));
           }
         }) {}

@@ -19,17 +19,19 @@ inline double runningFraction(double fraction) {
 inline constexpr double kMinRateWindowSeconds = 2.0;
 
 /// Seconds left at the run's own rate: the fraction gained since its anchor (the first progress
-/// above 0 it reported, at anchorSeconds) over the time that took, so that building the sample or
+/// above 0 it reported, at anchorSeconds) over the time since then, so that building the sample or
 /// waiting in a queue (no progress) does not count as slow progress. `fraction` was reported at
-/// fractionSeconds and it is nowSeconds: the time since then is taken off. Negative (unknown)
-/// before the run has progressed over kMinRateWindowSeconds, or for inputs that say nothing.
+/// fractionSeconds and it is nowSeconds: the time since then counts as time without progress (the
+/// rate falls while a run reports nothing new), so the estimate is never 0 before the fraction is
+/// 1. Negative (unknown) before the run has progressed over kMinRateWindowSeconds, or for inputs
+/// that say nothing.
 inline double remainingSeconds(double anchorSeconds, double anchorFraction, double fractionSeconds, double fraction,
                                double nowSeconds) {
   if (fraction >= 1.0) return 0.0;
   const double window = fractionSeconds - anchorSeconds, gained = fraction - anchorFraction;
   if (!(anchorSeconds >= 0) || !(window >= kMinRateWindowSeconds) || !(gained > 0) || !(fraction > 0)) return -1.0;
-  const double rate = gained / window;
-  return std::max(0.0, (1.0 - fraction) / rate - std::max(0.0, nowSeconds - fractionSeconds));
+  const double rate = gained / (window + std::max(0.0, nowSeconds - fractionSeconds));
+  return (1.0 - fraction) / rate;
 }
 
 /// remainingSeconds for a watcher that sees the progress as it comes (the CLI's bar and progress

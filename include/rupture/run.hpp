@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rupture/result_fields.hpp"
+#include "rupture/run_status.hpp"
 #include "rupture/spec_error.hpp"
 
 namespace rupture {
@@ -47,6 +48,11 @@ struct RunControl {
   /// Written by the run: checkpoints it could not write (a full disk) and went on without.
   std::atomic<int> checkpointsSkipped{0};
   int threads = 1;  ///< set by runSpec: the OpenMP threads of the run (a checkpoint records them)
+  /// Written by the run: where it is now (step, time, strain, headline quantity, broken bonds),
+  /// for the watcher's periodic status line.
+  RunStatusBoard status;
+  /// Written by the run: its wall time by phase, for the timing breakdown at its end.
+  RunPhases phases;
 };
 
 /// What a run returns once its HDF5 file is closed.

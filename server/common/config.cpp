@@ -120,6 +120,11 @@ const std::vector<Option>& options() {
       {"min-free-bytes", "RUPTURE_MIN_FREE_BYTES", "BYTES",
        "free space the data directory must keep: below it, queued runs wait instead of starting", "268435456",
        intSetter(&ServerConfig::minFreeBytes, 0, std::numeric_limits<long long>::max())},
+      {"status-interval", "RUPTURE_STATUS_INTERVAL", "SECONDS",
+       "seconds between the status lines of each running run in the log (progress, ETA, step, time, strain, "
+       "the headline quantity, broken bonds, speed; as rupture run prints off a terminal); the runs are looked at "
+       "once a second",
+       "10", [](ServerConfig& c, const std::string& v) { return parseSeconds(v, 1, 86400, c.statusInterval); }},
       {"max-run-memory", "RUPTURE_MAX_RUN_MEMORY", "BYTES",
        "most memory one run may need, from the spec's estimate (particles, bonds, neighbour lists, "
        "snapshots); larger runs get 400. 0 = 3/4 of the machine's memory divided by the workers",

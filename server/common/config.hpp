@@ -21,6 +21,7 @@ struct ServerConfig {
   std::size_t maxRequestBytes = 1 << 20;  ///< largest request body accepted (413 above)
   long long maxElements = 5'000'000;      ///< most elements/particles one run may hold (400 above)
   long long minFreeBytes = 256LL << 20;   ///< free disk in the data directory below which no run starts
+  double statusInterval = 10;             ///< s between a running run's status lines in the log
   long long maxRunMemory = 0;             ///< B one run may need (spec estimate; 400 above); 0 = defaultRunMemory()
   long long maxRunSteps = static_cast<long long>(rupture::kDefaultMaxRunSteps);  ///< time steps one run may take (spec estimate; 400 above)
   int maxQueuedRuns = 10'000;             ///< accepted runs waiting in the whole server (503 above)

@@ -308,6 +308,7 @@ void Scheduler::workerLoop() {
       m_active.erase(key);
       m_stages.erase(key);
       m_resumeRecorded.erase(key);
+      m_statusWatches.erase(key);
     }
   }
 }
@@ -345,6 +346,18 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
     control->resume = fs::exists(checkpoint);
     if (control->resume) logLine(describe(key) + " continues from its checkpoint");
     rupture::RunOutcome result;
+    // The timing breakdown in the log however the run ends, as `rupture run` prints it.
+    struct TimingLogger {
+      RunKey key;
+      const rupture::RunControl& control;
+      ~TimingLogger() {
+        try {
+          if (control.phases.totals().empty()) return;  // an executor that keeps no phases
+          for (const std::string& line : io::timingBreakdown(control)) logLine(describe(key) + ": " + line);
+        } catch (...) {  // a log line is never a reason to end the server (this may run while unwinding)
+        }
+      }
+    } timingLogger{key, *control};
     try {
       result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
     } catch (const rupture::CheckpointError& e) {
@@ -489,6 +502,22 @@ bool Scheduler::hasFreeBytes(std::uintmax_t bytes) const {
   return !available || *available >= bytes;  // an unknown free space does not stop the queue
 }
 
+std::vector<std::string> Scheduler::dueStatusLines() {
+  std::vector<std::string> lines;
+  const auto now = std::chrono::steady_clock::now();
+  for (const auto& [key, control] : m_active) {
+    StatusWatch& watch = m_statusWatches[key];
+    const double elapsed = std::chrono::duration<double>(now - watch.start).count();
+    const double fraction = rupture::runningFraction(control->progress.load());
+    watch.line.observe(control->status.latest(), elapsed);
+    watch.remaining.observe(elapsed, fraction);
+    if (std::chrono::duration<double>(now - watch.lastLine).count() < m_statusInterval) continue;
+    watch.lastLine = now;
+    lines.push_back(describe(key) + ": " + watch.line.line(fraction, watch.remaining.at(elapsed)));
+  }
+  return lines;
+}
+
 void Scheduler::monitorLoop() {
   std::unique_lock lock(m_mutex);
   while (!m_stopping) {
@@ -516,7 +545,9 @@ void Scheduler::monitorLoop() {
     }
     if (room) m_wake.notify_all();
     const bool retry = !m_unrecorded.empty();
+    const std::vector<std::string> statusLines = dueStatusLines();
     lock.unlock();
+    for (const std::string& line : statusLines) logLine(line);
     try {
       m_store.setProgress(progress);
       for (const auto& [key, step] : resumed) m_store.recordResume(key, step);

@@ -22,6 +22,7 @@
 // and set aside until the disk has room for twice its partial result (or checkpoint) and the
 // floor; only three such failures in a row without its checkpoint advancing fail it.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -37,7 +38,9 @@
 #include <vector>
 
 #include "execution/executor.hpp"
+#include "io/status_line.hpp"
 #include "jobs/job_store.hpp"
+#include "rupture/progress.hpp"
 #include "rupture/run.hpp"
 
 namespace rupture::server {
@@ -68,6 +71,9 @@ public:
   void shutdown() override;
   /// Free bytes the data directory must keep for a run to start (0: no floor). Call before start().
   void setMinFreeBytes(std::uintmax_t bytes) { m_minFreeBytes = bytes; }
+  /// Seconds between the status lines each running run writes to the log (io::StatusLine), as
+  /// `rupture run` prints them off a terminal. Call before start().
+  void setStatusInterval(double seconds) { m_statusInterval = seconds; }
   /// True while queued runs wait for disk space (the floor, or a run re-queued for a full disk
   /// waiting for the room it needs).
   bool waitingForDisk() const override;
@@ -102,6 +108,8 @@ private:
   bool tryRecord(const Outcome& outcome);
   void retryUnrecorded();
   void monitorLoop();
+  /// The status line of each active run that is due (one per m_statusInterval), to log.
+  std::vector<std::string> dueStatusLines();
   void execute(RunKey key, const std::shared_ptr<rupture::RunControl>& control);
   void recoverFinishedFiles();
 
@@ -123,6 +131,14 @@ private:
   std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
   std::map<RunKey, std::string, RunKeyLess> m_stages;  ///< last stage message of each active run
   std::set<RunKey, RunKeyLess> m_resumeRecorded;        ///< active runs whose resume the store has
+  /// What the periodic status line of an active run needs between lines (guarded by m_mutex).
+  struct StatusWatch {
+    io::StatusLine line;
+    RemainingTime remaining;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), lastLine = start;
+  };
+  std::map<RunKey, StatusWatch, RunKeyLess> m_statusWatches;
+  double m_statusInterval = 10;
   bool m_stopping = false;
   bool m_started = false;
   std::vector<Outcome> m_unrecorded;  // guarded by m_mutex

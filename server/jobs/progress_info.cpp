@@ -57,16 +57,20 @@ Timing runTiming(const RunRecord& run, const std::string& now) {
   return t;
 }
 
-/// A job's: the longest ETA of its running runs, plus its queued runs in rounds as wide as the
-/// runs running now, each as long as its finished runs took on average (before any has finished:
-/// as long as the running ones will have taken). Unknown while a running run's ETA is.
+/// A job's, from its runs' measured rates: each running run ends after its own ETA, and each
+/// queued run starts on the first of those slots to come free and lasts as long as its finished
+/// runs took on average (before any has finished: as long as the running ones will have taken,
+/// elapsed + ETA). The slots are the runs running now (the workers this job holds). A running run
+/// whose own rate is not known yet (its first 2 s of progress) counts as a typical run less the
+/// time it has run; unknown while nothing measures a typical run, or between runs.
 Timing jobTiming(const JobRecord& job, const std::vector<RunRecord>* runs, const std::string& now) {
   Timing t;
   t.elapsed = elapsedOf(job.status, job.started, job.finished, now);
   if (job.status == Status::Successful) t.eta = 0;
   if (job.status != Status::Running || !runs) return t;
-  double longest = 0, finishedTime = 0, projectedTime = 0;
-  int running = 0, queued = 0, finished = 0;
+  double finishedTime = 0, projectedTime = 0;
+  int queued = 0, finished = 0, projected = 0;
+  std::vector<Timing> running;
   for (const RunRecord& r : *runs) {
     if (r.status == Status::Accepted) ++queued;
     if (r.status == Status::Successful && !r.started.empty() && !r.finished.empty()) {
@@ -75,15 +79,26 @@ Timing jobTiming(const JobRecord& job, const std::vector<RunRecord>* runs, const
     }
     if (r.status != Status::Running) continue;
     const Timing rt = runTiming(r, now);
-    if (rt.eta < 0) return t;  // not known yet
-    longest = std::max(longest, rt.eta);
-    projectedTime += std::max(rt.elapsed, 0.0) + rt.eta;
-    ++running;
+    running.push_back(rt);
+    if (rt.eta >= 0) {
+      projectedTime += std::max(rt.elapsed, 0.0) + rt.eta;
+      ++projected;
+    }
   }
-  if (running == 0) return t;  // between runs: nothing measures the rate
-  const double perRun = finished > 0 ? finishedTime / finished : projectedTime / running;
-  const int rounds = (queued + running - 1) / running;
-  t.eta = longest + rounds * perRun;
+  if (running.empty()) return t;  // between runs: nothing measures the rate
+  double perRun = -1;
+  if (finished > 0) perRun = finishedTime / finished;
+  else if (projected > 0) perRun = projectedTime / projected;
+  std::vector<double> slots;  // when each running run's worker comes free (s from now)
+  for (const Timing& rt : running) {
+    double eta = rt.eta;
+    if (eta < 0 && perRun > 0 && rt.elapsed >= 0 && perRun > rt.elapsed) eta = perRun - rt.elapsed;
+    if (eta < 0) return t;  // not known yet
+    slots.push_back(eta);
+  }
+  if (queued > 0 && !(perRun > 0)) return t;
+  for (int q = 0; q < queued; ++q) *std::min_element(slots.begin(), slots.end()) += perRun;
+  t.eta = *std::max_element(slots.begin(), slots.end());
   return t;
 }
 

@@ -19,14 +19,16 @@ Json slowThenQuick() {
 
 TEST(LiveProgress, EstimatorAndTimestamps) {
   // A run that built its sample for 60 s (no progress), then went from 10 % at 60 s to 30 % at 70 s:
-  // 2 %/s, so 70 % more takes 35 s, 5 s of which have passed since the last report. The set-up
-  // minute does not count as slow progress (the old elapsed · (1 − f) / f said 163 s).
-  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 75.0), 30.0);
+  // 2 %/s, so 70 % more takes 35 s. Asked 5 s after that report with nothing new, its rate is 20 %
+  // in 15 s, so 70 % more takes 52.5 s: a run that reports nothing is slowing down, never done. The
+  // set-up minute does not count as slow progress (the old elapsed · (1 − f) / f said 163 s).
+  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 70.0), 35.0);
+  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 75.0), 52.5);
   EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 1.0, 75.0), 0.0);
   EXPECT_LT(remainingSeconds(60.0, 0.1, 61.0, 0.3, 61.0), 0.0) << "a second of progress says too little";
   EXPECT_LT(remainingSeconds(60.0, 0.3, 70.0, 0.3, 70.0), 0.0) << "no gain, no rate";
   EXPECT_LT(remainingSeconds(-1.0, 0.0, 70.0, 0.3, 70.0), 0.0) << "no anchor yet";
-  EXPECT_DOUBLE_EQ(remainingSeconds(60.0, 0.1, 70.0, 0.3, 200.0), 0.0) << "overdue is 0, not negative";
+  EXPECT_GT(remainingSeconds(60.0, 0.1, 70.0, 0.3, 200.0), 35.0) << "overdue: later, never 0 while it runs";
   RemainingTime watch;
   watch.observe(0.0, 0.0);
   watch.observe(30.0, 0.0);  // set-up
@@ -62,6 +64,39 @@ TEST(LiveProgress, AJobsProgressWeighsItsRunsByCost) {
   runs[0].finished.clear();
   runs[1].rateFrom.clear();
   EXPECT_NEAR(jobProgress(runs, now), (0.2 + 0.5 + 0) / 3, 1e-12);
+}
+
+TEST(LiveProgress, AJobsEtaFillsTheSlotsItsRunsFreeWithTheirMeasuredLength) {
+  // Two workers: run 0 ends in 10 s (50 % done at 5 %/s), run 1 in 90 s (10 % done at 1 %/s); run 2
+  // finished in 100 s; run 3 waits. Run 3 starts when run 0's worker comes free
+  // and takes the 100 s the finished run took: 110 s. (Rounds of the longest, 90 + 100 = 190 s,
+  // said nearly twice that.)
+  JobRecord job;
+  job.status = Status::Running;
+  std::vector<RunRecord> runs(4);
+  runs[0].status = runs[1].status = Status::Running;
+  runs[0].started = runs[1].started = "2026-01-01T00:00:00.000Z";
+  runs[0].rateFrom = "2026-01-01T00:00:00.000Z";
+  runs[0].rateFromProgress = 0.0001;
+  runs[0].progress = 0.5001;
+  runs[1].rateFrom = "2026-01-01T00:00:00.000Z";
+  runs[1].rateFromProgress = 0.0001;
+  runs[1].progress = 0.1001;
+  runs[0].updated = runs[1].updated = "2026-01-01T00:00:10.000Z";
+  runs[2].status = Status::Successful;
+  runs[2].started = "2025-12-31T23:58:00.000Z";
+  runs[2].finished = "2025-12-31T23:59:40.000Z";
+  runs[3].status = Status::Accepted;
+  const std::string now = "2026-01-01T00:00:10.000Z";
+  Json doc;
+  addJobProgress(doc, job, &runs, now);
+  ASSERT_TRUE(doc["eta_s"].is_number()) << doc.dump();
+  EXPECT_NEAR(doc["eta_s"].get<double>(), 110.0, 0.1);
+  // A run not measured yet (no rate) counts as a typical run less what it has run: 100 - 10 s.
+  runs[1].rateFrom.clear();
+  addJobProgress(doc, job, &runs, now);
+  ASSERT_TRUE(doc["eta_s"].is_number()) << doc.dump();
+  EXPECT_NEAR(doc["eta_s"].get<double>(), 110.0, 0.1);  // 10 + 100 on one slot, 90 on the other
 }
 
 TEST(LiveProgress, RunningRunAndJobReportStageElapsedEtaAndUpdated) {

@@ -10,6 +10,7 @@ std::optional<SampleReport> buildRunSample(const SampleSpec& sample, const Mater
                                            RunControl& control, const std::string& directory, SampleCacheUse* use) {
   control.progress.store(0.0);
   logStage(control, "building the sample");
+  enterPhase(control, "building the sample");
   SampleCacheUse ignored;
   try {
     return buildSampleCached(sample, material, system, directory, control.cancel, use ? *use : ignored);

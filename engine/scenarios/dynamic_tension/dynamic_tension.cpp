@@ -19,6 +19,7 @@
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "scenarios/dynamic_tension/tension_recorder.hpp"
+#include "scenarios/dynamic_tension/tension_stop_forecast.hpp"
 #include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 #include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
@@ -98,8 +99,37 @@ struct PreliminaryOutcome {
   std::optional<PreliminaryResult> result;  ///< empty when not needed, or cancelled
   bool fromCache = false, cancelled = false;
   std::string cacheFile;                    ///< where it was read or stored ("" if not cached)
-  double progressWeight = 0;                ///< share of the progress bar taken by computing it
+  double steps = 0;                         ///< steps the computed preliminary run took (0: none, or cached)
 };
+
+/// The rules the main run stops by (tension_stop_forecast.hpp), with the settle time from
+/// `waveSpeed` (the preliminary run's C0, else the affine bound).
+TensionStopRules mainStopRules(const DynamicTensionSpec& spec, const TensionGeometry& geometry,
+                               const VelocityRamp& ramp, double waveSpeed, double timeStep) {
+  TensionStopRules rules;
+  rules.settleTime = spec.run.settleRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed;
+  rules.capTime = std::min(ramp.timeToReach(spec.run.maxStrain * geometry.gaugeLength),
+                           static_cast<double>(spec.run.maxSteps) * timeStep);
+  return rules;
+}
+
+/// The whole run's progress while its preliminary run steps: the steps done over the preliminary's
+/// and the main run's together, the main run forecast with the preliminary's target strain as its
+/// onset (its field carries the same sample to the same first break, faster). `preliminaryStep`
+/// and `timeStep`: the two runs' time steps (s).
+double progressDuringPreliminary(const DynamicTensionSpec& spec, const BondedSystem& system,
+                                 const TensionGeometry& geometry, double preliminaryStep, double timeStep,
+                                 const PreliminaryProgress& pre) {
+  const double waveSpeed = affineWaveSpeed(system, geometry);
+  const bool ramped = spec.loading.initialVelocity == InitialVelocityField::V0;
+  const VelocityRamp ramp{spec.loading.strainRate * geometry.gaugeLength,
+                          ramped ? spec.loading.rampWaveRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed : 0.0};
+  const double onset = ramp.timeToReach(pre.targetStrain * geometry.gaugeLength);
+  const double mainStop = forecastStopTime(0.0, TensionObservables(0), mainStopRules(spec, geometry, ramp, waveSpeed, timeStep),
+                                           onset > 0 ? onset : std::numeric_limits<double>::quiet_NaN());
+  const double total = std::max(pre.endTime, pre.time) / preliminaryStep + mainStop / timeStep;
+  return total > 0 ? pre.time / preliminaryStep / total : 0.0;
+}
 
 /// The preliminary run when this spec needs it (VH, or V0 without ramp_time nor wave_speed): read
 /// from the cache, else computed on a copy of the sample and stored.
@@ -128,11 +158,12 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
       return out;
     }
   }
-  const double r = 0.7 * spec.loading.strainRate / plan.params.strainRate;  // cost ratio, roughly
-  out.progressWeight = r / (1.0 + r);
   logStage(control, "preliminary run from rest at " + formatNumber(plan.params.strainRate) + " /s");
-  out.result = runPreliminary(system, geometry, plan.params, control,
-                              [&](double f) { reportProgress(control, out.progressWeight * f); });
+  enterPhase(control, "preliminary run");
+  out.result = runPreliminary(system, geometry, plan.params, control, [&](const PreliminaryProgress& p) {
+    reportProgress(control, progressDuringPreliminary(spec, system, geometry, plan.params.timeStep, timeStep, p));
+  });
+  if (out.result) out.steps = static_cast<double>(out.result->steps);
   if (!out.result) {
     out.cancelled = true;
   } else if (spec.output.cachePreliminary && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
@@ -255,9 +286,27 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   };
   auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested strains
     if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
+    const auto began = Clock::now();
     recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
                            "strain " + formatNumber(snapshotStrains[nextSnapshot]));
+    control.phases.charge("writing snapshots", seconds(began));
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
+  };
+
+  // The progress is the steps done over the steps to the forecast stop time
+  // (tension_stop_forecast.hpp), a computed preliminary run's included.
+  const TensionStopRules stopRules = mainStopRules(spec, geometry, loading.ramp(), settleWaveSpeed, dt);
+  auto publishStatus = [&] {
+    RunStatus now;
+    now.step = static_cast<std::int64_t>(system.steps);
+    now.time = system.time;
+    now.strain = strain;
+    now.headlineName = "mean stress";
+    now.headlineUnit = "Pa";
+    now.headline = stress.mean;
+    now.brokenBonds = static_cast<std::int64_t>(observed.broken());
+    now.particles = static_cast<double>(system.particles.size());
+    reportStatus(control, now);
   };
 
   double nextOutput = outputInterval;
@@ -278,13 +327,15 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 
   if (!pre.cancelled) {
     logStage(control, "main run: " + toString(field) + " at " + formatNumber(spec.loading.strainRate) + " /s, V_max " +
-                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s");
+                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s, stops " +
+                     formatNumber(settleTime) + " s after the separation and the last break");
     if (checkpoints.resuming()) {
       checkpoints.restore();
     } else {
       record();
       snapshotsDue();
     }
+    enterPhase(control, kSteppingPhase);
     auto lastReport = Clock::now();
     while (true) {
       if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
@@ -326,13 +377,19 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       if (strain >= spec.run.maxStrain) { stopReason = "max_strain"; break; }
       if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
         lastReport = Clock::now();
-        const double main = observed.progress(system.time, loading.ramp(), geometry.gaugeLength, spec.run.maxStrain,
-                                              system.maxFailureRatio());
-        reportProgress(control, pre.progressWeight + (1.0 - pre.progressWeight) * main);
+        // The worst bond's stress over its strength grows about linearly with ε: where it reaches 1.
+        const double worstRatio = system.maxFailureRatio();
+        const double onsetEstimate =
+            worstRatio > 1e-3 ? loading.ramp().timeToReach(strain / worstRatio * geometry.gaugeLength) : kNaN;
+        const double stop = forecastStopTime(system.time, observed, stopRules, onsetEstimate);
+        reportProgress(control, (pre.steps + system.time / dt) / (pre.steps + stop / dt));
+        publishStatus();
       }
     }
     if (lastRowStep != system.steps) record();  // the last state is always a row
+    publishStatus();
   }
+  enterPhase(control, "final snapshot and fragments");
   recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
   const bool completed = stopReason != "cancelled";
 

@@ -32,7 +32,7 @@ VelocityField copyVelocities(const ParticleStore& p) {
 
 std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, const TensionGeometry& geometry,
                                                 const PreliminaryParameters& params, RunControl& control,
-                                                const std::function<void(double)>& progress) {
+                                                const std::function<void(const PreliminaryProgress&)>& progress) {
   const auto wallStart = std::chrono::steady_clock::now();
   BondedSystem system = initial;
   TensionLoading loading(geometry, params.strainRate, params.rampTime);
@@ -95,14 +95,13 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
     if (progress && now - lastReport > std::chrono::milliseconds(100)) {
       lastReport = now;
       // Target strain: the capture strain, or the first break, extrapolated from the worst bond
-      // (its stress grows about linearly with ε); progress = time over the time to reach it.
+      // (its stress grows about linearly with ε); the run ends about when it is reached.
       double target = params.captureStrain ? *params.captureStrain : 0.0;
       if (!params.captureStrain) {
         const double ratio = system.maxFailureRatio();
         target = ratio > 1e-3 ? strain / ratio : params.maxStrain;
       }
-      const double end = loading.ramp().timeToReach(target * geometry.gaugeLength);
-      progress(end > 0 ? std::clamp(system.time / end, 0.0, 1.0) : 0.0);
+      progress({system.time, loading.ramp().timeToReach(target * geometry.gaugeLength), target});
     }
   }
 
@@ -152,7 +151,7 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   r.waveSpeed = std::sqrt(r.modulus / geometry.bulkDensity);
   r.equilibriumRatio = gap / std::abs(mean);
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  if (progress) progress(1.0);
+  if (progress) progress({system.time, system.time, onset});
   return r;
 }
 

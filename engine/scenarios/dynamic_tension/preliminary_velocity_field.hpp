@@ -60,13 +60,21 @@ struct PreliminaryResult {
   double wallTime = 0;                 ///< s spent computing it (in the run that computed it)
 };
 
+/// What the preliminary run reports as it goes: its simulated time, the time it is estimated to
+/// end at, and the strain it runs to (the first break's, extrapolated from the worst bond, or the
+/// capture strain when given), for the share of the progress bar it takes.
+struct PreliminaryProgress {
+  double time = 0, endTime = 0, targetStrain = 0;
+};
+
 /// Runs the preliminary test on a copy of `initial` (a freshly built sample at rest). Returns
-/// nullopt if control.cancel was set. `progress` receives the estimated fraction done in [0, 1].
+/// nullopt if control.cancel was set. `progress` receives where it is about every 0.1 s of wall
+/// time, and once at its end (endTime = time).
 /// Throws SpecError (field loading.vh_capture_strain: a bond broke before it, or it is reached
 /// before the end of the ramp) or std::runtime_error (no bond broke within the guards, or the first
 /// break came before a post-ramp field below half its strain was kept).
 std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, const TensionGeometry& geometry,
                                                 const PreliminaryParameters& params, RunControl& control,
-                                                const std::function<void(double)>& progress);
+                                                const std::function<void(const PreliminaryProgress&)>& progress);
 
 }  // namespace rupture

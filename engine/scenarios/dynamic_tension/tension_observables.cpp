@@ -73,20 +73,6 @@ double TensionObservables::loadingEquilibriumRatio() const {
   return windowMean > 0 ? (m_sumDifferenceAtPeak - difference) / windowMean : kNaN;
 }
 
-double TensionObservables::progress(double time, const VelocityRamp& ramp, double gaugeLength, double maxStrain,
-                                    double worstBondStressRatio) const {
-  double p = 0;
-  if (m_broken == 0) {
-    if (worstBondStressRatio > 1e-3) {
-      const double onset = ramp.timeToReach(m_strain / worstBondStressRatio * gaugeLength);
-      p = onset > 0 ? 0.5 * std::min(1.0, time / onset) : 0.0;
-    }
-  } else {
-    p = 0.5 + 0.5 * std::clamp((m_peak - m_last.mean) / m_peak, 0.0, 1.0);
-  }
-  return std::clamp(std::max(p, m_strain / maxStrain), 0.0, 1.0);
-}
-
 nlohmann::json TensionObservables::summary() const {
   const bool peakFound = std::isfinite(m_peak);
   const double atPeak = peakFound && m_peak != 0 ? std::abs(m_xminAtPeak - m_xmaxAtPeak) / std::abs(m_peak) : kNaN;

@@ -52,19 +52,14 @@ public:
   /// Time constant of the moving average of σ̄ used by unloadedAndQuiet (s); 0: σ̄ itself.
   void setAveragingTime(double tau) { m_averagingTime = tau; }
 
-  /// Fraction done in [0, 1]: before the first break, ½ × the time over the estimated time of the
-  /// first break (the worst bond's stress over its strength grows about linearly with ε, which
-  /// extrapolates the onset strain; `ramp` converts it to a time); after it, ½ + ½ × the drop of σ̄
-  /// from its peak towards zero; at least ε / maxStrain.
-  double progress(double time, const VelocityRamp& ramp, double gaugeLength, double maxStrain,
-                  double worstBondStressRatio) const;
-
   std::size_t broken() const { return m_broken; }
   double strainAtPeak() const { return m_strainAtPeak; }
   double brokenFraction() const {
     return m_initialBonds ? static_cast<double>(m_broken) / static_cast<double>(m_initialBonds) : 0.0;
   }
   double onsetTime() const { return m_onsetTime; }
+  double lastBreakTime() const { return m_lastBreakTime; }
+  double separationTime() const { return m_separationTime; }
 
   /// R_eq above (NaN without a positive peak).
   double loadingEquilibriumRatio() const;

@@ -127,6 +127,7 @@ RunOutcome runElasticProperties(const ElasticPropertiesSpec& spec, const nlohman
   ElasticProperties result;
   BeamFit fit;
   if (!cancelled()) {  // a cancelled build leaves a sample not for use
+    enterPhase(control, "quasi-static tests");
     reportProgress(control, kBuildShare);
     logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
                      " bonds, porosity " + formatNumber(report.porosity));

@@ -79,6 +79,18 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
       return out;
     }
   }
+  // Where the run is, for the watcher's status line: the fluid's kinetic energy as its headline.
+  auto publishStatus = [&] {
+    RunStatus now;
+    now.step = static_cast<std::int64_t>(s.steps);
+    now.time = s.time;
+    now.headlineName = "kinetic energy";
+    now.headlineUnit = s.model.dimension == 2 ? "J/m" : "J";
+    now.headline = s.kineticEnergy();
+    now.particles = static_cast<double>(s.particles.size());
+    reportStatus(control, now);
+  };
+  enterPhase(control, kSteppingPhase);
   auto lastReport = Clock::now();
   while (true) {
     if (saved.checkpoints.poll(s.steps, s.time) == RunCheckpoints::Action::Stop) {
@@ -116,10 +128,14 @@ FluidLoopOutcome runFluidLoop(sph::SphSystem& s, const io::FluidRunSpec& run, Ru
     }
     if ((s.steps & 15) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
       lastReport = Clock::now();
-      reportProgress(control, s.time / run.endTime);
+      // The run ends at end_time or max_steps, whichever comes first.
+      reportProgress(control, std::max(s.time / run.endTime,
+                                        static_cast<double>(s.steps) / static_cast<double>(run.maxSteps)));
+      publishStatus();
     }
   }
   if (lastRowStep != s.steps) row();  // the last state is always a row
+  publishStatus();
   return out;
 }
 

@@ -261,6 +261,19 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     a.value("next_output", nextOutput);
   });
   if (checkpoints.resuming()) checkpoints.restore();
+  // Where the run is, for the watcher's status line: the crack's length as its headline.
+  auto publishStatus = [&] {
+    RunStatus now;
+    now.step = static_cast<std::int64_t>(system.steps);
+    now.time = system.time;
+    now.headlineName = "crack length";
+    now.headlineUnit = "m";
+    now.headline = tracker.tip().distance;
+    now.brokenBonds = static_cast<std::int64_t>(broken);
+    now.particles = static_cast<double>(system.particles.size());
+    reportStatus(control, now);
+  };
+  enterPhase(control, kSteppingPhase);
   auto lastReport = Clock::now();
   // A checkpoint is taken after the step's row and snapshot, with next_output and next_snapshot
   // already past them: a resumed run does not take them again.
@@ -289,9 +302,13 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       for (int a = 0; a < d; ++a) projectile->v[a] += 0.5 * dt * projectile->f[a] / projectile->spec.mass;
     if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
       lastReport = Clock::now();
-      reportProgress(control, std::min(1.0, system.time / spec.endTime));
+      // The run ends at end_time or max_steps, whichever comes first.
+      reportProgress(control, std::max(system.time / spec.endTime,
+                                        static_cast<double>(system.steps) / static_cast<double>(spec.maxSteps)));
+      publishStatus();
     }
   }
+  publishStatus();
   if (series[0].empty() || series[0].back() != system.time) record();
   snapshot("final", damage);
   file.createGroup("/series");
