@@ -138,6 +138,15 @@ SampleSpec parseSample(const SpecReader& root) {
     s.radiusDispersion = sample.number("radius_dispersion", Range::closed(0.0, 0.5), "1", s.radiusDispersion);
     s.bondGap = sample.number("bond_gap", Range::closed(0.0, 1.0), "1", s.bondGap);
   }
+  // An element wider than the sample: the builder would pack one squeezed element (or, on a
+  // lattice, no site) across that edge. One element diameter is the least an edge can hold.
+  const double diameter = lattice ? s.spacing : 2.0 * s.elementRadius;
+  for (std::size_t a = 0; a < d; ++a)
+    if (size[a] < diameter)
+      throw SpecError(sample.pathOf("size") + "[" + std::to_string(a) + "]", formatNumber(size[a]),
+                      "an edge at least one element wide (" +
+                          std::string(lattice ? "sample.spacing" : "2 x sample.element_radius") + " = " +
+                          formatNumber(diameter) + " m)");
   const double maxPorosity = s.dimension == 2 ? kMaxPorosity2D : kMaxPorosity3D;
   s.porosity = sample.number("porosity", Range::closed(0.0, maxPorosity), "1", 0.0);
   if (s.porosity > 0 || sample.has("pore_radius")) {
