@@ -1,7 +1,8 @@
 // Issue 55 item 7: what the spec alone decides is refused by `rupture validate` (exit 2, naming the
 // field), not found by the sample builder in the worker: an element wider than the sample, a
-// dynamic-tension sample too short for two loaded faces, an impact loading region outside the
-// sample. The boundary value of each check still validates.
+// dynamic-tension sample too short for two loaded faces, pores of which the porosity needs two that
+// cannot lie side by side, an impact loading region outside the sample. The boundary value of each
+// check still validates.
 #include <filesystem>
 #include <string>
 
@@ -75,6 +76,18 @@ TEST(CliSpecTimeChecks, ADynamicTensionGaugeShorterThanTwoElementsExits2) {
   expectValid(spec, "spec-check-gauge-ok.json");
   spec["sample"]["radius_dispersion"] = 0.2;  // the largest element is 1.2 R_DE: 57.6 nm needed
   expectRefused(spec, "spec-check-gauge-dispersion.json", "sample.size[0]", "5.76e-08 m");
+}
+
+TEST(CliSpecTimeChecks, PoresThatCannotFitSideBySideExit2) {
+  nlohmann::json spec = tension();  // 1 um square
+  spec["sample"]["porosity"] = 0.45;
+  spec["sample"]["pore_radius"] = {3.5e-7, 3.5e-7};  // one pore holds 0.385: a second is needed and cannot fit
+  expectRefused(spec, "spec-check-pores.json", "sample.porosity", "do not fit side by side");
+  spec["sample"]["porosity"] = 0.38;  // one pore holds it
+  expectValid(spec, "spec-check-pores-one.json");
+  spec["sample"]["porosity"] = 0.45;
+  spec["sample"]["pore_radius"] = {2.5e-7, 3.5e-7};  // two of the smallest fit along the diagonal
+  expectValid(spec, "spec-check-pores-two.json");
 }
 
 TEST(CliSpecTimeChecks, AnImpactLoadingRegionOutsideTheSampleExits2) {

@@ -27,6 +27,12 @@ TEST(SpecTimeChecks, BadGeometryGets400NamingTheField) {
   doc = test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", gauge}}), 400, "sample.size[0]");
   EXPECT_NE(doc.value("detail", "").find("both loaded faces"), std::string::npos) << doc.dump();
 
+  Json pores = test::smallInputs();
+  pores["sample"]["porosity"] = 0.45;
+  pores["sample"]["pore_radius"] = {3.5e-7, 3.5e-7};
+  doc = test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", pores}}), 400, "sample.porosity");
+  EXPECT_NE(doc.value("detail", "").find("do not fit side by side"), std::string::npos) << doc.dump();
+
   // A sweep whose one point is bad is refused whole, naming the field.
   Json sweep = test::smallInputs();
   Json body = {{"inputs", sweep}, {"sweep", {{"sample.element_radius", {1.2e-8, 6e-7}}}}};  // 1.2 um elements in 1 um
