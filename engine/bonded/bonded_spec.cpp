@@ -233,20 +233,28 @@ SampleSpec parseSample(const SpecReader& root) {
                       "radii large enough for at most 10000 inclusions at this volume_fraction and sample.size (these need about " +
                           formatNumber(std::round(count)) + ")");
   }
-  if (s.porosity > 0) {
-    // Pores that cannot fit: when one pore of the largest radius holds less than the porosity asks
-    // for, the builder must place a second; the centres of pores of radius >= r_min lie within r_min
-    // of no face, and two of them must be 2 r_min apart. A box whose inner diagonal is shorter holds
-    // one pore only, and the builder would give up after its attempts (samples/pores.cpp).
-    const double rMin = s.poreRadius[0];
+  // Pores or inclusions that cannot fit: when one of the largest radius holds less than the
+  // fraction asks for, the builder must place a second; the centres of those of radius >= r_min lie
+  // at least r_min from every face, and two of them must be 2 r_min apart. A box whose inner
+  // diagonal is shorter holds only one, and the builder would give up after its attempts
+  // (samples/pores.cpp).
+  auto requireRoomForTwo = [&](const std::string& field, double fraction, const std::array<double, 2>& radius,
+                               const std::string& radiusName) {
+    const double rMin = radius[0];
     double diagonal2 = 0;
     for (std::size_t a = 0; a < d; ++a) diagonal2 += (s.size[a] - 2.0 * rMin) * (s.size[a] - 2.0 * rMin);
-    const double onePore = ballVolume(s.dimension, s.poreRadius[1]);
-    if (s.porosity * volume > onePore && diagonal2 < 4.0 * rMin * rMin)
-      throw SpecError(sample.pathOf("porosity"), formatNumber(s.porosity),
-                      "at most " + formatNumber(onePore / volume) +
-                          " (one pore of the largest sample.pore_radius): two pores of radius >= " + formatNumber(rMin) +
-                          " m do not fit side by side in this sample.size; lower the porosity or the pore radii");
+    const double one = ballVolume(s.dimension, radius[1]);
+    if (fraction * volume > one && diagonal2 < 4.0 * rMin * rMin)
+      throw SpecError(field, formatNumber(fraction),
+                      "at most " + formatNumber(one / volume) + " (one of the largest " + radiusName +
+                          "): two of radius >= " + formatNumber(rMin) +
+                          " m do not fit side by side in this sample.size; lower it or the radii");
+  };
+  if (s.inclusions.volumeFraction > 0)
+    requireRoomForTwo(sample.pathOf("inclusions") + ".volume_fraction", s.inclusions.volumeFraction,
+                      s.inclusions.radius, "sample.inclusions.radius");
+  if (s.porosity > 0) requireRoomForTwo(sample.pathOf("porosity"), s.porosity, s.poreRadius, "sample.pore_radius");
+  if (s.porosity > 0) {
     const double pores = s.porosity * volume /
                          ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *
                           meanPower(s.dimension, s.poreRadius[0], s.poreRadius[1]));

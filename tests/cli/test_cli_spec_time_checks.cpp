@@ -1,8 +1,8 @@
 // Issue 55 item 7: what the spec alone decides is refused by `rupture validate` (exit 2, naming the
 // field), not found by the sample builder in the worker: an element wider than the sample, a
-// dynamic-tension sample too short for two loaded faces, pores of which the porosity needs two that
-// cannot lie side by side, an impact loading region outside the sample. The boundary value of each
-// check still validates.
+// dynamic-tension sample too short for two loaded faces, pores (or inclusions) of which the porosity
+// needs two that cannot lie side by side, an impact loading region outside the sample. The boundary
+// value of each check still validates.
 #include <filesystem>
 #include <string>
 
@@ -88,6 +88,14 @@ TEST(CliSpecTimeChecks, PoresThatCannotFitSideBySideExit2) {
   spec["sample"]["porosity"] = 0.45;
   spec["sample"]["pore_radius"] = {2.5e-7, 3.5e-7};  // two of the smallest fit along the diagonal
   expectValid(spec, "spec-check-pores-two.json");
+}
+
+TEST(CliSpecTimeChecks, InclusionsThatCannotFitSideBySideExit2) {
+  nlohmann::json spec = tension();
+  spec["sample"]["inclusions"] = {{"volume_fraction", 0.45}, {"radius", {3.5e-7, 3.5e-7}}};
+  expectRefused(spec, "spec-check-inclusions.json", "sample.inclusions.volume_fraction", "do not fit side by side");
+  spec["sample"]["inclusions"]["volume_fraction"] = 0.38;
+  expectValid(spec, "spec-check-inclusions-one.json");
 }
 
 TEST(CliSpecTimeChecks, AnImpactLoadingRegionOutsideTheSampleExits2) {

@@ -33,6 +33,12 @@ TEST(SpecTimeChecks, BadGeometryGets400NamingTheField) {
   doc = test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", pores}}), 400, "sample.porosity");
   EXPECT_NE(doc.value("detail", "").find("do not fit side by side"), std::string::npos) << doc.dump();
 
+  Json inclusions = test::smallInputs();
+  inclusions["sample"]["inclusions"] = {{"volume_fraction", 0.45}, {"radius", {3.5e-7, 3.5e-7}}};
+  doc = test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", inclusions}}), 400,
+                            "sample.inclusions.volume_fraction");
+  EXPECT_NE(doc.value("detail", "").find("do not fit side by side"), std::string::npos) << doc.dump();
+
   // A sweep whose one point is bad is refused whole, naming the field.
   Json sweep = test::smallInputs();
   Json body = {{"inputs", sweep}, {"sweep", {{"sample.element_radius", {1.2e-8, 6e-7}}}}};  // 1.2 um elements in 1 um
