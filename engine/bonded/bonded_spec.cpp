@@ -138,6 +138,15 @@ SampleSpec parseSample(const SpecReader& root) {
     s.radiusDispersion = sample.number("radius_dispersion", Range::closed(0.0, 0.5), "1", s.radiusDispersion);
     s.bondGap = sample.number("bond_gap", Range::closed(0.0, 1.0), "1", s.bondGap);
   }
+  // An element wider than the sample: the builder would pack one squeezed element (or, on a
+  // lattice, no site) across that edge. One element diameter is the least an edge can hold.
+  const double diameter = lattice ? s.spacing : 2.0 * s.elementRadius;
+  for (std::size_t a = 0; a < d; ++a)
+    if (size[a] < diameter)
+      throw SpecError(sample.pathOf("size") + "[" + std::to_string(a) + "]", formatNumber(size[a]),
+                      "an edge at least one element wide (" +
+                          std::string(lattice ? "sample.spacing" : "2 x sample.element_radius") + " = " +
+                          formatNumber(diameter) + " m)");
   const double maxPorosity = s.dimension == 2 ? kMaxPorosity2D : kMaxPorosity3D;
   s.porosity = sample.number("porosity", Range::closed(0.0, maxPorosity), "1", 0.0);
   if (s.porosity > 0 || sample.has("pore_radius")) {
@@ -224,6 +233,27 @@ SampleSpec parseSample(const SpecReader& root) {
                       "radii large enough for at most 10000 inclusions at this volume_fraction and sample.size (these need about " +
                           formatNumber(std::round(count)) + ")");
   }
+  // Pores or inclusions that cannot fit: when one of the largest radius holds less than the
+  // fraction asks for, the builder must place a second; the centres of those of radius >= r_min lie
+  // at least r_min from every face, and two of them must be 2 r_min apart. A box whose inner
+  // diagonal is shorter holds only one, and the builder would give up after its attempts
+  // (samples/pores.cpp).
+  auto requireRoomForTwo = [&](const std::string& field, double fraction, const std::array<double, 2>& radius,
+                               const std::string& radiusName) {
+    const double rMin = radius[0];
+    double diagonal2 = 0;
+    for (std::size_t a = 0; a < d; ++a) diagonal2 += (s.size[a] - 2.0 * rMin) * (s.size[a] - 2.0 * rMin);
+    const double one = ballVolume(s.dimension, radius[1]);
+    if (fraction * volume > one && diagonal2 < 4.0 * rMin * rMin)
+      throw SpecError(field, formatNumber(fraction),
+                      "at most " + formatNumber(one / volume) + " (one of the largest " + radiusName +
+                          "): two of radius >= " + formatNumber(rMin) +
+                          " m do not fit side by side in this sample.size; lower it or the radii");
+  };
+  if (s.inclusions.volumeFraction > 0)
+    requireRoomForTwo(sample.pathOf("inclusions") + ".volume_fraction", s.inclusions.volumeFraction,
+                      s.inclusions.radius, "sample.inclusions.radius");
+  if (s.porosity > 0) requireRoomForTwo(sample.pathOf("porosity"), s.porosity, s.poreRadius, "sample.pore_radius");
   if (s.porosity > 0) {
     const double pores = s.porosity * volume /
                          ((s.dimension == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi) *

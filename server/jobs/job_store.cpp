@@ -209,7 +209,7 @@ void addCounts(sqlite3* db, JobRecord& j) {
       case Status::Accepted: j.runsAccepted = n; break;
       case Status::Running: j.runsRunning = n; done += q.dbl(2); break;
       case Status::Successful: j.runsSuccessful = n; done += n; break;
-      case Status::Failed: j.runsFailed = n; done += n; break;
+      case Status::Failed: j.runsFailed = n; done += q.dbl(2); break;  // as far as it got
       case Status::Dismissed: j.runsDismissed = n; done += q.dbl(2); break;  // what actually ran
     }
   }

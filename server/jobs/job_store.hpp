@@ -77,7 +77,7 @@ struct JobRecord {
   std::string created, started, finished, updated;
   int runsTotal = 0;
   int runsAccepted = 0, runsRunning = 0, runsSuccessful = 0, runsFailed = 0, runsDismissed = 0;
-  double progress = 0;  ///< [0, 1]: successful and failed runs count fully, running and dismissed runs by their progress
+  double progress = 0;  ///< [0, 1]: successful runs count fully, running, failed and dismissed runs by the progress they reached
   std::string runsUpdated;  ///< the latest `updated` of its runs (progress changes it), "" without runs
   /// The study plan and its record, null for a plain sweep: {"replicates": {count, vary},
   /// "refine": {...}, "refinement": {"state": "pending"|"done", "rounds", "runs_added", "points", "stopped"}}

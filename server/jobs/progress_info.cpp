@@ -110,7 +110,7 @@ double jobProgress(const std::vector<RunRecord>& runs, const std::string& now) {
   int counted = 0;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunRecord& r = runs[i];
-    fraction[i] = r.status == Status::Successful || r.status == Status::Failed ? 1.0 : std::clamp(r.progress, 0.0, 1.0);
+    fraction[i] = r.status == Status::Successful ? 1.0 : std::clamp(r.progress, 0.0, 1.0);  // failed: as far as it got
     if (r.status == Status::Dismissed && r.started.empty()) weight[i] = 0;  // never ran, never will
     if (isTerminal(r.status) && !r.started.empty() && !r.finished.empty()) weight[i] = secondsBetween(r.started, r.finished);
     if (r.status == Status::Running) {

@@ -25,10 +25,9 @@ Json runDocument(const JobRecord& job, const RunRecord& run) {
   }
   doc["swept"] = swept;
   doc["status"] = toString(run.status);
-  // 100 only once the run has finished (rupture::runningFraction).
-  doc["progress"] = run.status == Status::Successful ? 100
-                    : run.status == Status::Running  ? percent(rupture::runningFraction(run.progress))
-                                                     : percent(run.progress);
+  // 100 only once the run has finished successfully (rupture::runningFraction): a failed or
+  // dismissed run shows the progress it reached.
+  doc["progress"] = run.status == Status::Successful ? 100 : percent(rupture::runningFraction(run.progress));
   if (!run.started.empty()) doc["started"] = run.started;
   if (!run.finished.empty()) doc["finished"] = run.finished;
   if (run.attempts > 1) doc["attempts"] = run.attempts;
@@ -67,7 +66,8 @@ Json statusInfo(const JobRecord& job, const std::vector<RunRecord>* runs) {
   if (!job.name.empty()) doc["name"] = job.name;
   doc["status"] = toString(job.status);
   doc["message"] = publicMessage(job.message);
-  doc["progress"] = isTerminal(job.status) ? percent(job.progress) : percent(rupture::runningFraction(job.progress));
+  // 100 only for a successful job; a failed or dismissed one shows how far its runs got.
+  doc["progress"] = job.status == Status::Successful ? 100 : percent(rupture::runningFraction(job.progress));
   doc["created"] = job.created;
   if (!job.started.empty()) doc["started"] = job.started;
   if (!job.finished.empty()) doc["finished"] = job.finished;

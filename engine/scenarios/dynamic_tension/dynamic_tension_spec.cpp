@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bonded/bonded_spec.hpp"
+#include "core/format_number.hpp"
 #include "io/physical_ranges.hpp"
 #include "io/run_length.hpp"
 #include "io/spec_reader.hpp"
@@ -88,6 +89,18 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
   root.finish();
 
   // Cross-field checks.
+  // The loaded faces are the elements within half an element radius of the sample's X extremes
+  // (tension_loading.cpp): an element spanning the whole width would belong to both. Two of the
+  // largest element diameters along X leave every element on at most one face.
+  const bool lattice = s.sample.lattice != "random";
+  const double largestDiameter = 2.0 * s.sample.elementRadius * (lattice ? 1.0 : 1.0 + s.sample.radiusDispersion);
+  if (s.sample.size[0] < 2.0 * largestDiameter)
+    throw SpecError("sample.size[0]", formatNumber(s.sample.size[0]),
+                    "a gauge length of at least two of the largest element diameters, so that no element touches both "
+                    "loaded faces (" +
+                        std::string(lattice ? "2 x sample.spacing"
+                                            : "4 x sample.element_radius x (1 + sample.radius_dispersion)") +
+                        " = " + formatNumber(2.0 * largestDiameter) + " m)");
   if (s.loading.vhCaptureStrain && *s.loading.vhCaptureStrain >= s.run.maxStrain)
     throw SpecError("loading.vh_capture_strain", io::describeValue(*s.loading.vhCaptureStrain),
                     "a strain below run.max_strain (" + io::describeValue(s.run.maxStrain) + ")");

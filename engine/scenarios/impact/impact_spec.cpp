@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bonded/bonded_spec.hpp"
+#include "core/format_number.hpp"
 #include "io/run_length.hpp"
 #include "io/spec_reader.hpp"
 
@@ -26,6 +27,24 @@ Box box(const SpecReader& r, int d) {
     if (b.min[k] > b.max[k]) r.fail("max", "a corner with every coordinate >= min's (m)");
   if (d == 2) { b.min[2] = -1e308; b.max[2] = 1e308; }
   return b;
+}
+
+/// A loading region that misses the sample box [0, sample.size] on some axis holds no particle
+/// centre of any sample built from this spec: refused here rather than after the build.
+void requireOverlap(const Box& b, const SampleSpec& sample, const std::string& field) {
+  const int d = sample.dimension;
+  for (int a = 0; a < d; ++a) {
+    if (b.max[a] > 0 && b.min[a] < sample.size[a]) continue;
+    std::string value = "{\"min\": [";
+    for (int k = 0; k < d; ++k) value += (k ? ", " : "") + formatNumber(b.min[k]);
+    value += "], \"max\": [";
+    for (int k = 0; k < d; ++k) value += (k ? ", " : "") + formatNumber(b.max[k]);
+    value += "]}";
+    std::string extent = "[";
+    for (int k = 0; k < d; ++k) extent += (k ? ", " : "") + formatNumber(sample.size[k]);
+    throw SpecError(field, value,
+                    "a box overlapping the sample, from 0 to sample.size = " + extent + "] on every axis (m)");
+  }
 }
 
 nlohmann::json point(const std::array<double, 3>& p, int d) {
@@ -56,6 +75,7 @@ ImpactSpec parseImpactSpec(const nlohmann::json& json) {
   for (const SpecReader& r : loading.objects("velocity_regions", "{\"min\", \"max\", \"velocity\", \"ramp_time\"}")) {
     VelocityRegion v;
     v.box = box(r, d);
+    requireOverlap(v.box, s.sample, "loading.velocity_regions[" + std::to_string(s.velocityRegions.size()) + "]");
     v.velocity = vector3(r, "velocity", d, Range{-1e5, 1e5}, "m/s");
     v.rampTime = r.number("ramp_time", Range::nonNegative(), "s", 0.0);
     r.finish();
@@ -64,6 +84,7 @@ ImpactSpec parseImpactSpec(const nlohmann::json& json) {
   for (const SpecReader& r : loading.objects("tractions", "{\"min\", \"max\", \"traction\"}")) {
     TractionRegion t;
     t.box = box(r, d);
+    requireOverlap(t.box, s.sample, "loading.tractions[" + std::to_string(s.tractions.size()) + "]");
     t.traction = vector3(r, "traction", d, Range{-1e13, 1e13}, "Pa");
     r.finish();
     s.tractions.push_back(t);
