@@ -111,7 +111,9 @@ double secondsToFreeTheWorker(httplib::Client& client, std::int64_t id) {
   const auto start = std::chrono::steady_clock::now();
   auto res = client.Delete(("/jobs/" + std::to_string(id)).c_str());
   EXPECT_TRUE(res);
-  if (res) EXPECT_EQ(res->status, 200) << res->body;
+  if (res) {
+    EXPECT_EQ(res->status, 200) << res->body;
+  }
   EXPECT_TRUE(test::waitFor([&] { return test::getJson(client, "/health")["running"] == 0; }, 30));
   const double freedAfter = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::int64_t next = test::submit(client, Json{{"inputs", test::smallInputs()}});
