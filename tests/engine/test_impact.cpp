@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "io/hdf5_file.hpp"
 #include "rupture/spec_error.hpp"
@@ -272,26 +275,33 @@ namespace {
 // A loading box that holds no particle of the built sample would load nothing: the run stops
 // before writing anything, with an error naming the region.
 TEST(ImpactRun, ALoadingBoxWithNoParticleNamesItsField) {
-  for (const char* list : {"tractions", "velocity_regions"}) {
-    nlohmann::json spec = notchedPlate("pmb");
-    nlohmann::json region = {{"min", {0.03, 0.0}}, {"max", {0.04, 0.001}}};  // right of the 20 mm plate
-    if (std::string(list) == "tractions") region["traction"] = {0.0, 1e6};
-    else region["velocity"] = {0.0, 1.0};
-    spec["loading"] = {{"velocity_regions", spec["loading"]["velocity_regions"]}};
-    spec["loading"][list].push_back(region);
-    const std::size_t index = spec["loading"][list].size() - 1;
-    rupture::testing::ScratchDir dir;
-    RunControl control;
-    try {
-      runSpec(spec, (dir / "empty.h5").string(), control, 1);
-      ADD_FAILURE() << list << ": no error";
-    } catch (const SpecError& e) {
-      EXPECT_EQ(e.field(), "loading." + std::string(list) + "[" + std::to_string(index) + "]");
-      EXPECT_NE(std::string(e.what()).find("at least one particle"), std::string::npos) << e.what();
+  // Outside the 20 mm plate: refused from the spec alone. Inside it but between two columns of
+  // the 0.25 mm lattice (a tenth of a spacing wide): refused once the sample is built.
+  const double column = 0.01, dx = 2.5e-4;
+  const std::vector<std::pair<nlohmann::json, std::string>> boxes = {
+      {{{"min", {0.03, 0.0}}, {"max", {0.04, 0.001}}}, "overlapping the sample"},
+      {{{"min", {column + 0.1 * dx, 0.0}}, {"max", {column + 0.2 * dx, 0.01}}}, "at least one particle"}};
+  for (const auto& [box, message] : boxes)
+    for (const char* list : {"tractions", "velocity_regions"}) {
+      nlohmann::json spec = notchedPlate("pmb");
+      nlohmann::json region = box;
+      if (std::string(list) == "tractions") region["traction"] = {0.0, 1e6};
+      else region["velocity"] = {0.0, 1.0};
+      spec["loading"] = {{"velocity_regions", spec["loading"]["velocity_regions"]}};
+      spec["loading"][list].push_back(region);
+      const std::size_t index = spec["loading"][list].size() - 1;
+      rupture::testing::ScratchDir dir;
+      RunControl control;
+      try {
+        runSpec(spec, (dir / "empty.h5").string(), control, 1);
+        ADD_FAILURE() << list << ": no error";
+      } catch (const SpecError& e) {
+        EXPECT_EQ(e.field(), "loading." + std::string(list) + "[" + std::to_string(index) + "]");
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      }
+      EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5"));
+      EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5.part"));
     }
-    EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5"));
-    EXPECT_FALSE(std::filesystem::exists(dir / "empty.h5.part"));
-  }
 }
 
 TEST(ImpactRun, CancelledBeforeTheSampleIsBuiltLeavesASpecAndSummaryOnly) {
