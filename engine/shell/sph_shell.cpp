@@ -399,7 +399,7 @@ void SphShell::computeForces(double dt, int firing) {
 
   // Pass 1b: the layers through the thickness and the resultants, each point's weighted by its
   // class's 2^c (exact: a power of two); the points that do not fire give no force this step.
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(static)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
     std::array<double, 6> P{}, R{};
@@ -605,9 +605,12 @@ void SphShell::fineStep(double dt, int firing) {
   const std::size_t n = m_position.size();
   const double c = m_params.dampingRate;
   const double keep = (1.0 - 0.5 * c * dt) / (1.0 + 0.5 * c * dt), push = dt / (1.0 + 0.5 * c * dt);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (m_clamped[i]) continue;
+  // Over the nodes in the gather's order and split as its two loops are, so that each thread
+  // moves the nodes whose forces it has just written (in cache, not the other core's).
+  const std::uint32_t* gatherOrder = m_classes.gatherOrder.data();
+  const std::size_t gathered = m_classes.gatherUpTo[static_cast<std::size_t>(firing)];
+  auto integrate = [&](std::size_t i) {
+    if (m_clamped[i]) return;
     // Central difference (leapfrog) with mass-proportional damping, semi-implicit in c.
     for (int a = 0; a < 3; ++a) {
       m_velocity[i][a] = keep * m_velocity[i][a] + push * m_force[i][a] / m_mass[i];
@@ -632,7 +635,11 @@ void SphShell::fineStep(double dt, int firing) {
       const double len = std::sqrt(dot(rotated, rotated));
       for (int a = 0; a < 3; ++a) n0[a] = rotated[a] / len;
     }
-  }
+  };
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = gathered; q < n; ++q) integrate(gatherOrder[q]);
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = 0; q < gathered; ++q) integrate(gatherOrder[q]);
   const auto integrated = std::chrono::steady_clock::now();
   // Fracture after the motion, as before the passes were split (the same state either way: the
   // fracture cuts links, it does not move nodes).
