@@ -8,27 +8,41 @@
 #include <stdexcept>
 
 #include "rupture/run.hpp"
+#include "scenarios/tank_impact/tank_impact_spec.hpp"
 
 namespace rupture::bench {
+namespace {
+
+nlohmann::json readSpec(const std::string& path, const std::string& workload) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("bench " + workload + ": cannot read " + path);
+  return nlohmann::json::parse(in);
+}
+
+/// Runs `spec` into a temporary file, removed with its checkpoint afterwards.
+RunOutcome runInTemporaryFile(const nlohmann::json& spec, RunControl& control, int threads) {
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / ("rupture-bench-tank-" + std::to_string(::getpid()) + ".h5");
+  RunOutcome outcome = runSpec(spec, out.string(), control, threads);
+  std::filesystem::remove(out);
+  std::filesystem::remove(out.string() + ".checkpoint");
+  return outcome;
+}
+
+}  // namespace
 
 nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options) {
   const std::string path =
       options.spec.empty() ? std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-FXA5.json" : options.spec;
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("bench TANK: cannot read " + path);
-  nlohmann::json spec = nlohmann::json::parse(in);
+  nlohmann::json spec = readSpec(path, "TANK");
   // A long end time and max_steps: the run stops after `steps` fluid steps.
   // It stops at `steps` with a checkpoint, as a run stopped to be continued: the whole cost of one.
   spec["run"]["max_steps"] = options.steps + 1;
   spec["run"]["end_time"] = 0.01;
   spec["run"].erase("snapshot_times");
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / ("rupture-bench-tank-" + std::to_string(::getpid()) + ".h5");
   RunControl control;
   control.stopAtStep = options.steps;
-  const RunOutcome outcome = runSpec(spec, out.string(), control, options.threads);
-  std::filesystem::remove(out);
-  std::filesystem::remove(out.string() + ".checkpoint");
+  const RunOutcome outcome = runInTemporaryFile(spec, control, options.threads);
   const nlohmann::json& s = outcome.summary;
   const double steps = s["steps"].get<double>(), shellSteps = s["shell_steps"].get<double>();
   const double fluidParticles = s["particles"].get<double>(), nodes = s["plate_nodes"].get<double>();
@@ -54,30 +68,24 @@ nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options) {
 }
 
 nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
-  const std::string path = std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5-step.json";
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("bench TANK-SEED: cannot read " + path);
-  nlohmann::json spec = nlohmann::json::parse(in);
+  nlohmann::json spec = readSpec(std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5-step.json", "TANK-SEED");
   spec["resolution"]["spacing"] = 0.002;              // the seed's fluid, about 2 mm (§4.2)
   spec["plate"]["bottom"]["step_spacing"] = 0.0005;  // the seed's 0.5 mm where it tears (§5.3.1)
   spec["run"]["end_time"] = options.endTime;
   spec["run"].erase("snapshot_times");
   if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / ("rupture-bench-tank-seed-" + std::to_string(::getpid()) + ".h5");
+  const bool subcycling = parseTankImpactSpec(spec).plate.shell.subcycling;  // the option as the run reads it
   RunControl control;
   const auto start = std::chrono::steady_clock::now();
-  const RunOutcome outcome = runSpec(spec, out.string(), control, options.threads);
+  const RunOutcome outcome = runInTemporaryFile(spec, control, options.threads);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::filesystem::remove(out);
-  std::filesystem::remove(out.string() + ".checkpoint");
   const nlohmann::json& s = outcome.summary;
   const double steps = s["steps"].get<double>(), fineSteps = s["shell_steps"].get<double>();
   const double particles = s["particles"].get<double>(), nodes = s["plate_nodes"].get<double>();
   const double shellSeconds = s["shell_time_s"].get<double>(), fluidSeconds = s["fluid_time_s"].get<double>();
   return {{"workload", "TANK-SEED (tank-impact TF14A5 at the seed's inputs)"},
           {"threads", options.threads},
-          {"subcycling", s["shell_coarsest_class"].get<int>() > 0},
+          {"subcycling", subcycling},
           {"end_time_s", options.endTime},
           {"sph_particles", particles},
           {"plate_nodes", nodes},

@@ -341,6 +341,25 @@ void SphShell::buildCorrections() {
     }
 }
 
+void SphShell::currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const {
+  A = {}, G = {};
+  if (!m_hasGradient[i]) {
+    A = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    return;
+  }
+  const ShellVec3 xi = m_position[i], ni = m_normal[i];
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) continue;
+    const std::size_t j = m_neighbour[p];
+    const auto& c = m_coeff[p];
+    for (int a = 0; a < 3; ++a) {
+      const double dx = m_position[j][a] - xi[a], dn = m_normal[j][a] - ni[a];
+      A[a] += dx * c[0]; A[3 + a] += dx * c[1];
+      G[a] += dn * c[0]; G[3 + a] += dn * c[1];
+    }
+  }
+}
+
 void SphShell::computeForces(double dt, int firing) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
@@ -358,22 +377,8 @@ void SphShell::computeForces(double dt, int firing) {
 #pragma omp parallel for schedule(static)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
-    std::array<double, 6> A{}, G{};
-    if (m_hasGradient[i]) {
-      const ShellVec3 xi = m_position[i], ni = m_normal[i];
-      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-        if (!m_active[p]) continue;
-        const std::size_t j = m_neighbour[p];
-        const auto& c = m_coeff[p];
-        for (int a = 0; a < 3; ++a) {
-          const double dx = m_position[j][a] - xi[a], dn = m_normal[j][a] - ni[a];
-          A[a] += dx * c[0]; A[3 + a] += dx * c[1];
-          G[a] += dn * c[0]; G[3 + a] += dn * c[1];
-        }
-      }
-    } else {
-      A = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
-    }
+    std::array<double, 6> A, G;
+    currentGradients(i, A, G);
     m_gradX[i] = A;
     m_gradN[i] = G;
     if (m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i]) {
@@ -709,20 +714,7 @@ double SphShell::strainEnergy() const {
   const bool shearYield = m_params.plasticity && m_params.transverseShearYield;
   // The gradients at the current positions (a subcycled point's stored ones may be older).
   std::vector<std::array<double, 6>> gradX(n), gradN(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<double, 6> A{}, N{};
-    if (!m_hasGradient[i]) { gradX[i] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0}; gradN[i] = N; continue; }
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) continue;
-      const std::size_t j = m_neighbour[p];
-      for (int a = 0; a < 3; ++a) {
-        const double dx = m_position[j][a] - m_position[i][a], dn = m_normal[j][a] - m_normal[i][a];
-        A[a] += dx * m_coeff[p][0]; A[3 + a] += dx * m_coeff[p][1];
-        N[a] += dn * m_coeff[p][0]; N[3 + a] += dn * m_coeff[p][1];
-      }
-    }
-    gradX[i] = A, gradN[i] = N;
-  }
+  for (std::size_t i = 0; i < n; ++i) currentGradients(i, gradX[i], gradN[i]);
   double energy = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i])) continue;

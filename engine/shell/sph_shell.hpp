@@ -162,6 +162,9 @@ private:
   void computeForces(double dt, int firing);
   void fineStep(double dt, int firing);
   void computeOwnSteps();
+  /// A_α and G_α of node i at the current positions and directors (the identity and zero for a
+  /// node without a gradient).
+  void currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const;
   void computePairHourglass();
   void cutLinksOf(std::size_t i);
   void rebuildAfterCuts();

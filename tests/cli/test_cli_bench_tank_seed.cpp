@@ -32,6 +32,15 @@ TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
             0.5 * out["plate_nodes"].get<double>() * out["shell_fine_steps"].get<double>());
   for (const char* part : {"gradients", "layers", "forces", "integration", "fracture"})
     EXPECT_GE(out["shell_profile_s"][part].get<double>(), 0.0) << part;
+
+  // Off: the single rate, every point at every step, and said so.
+  const auto single = runCli("bench TANK-SEED --end-time 1e-6 --subcycling off --threads 1");
+  ASSERT_EQ(single.exitCode, 0) << single.err;
+  const auto offOut = nlohmann::json::parse(single.out);
+  EXPECT_EQ(offOut["subcycling"], false);
+  EXPECT_EQ(offOut["shell_coarsest_class"], 0);
+  EXPECT_EQ(offOut["shell_point_evaluations"].get<double>(),
+            offOut["plate_nodes"].get<double>() * offOut["shell_fine_steps"].get<double>());
 }
 
 TEST(CliBenchTankSeed, BadOptionsExitTwoNamingThem) {

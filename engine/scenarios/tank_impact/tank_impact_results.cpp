@@ -35,7 +35,7 @@ const ResultFields& tankImpactSummaryFields() {
       {"max_piston_face_speed", "m/s", "Max piston face speed", "Largest downward speed of the piston's wetted face"},
       {"piston_final_speed", "m/s", "Piston final speed", "Mean speed of the piston at the end (null with the rigid impactor)"},
       {"plate_nodes", "1", "Plate nodes", "Nodes of the SPH shell (hole nodes excluded)"},
-      {"shell_steps", "1", "Shell steps", "Shell time steps (sub-cycled inside the fluid steps)"},
+      {"shell_steps", "1", "Shell steps", "Shell time steps, sub-cycled inside the fluid steps (with plate.subcycling, the fine steps: the finest class's)"},
       {"fluid_time_s", "s", "Fluid wall time", "Wall-clock time of the fluid's steps"},
       {"shell_time_s", "s", "Shell wall time", "Wall-clock time of the shell's sub-cycles"},
       {"contact_time_s", "s", "Contact wall time", "Wall-clock time of the fluid-shell contact"},
