@@ -412,7 +412,7 @@ void SphShell::computeForces(double dt, int firing) {
     PlaneTensor Mout{0.0, 0.0, 0.0};
     const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
     if (stressPoint) {
-      const double weight = std::ldexp(1.0, m_classes.point[i]);
+      const double weight = classWeight(m_classes.point[i]);
       const double pointDt = dt * weight;  // the interval this evaluation stands for
       const auto& A = m_gradX[i];
       const auto& G = m_gradN[i];
@@ -534,7 +534,7 @@ void SphShell::computeForces(double dt, int firing) {
       const auto& X = m_separation[p];
       // The hourglass stiffnesses (times hw) of a pair that fires, times its class's 2^c; a pair
       // that does not fire this step gives only the points' forces.
-      const double pairWeight = pairClass <= firing ? std::ldexp(1.0, pairClass) : 0.0;
+      const double pairWeight = pairClass <= firing ? classWeight(pairClass) : 0.0;
       const auto& stiffness = m_pairHourglass[p];
       const double kx = stiffness[0] * pairWeight, kn = stiffness[1] * pairWeight, ks = stiffness[2] * pairWeight;
       // Hourglass control. Tangential: error of the separation predicted by the mean gradient
@@ -567,7 +567,7 @@ void SphShell::computeForces(double dt, int firing) {
     }
     if (pressure != 0.0 && !m_fractured[i] && m_classes.point[i] <= firing) {
       const ShellVec3 areaNormal = m_hasGradient[i] ? cross(column(Ai, 0), column(Ai, 1)) : m_normal[i];
-      const double load = pressure * std::ldexp(1.0, m_classes.point[i]);
+      const double load = pressure * classWeight(m_classes.point[i]);
       for (int a = 0; a < 3; ++a) f[a] += load * m_area[i] * areaNormal[a];
     }
     for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
