@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "shell/wendland_kernel.hpp"
 
@@ -28,6 +29,53 @@ double segmentDistance(const std::array<double, 2>& a, const std::array<double, 
   s = std::clamp(s, 0.0, 1.0);
   const double dx = a[0] + s * ex - q[0], dy = a[1] + s * ey - q[1];
   return std::sqrt(dx * dx + dy * dy);
+}
+
+/// The pair quantities of one node's pairs that hang on a square root and a division (|n_i + n_j|,
+/// the pair's director n̄), computed ahead of the loop that uses them, all pairs at once: a short
+/// loop with no dependence between pairs, which the compiler vectorises, so the latency of the
+/// root and the divisions is paid once per vector instead of once per pair on the critical path.
+/// The same operations on the same operands: the results are bit for bit those of computing them
+/// inside the pair loop.
+struct PairDirectors {
+  explicit PairDirectors(std::size_t maxPairs) : capacity(maxPairs), values(5 * maxPairs) {}
+  double* length() { return values.data(); }                         ///< |n_i + n_j|
+  double* mean(int a) { return values.data() + (1 + a) * capacity; }  ///< n̄, component a
+  double* shear() { return values.data() + 4 * capacity; }           ///< s_ij (pairShear)
+  std::size_t capacity;
+  std::vector<double> values;
+};
+
+/// |n_i + n_j| and n̄ of node i's pairs first … first + count − 1 (normals: 3 per node).
+void pairMeanDirectors(const double* normal, const std::size_t* neighbour, std::size_t i, std::size_t first,
+                       std::size_t count, PairDirectors& out) {
+  const double ni0 = normal[3 * i], ni1 = normal[3 * i + 1], ni2 = normal[3 * i + 2];
+  double *length = out.length(), *m0 = out.mean(0), *m1 = out.mean(1), *m2 = out.mean(2);
+#pragma omp simd
+  for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t j3 = 3 * neighbour[first + l];
+    const double s0 = ni0 + normal[j3], s1 = ni1 + normal[j3 + 1], s2 = ni2 + normal[j3 + 2];
+    const double len = std::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
+    length[l] = len;
+    m0[l] = s0 / len;
+    m1[l] = s1 / len;
+    m2[l] = s2 / len;
+  }
+}
+
+/// s_ij = (x_j − x_i)·(n_i + n_j)/|n_i + n_j| of node i's pairs (pairShear, all at once).
+void pairShears(const double* position, const double* normal, const std::size_t* neighbour, std::size_t i,
+                std::size_t first, std::size_t count, PairDirectors& out) {
+  const double xi0 = position[3 * i], xi1 = position[3 * i + 1], xi2 = position[3 * i + 2];
+  const double ni0 = normal[3 * i], ni1 = normal[3 * i + 1], ni2 = normal[3 * i + 2];
+  double* shear = out.shear();
+#pragma omp simd
+  for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t j3 = 3 * neighbour[first + l];
+    const double m0 = ni0 + normal[j3], m1 = ni1 + normal[j3 + 1], m2 = ni2 + normal[j3 + 2];
+    const double d0 = position[j3] - xi0, d1 = position[j3 + 1] - xi1, d2 = position[j3 + 2] - xi2;
+    shear[l] = (d0 * m0 + d1 * m1 + d2 * m2) / std::sqrt(m0 * m0 + m1 * m1 + m2 * m2);
+  }
 }
 
 /// s_ij = (x_j − x_i)·n̄, n̄ = (n_i + n_j)/|n_i + n_j|: the pair's transverse-shear separation.
@@ -258,6 +306,7 @@ void SphShell::buildNeighbours() {
     std::sort(found.begin(), found.end());
     m_neighbour.insert(m_neighbour.end(), found.begin(), found.end());
     m_offset[i + 1] = m_neighbour.size();
+    m_maxPairs = std::max(m_maxPairs, found.size());
   }
   const std::size_t pairs = m_neighbour.size();
   m_reverse.resize(pairs);
@@ -374,7 +423,12 @@ void SphShell::computeForces(double dt, int firing) {
   m_pointEvaluations += points;
 
   // Pass 1a: gradients and strains at the points that fire.
-#pragma omp parallel for schedule(static)
+  const double* position = m_position.data()->data();
+  const double* normal = m_normal.data()->data();
+#pragma omp parallel
+  {
+  PairDirectors directors(m_maxPairs);
+#pragma omp for schedule(static)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
     std::array<double, 6> A, G;
@@ -383,15 +437,15 @@ void SphShell::computeForces(double dt, int firing) {
     m_gradN[i] = G;
     if (m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i]) {
       const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
-      const ShellVec3& nrm = m_normal[i];
       // Pair-averaged transverse shear γ_i = T_i⁻¹ Σ_j V_j W_ij s_ij X_ij, s_ij = (x_j − x_i)·n̄_ij:
       // exact for a uniform shear, and zero for any quadratic deflection with matching directors
       // (trapezoidal rule), so it does not lock where the node gradient of w is one-sided.
       double gam0 = 0.0, gam1 = 0.0;
-      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t first = m_offset[i];
+      pairShears(position, normal, m_neighbour.data(), i, first, m_offset[i + 1] - first, directors);
+      for (std::size_t p = first; p < m_offset[i + 1]; ++p) {
         if (!m_active[p]) continue;
-        const std::size_t j = m_neighbour[p];
-        const double sp = pairShear(m_position[i], m_position[j], nrm, m_normal[j]);
+        const double sp = directors.shear()[p - first];
         gam0 += sp * m_shearCoeff[p][0];
         gam1 += sp * m_shearCoeff[p][1];
       }
@@ -399,6 +453,7 @@ void SphShell::computeForces(double dt, int firing) {
                           dot(a0, g0),               dot(a1, g1),               0.5 * (dot(a0, g1) + dot(a1, g0)),
                           gam0,                      gam1};
     }
+  }
   }
   const auto gradientsDone = Clock::now();
 
@@ -509,11 +564,16 @@ void SphShell::computeForces(double dt, int firing) {
     m_force[i] = f;
     m_directorForce[i] = {0.0, 0.0, 0.0};
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel
+  {
+  PairDirectors directors(m_maxPairs);
+#pragma omp for schedule(static)
   for (std::size_t q = 0; q < gathered; ++q) {
     const std::size_t i = gatherOrder[q];
     ShellVec3 f{0.0, 0.0, 0.0}, g{0.0, 0.0, 0.0};
     if (m_clamped[i]) { m_force[i] = f; m_directorForce[i] = g; continue; }
+    const std::size_t first = m_offset[i];
+    pairMeanDirectors(normal, m_neighbour.data(), i, first, m_offset[i + 1] - first, directors);
     const auto& Pi = m_stressP[i];
     const auto& Ri = m_stressR[i];
     const auto& Ai = m_gradX[i];
@@ -541,14 +601,13 @@ void SphShell::computeForces(double dt, int firing) {
       // (exact for quadratic fields). Normal: the separation along the mean director, a pair
       // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even
       // where the field is only C¹ (at a clamp), unlike a gradient prediction of w.
-      ShellVec3 dx, ex, mean;
+      ShellVec3 dx, ex;
       for (int a = 0; a < 3; ++a) {
         dx[a] = m_position[j][a] - m_position[i][a];
         ex[a] = 0.5 * ((Ai[a] + Aj[a]) * X[0] + (Ai[3 + a] + Aj[3 + a]) * X[1]) - dx[a];
-        mean[a] = m_normal[i][a] + m_normal[j][a];
       }
-      const double meanLength = std::sqrt(dot(mean, mean));
-      for (int a = 0; a < 3; ++a) mean[a] /= meanLength;
+      const double meanLength = directors.length()[p - first];
+      const ShellVec3 mean = {directors.mean(0)[p - first], directors.mean(1)[p - first], directors.mean(2)[p - first]};
       const double exNormal = dot(ex, mean), dxNormal = dot(dx, mean);
       // Transverse shear: E = Σ_i ½ Q_i·γ_i with γ_i linear in s_ij = Δx·n̄.
       const double q = m_shearQ[i][0] * m_shearCoeff[p][0] + m_shearQ[i][1] * m_shearCoeff[p][1] -
@@ -573,6 +632,7 @@ void SphShell::computeForces(double dt, int firing) {
     for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
     m_force[i] = f;
     m_directorForce[i] = g;
+  }
   }
 
   const auto forcesDone = Clock::now();
@@ -897,6 +957,8 @@ void SphShell::exchangeState(StateArchive& archive) {
   archive.value("point_evaluations", m_pointEvaluations);
   archive.record("timings", m_timings);
   computePairHourglass();  // derived from the arrays just read (or written)
+  m_maxPairs = 0;
+  for (std::size_t i = 0; i + 1 < m_offset.size(); ++i) m_maxPairs = std::max(m_maxPairs, m_offset[i + 1] - m_offset[i]);
 }
 
 }  // namespace rupture

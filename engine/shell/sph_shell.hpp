@@ -205,6 +205,7 @@ private:
 
   // Pairs in CSR order (i's neighbours j), both directions stored.
   std::vector<std::size_t> m_offset, m_neighbour, m_reverse;
+  std::size_t m_maxPairs = 0;  ///< the most pairs of one node (the pair loops' scratch)
   std::vector<std::uint8_t> m_active;
   std::vector<std::array<double, 2>> m_separation;  ///< X_j − X_i
   std::vector<std::array<double, 2>> m_coeff;       ///< V_j B_ij
