@@ -500,7 +500,11 @@ void SphShell::computeForces(double dt, int firing) {
           } else {
             r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
           }
-          if (damaging) {  // tau is zero unless the layers yield in shear
+          // A layer that neither flows nor has damage to catch up (the delay) leaves the damage as
+          // it is: advanceDamage would change nothing, so the triaxiality is not worked out for it.
+          const DamageState& before = m_damage[idx];
+          const bool damageMoves = r.plasticStrainIncrement != 0.0 || before.undelayed > before.damage;
+          if (damaging && damageMoves && !before.fractured) {  // tau is zero unless the layers yield in shear
             const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
             advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, pointDt);
           }
