@@ -329,65 +329,85 @@ void SphShell::buildNeighbours() {
     }
 }
 
+void SphShell::correctNode(std::size_t i) {
+  // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
+  double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  int count = 0;
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) continue;
+    const auto& d = m_separation[p];
+    const double r = std::hypot(d[0], d[1]);
+    const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
+    const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
+    const double g0 = -w * d[0], g1 = -w * d[1];
+    const double v = m_volume[m_neighbour[p]];
+    M[0][0] += v * d[0] * g0; M[0][1] += v * d[0] * g1;
+    M[1][0] += v * d[1] * g0; M[1][1] += v * d[1] * g1;
+    ++count;
+  }
+  // T_i = Σ_j V_j W_ij X_ij ⊗ X_ij for the pair-averaged transverse shear.
+  double T[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) continue;
+    const auto& d = m_separation[p];
+    const double vw = m_volume[m_neighbour[p]] * m_kernel[p];
+    T[0][0] += vw * d[0] * d[0]; T[0][1] += vw * d[0] * d[1]; T[1][1] += vw * d[1] * d[1];
+  }
+  T[1][0] = T[0][1];
+  const double detT = T[0][0] * T[1][1] - T[0][1] * T[1][0];
+  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+  const double trace = M[0][0] + M[1][1];
+  // A one-sided or collinear neighbourhood (a fragment, a node cut off by a crack) has no
+  // first-order gradient.
+  const double traceT = T[0][0] + T[1][1];
+  const bool valid = count >= 3 && trace > 0.0 && det > 1e-3 * 0.25 * trace * trace &&
+                     detT > 1e-3 * 0.25 * traceT * traceT;
+  m_hasGradient[i] = valid ? 1 : 0;
+  if (!valid) return;
+  // M⁻ᵀ: inverse of the transpose.
+  const double inv[2][2] = {{M[1][1] / det, -M[1][0] / det}, {-M[0][1] / det, M[0][0] / det}};
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
+    const auto& d = m_separation[p];
+    const double r = std::hypot(d[0], d[1]);
+    const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
+    const double w = kernel.derivative(r) / r;
+    const double g0 = -w * d[0], g1 = -w * d[1];
+    const double v = m_volume[m_neighbour[p]];
+    m_coeff[p] = {v * (inv[0][0] * g0 + inv[0][1] * g1), v * (inv[1][0] * g0 + inv[1][1] * g1)};
+    const double vw = v * m_kernel[p];
+    m_shearCoeff[p] = {vw * (T[1][1] * d[0] - T[0][1] * d[1]) / detT, vw * (T[0][0] * d[1] - T[1][0] * d[0]) / detT};
+  }
+}
+
+void SphShell::linkBackCoefficients(std::size_t i) {
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    const std::size_t j = m_neighbour[p];
+    m_coeffBack[p] = (m_active[p] && m_hasGradient[j]) ? m_coeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+    m_shearBack[p] = (m_active[p] && m_hasGradient[j]) ? m_shearCoeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+    if (!m_hasGradient[i]) m_coeff[p] = m_shearCoeff[p] = {0.0, 0.0};
+  }
+}
+
 void SphShell::buildCorrections() {
   const std::size_t n = m_reference.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
-    double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
-    int count = 0;
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) continue;
-      const auto& d = m_separation[p];
-      const double r = std::hypot(d[0], d[1]);
-      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
-      const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
-      const double g0 = -w * d[0], g1 = -w * d[1];
-      const double v = m_volume[m_neighbour[p]];
-      M[0][0] += v * d[0] * g0; M[0][1] += v * d[0] * g1;
-      M[1][0] += v * d[1] * g0; M[1][1] += v * d[1] * g1;
-      ++count;
-    }
-    // T_i = Σ_j V_j W_ij X_ij ⊗ X_ij for the pair-averaged transverse shear.
-    double T[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) continue;
-      const auto& d = m_separation[p];
-      const double vw = m_volume[m_neighbour[p]] * m_kernel[p];
-      T[0][0] += vw * d[0] * d[0]; T[0][1] += vw * d[0] * d[1]; T[1][1] += vw * d[1] * d[1];
-    }
-    T[1][0] = T[0][1];
-    const double detT = T[0][0] * T[1][1] - T[0][1] * T[1][0];
-    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-    const double trace = M[0][0] + M[1][1];
-    // A one-sided or collinear neighbourhood (a fragment, a node cut off by a crack) has no
-    // first-order gradient.
-    const double traceT = T[0][0] + T[1][1];
-    const bool valid = count >= 3 && trace > 0.0 && det > 1e-3 * 0.25 * trace * trace &&
-                       detT > 1e-3 * 0.25 * traceT * traceT;
-    m_hasGradient[i] = valid ? 1 : 0;
-    if (!valid) continue;
-    // M⁻ᵀ: inverse of the transpose.
-    const double inv[2][2] = {{M[1][1] / det, -M[1][0] / det}, {-M[0][1] / det, M[0][0] / det}};
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
-      const auto& d = m_separation[p];
-      const double r = std::hypot(d[0], d[1]);
-      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
-      const double w = kernel.derivative(r) / r;
-      const double g0 = -w * d[0], g1 = -w * d[1];
-      const double v = m_volume[m_neighbour[p]];
-      m_coeff[p] = {v * (inv[0][0] * g0 + inv[0][1] * g1), v * (inv[1][0] * g0 + inv[1][1] * g1)};
-      const double vw = v * m_kernel[p];
-      m_shearCoeff[p] = {vw * (T[1][1] * d[0] - T[0][1] * d[1]) / detT, vw * (T[0][0] * d[1] - T[1][0] * d[0]) / detT};
+  for (std::size_t i = 0; i < n; ++i) correctNode(i);
+  for (std::size_t i = 0; i < n; ++i) linkBackCoefficients(i);
+}
+
+void SphShell::buildCorrections(const std::vector<std::size_t>& nodes) {
+  // A node's corrections depend only on its own active links, so after a cut only the cut links'
+  // ends change: the same values as the rebuild of every node, without its cost per fracture.
+  for (std::size_t i : nodes) correctNode(i);
+  for (std::size_t i : nodes) {
+    linkBackCoefficients(i);
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {  // the neighbours' view of i
+      const std::size_t r = m_reverse[p];
+      const bool seen = m_active[r] && m_hasGradient[i];
+      m_coeffBack[r] = seen ? m_coeff[p] : std::array<double, 2>{0.0, 0.0};
+      m_shearBack[r] = seen ? m_shearCoeff[p] : std::array<double, 2>{0.0, 0.0};
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      const std::size_t j = m_neighbour[p];
-      m_coeffBack[p] = (m_active[p] && m_hasGradient[j]) ? m_coeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
-      m_shearBack[p] = (m_active[p] && m_hasGradient[j]) ? m_shearCoeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
-      if (!m_hasGradient[i]) m_coeff[p] = m_shearCoeff[p] = {0.0, 0.0};
-    }
 }
 
 void SphShell::currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const {
@@ -847,25 +867,41 @@ void SphShell::fractureNode(std::size_t i) {
     m_fractureOrder.push_back(i);
   }
   m_fractured[i] = 1;
-  cutLinksOf(i);
-  rebuildAfterCuts();
+  rebuildAfterCuts(cutLinksOf(i));
 }
 
 void SphShell::rebuildAfterCuts() {
   // Nodes left without a first-order gradient become fragments: their links go too.
   for (bool changed = true; changed;) {
     buildCorrections();
-    changed = false;
-    for (std::size_t j = 0; j < m_position.size(); ++j) {
-      if (m_hasGradient[j]) continue;
-      for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p)
-        if (m_active[p]) {
-          m_active[p] = 0;
-          m_active[m_reverse[p]] = 0;
-          changed = true;
-        }
-    }
+    changed = !cutFragmentLinks().empty();
   }
+}
+
+void SphShell::rebuildAfterCuts(std::vector<std::size_t> touched) {
+  // As rebuildAfterCuts(), rebuilding only the nodes whose links were cut (the others' corrections
+  // would come out the same); the search for fragments still covers every node, as there.
+  while (!touched.empty()) {
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    buildCorrections(touched);
+    touched = cutFragmentLinks();
+  }
+}
+
+std::vector<std::size_t> SphShell::cutFragmentLinks() {
+  std::vector<std::size_t> ends;
+  for (std::size_t j = 0; j < m_position.size(); ++j) {
+    if (m_hasGradient[j]) continue;
+    for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p)
+      if (m_active[p]) {
+        m_active[p] = 0;
+        m_active[m_reverse[p]] = 0;
+        ends.push_back(j);
+        ends.push_back(m_neighbour[p]);
+      }
+  }
+  return ends;
 }
 
 namespace {
@@ -911,13 +947,15 @@ std::size_t SphShell::linksCrossing(const std::array<double, 2>& a, const std::a
   return count;
 }
 
-void SphShell::cutLinksOf(std::size_t i) {
+std::vector<std::size_t> SphShell::cutLinksOf(std::size_t i) {
   // The cracked cell is an opaque disc of radius √V/2 (visibility criterion, Belytschko et al.
   // 1994): its own links go, and so does every link whose segment crosses the disc.
   const double rc = 0.5 * std::sqrt(m_volume[i]);
+  std::vector<std::size_t> ends{i};
   for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
     m_active[p] = 0;
     m_active[m_reverse[p]] = 0;
+    ends.push_back(m_neighbour[p]);
   }
   for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
     const std::size_t j = m_neighbour[p];
@@ -927,9 +965,11 @@ void SphShell::cutLinksOf(std::size_t i) {
       if (segmentDistance(m_reference[j], m_reference[k], m_reference[i]) < rc) {
         m_active[q] = 0;
         m_active[m_reverse[q]] = 0;
+        ends.push_back(k);  // j is among i's neighbours already
       }
     }
   }
+  return ends;
 }
 
 void SphShell::exchangeState(StateArchive& archive) {
