@@ -479,7 +479,11 @@ void SphShell::computeForces(double dt, int firing) {
 
   // Pass 1b: the layers through the thickness and the resultants, each point's weighted by its
   // class's 2^c (exact: a power of two); the points that do not fire give no force this step.
-#pragma omp parallel for schedule(static)
+  // Dealt out in small chunks as the threads free up: a layer that flows (a return mapping, the
+  // damage) costs many times an elastic one, and the flowing points sit together (the band, the
+  // rim), so halves of the list would leave one thread with most of them. Each point writes only
+  // its own state: the same results for any schedule.
+#pragma omp parallel for schedule(dynamic, 32)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
     std::array<double, 6> P{}, R{};
