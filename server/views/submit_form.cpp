@@ -197,6 +197,7 @@ async function showPreview(){let body;try{body=build();}catch(x){preview.textCon
  preview.appendChild(t);}
 document.getElementById('preview-button').addEventListener('click',showPreview);
 let pending;form.addEventListener('change',()=>{clearTimeout(pending);pending=setTimeout(showPreview,600);});
+showPreview();
 form.addEventListener('submit',async e=>{e.preventDefault();out.textContent='';
  let body;try{body=build();}catch(x){out.textContent=x.message;return;}
  let r,d={};try{r=await fetch(form.dataset.action,{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
@@ -384,8 +385,8 @@ HtmlPage processHtml(const Json& process, const Json& start, const Json& request
        "autocomplete=\"off\" size=\"24\"> <span class=\"hint\">(only if the server has one; kept for this "
        "browser session)</span></p>"
        "<h3>Preview</h3><p class=\"hint\">What the job would be, checked as a submission is but not queued: its runs, "
-       "elements, memory and an estimated time (<code>POST .../execution?dry_run=true</code>). It updates as you "
-       "change a field.</p><p><button type=\"button\" id=\"preview-button\">Preview</button></p>"
+       "elements, memory and an estimated time (<code>POST .../execution?dry_run=true</code>). It is shown as the form "
+       "opens and updates as you change a field.</p><p><button type=\"button\" id=\"preview-button\">Preview</button></p>"
        "<div id=\"preview\" role=\"status\"></div>"
        "<p><button id=\"submit\">Submit</button> <span class=\"error\" id=\"form-error\" "
        "role=\"alert\"></span></p></form>\n";
