@@ -9,7 +9,8 @@
    each run has a loaded thumbnail.
 2. Opens a run page: its field picture loads at 900 x 600 and is not one colour.
 3. A job whose run fails: its page and its run's page show the reason; Retry runs it again.
-4. Submits a slow job through the form and cancels it with the job page's button.
+4. Submits a slow job through the form and cancels it with the job page's button; resumes it with
+   the page's Resume button (it runs again) and cancels it again.
 5. Compares two jobs from the job list: the comparison page has both jobs' rows.
 6. Opens the sweep's "Submit a variant" form: its preview (a dry run) shows the run count and an
    estimated time; submitted unchanged, it makes the sweep's runs again, spec for spec.
@@ -225,6 +226,15 @@ def main():
             browser.open(base + f"/jobs/{slow}?f=html")
             browser.click_and_reload("cancel")
             wait_until("the cancel", lambda: http_json(base, "/jobs/" + slow)["status"] == "dismissed", 30)
+            # Resumed from its page, it runs again; cancelled again, so that it does not hold the worker.
+            wait_until("the cancelled run to stop", lambda: http_json(base, "/jobs/" + slow)["runs"][0]["status"] ==
+                       "dismissed", 30)
+            browser.open(base + f"/jobs/{slow}?f=html")
+            browser.click_and_reload("resume")
+            assert http_json(base, "/jobs/" + slow)["status"] in ("accepted", "running")
+            assert browser.js("document.getElementById('status').textContent") in ("accepted", "running")
+            browser.click_and_reload("cancel")
+            wait_until("the second cancel", lambda: http_json(base, "/jobs/" + slow)["status"] == "dismissed", 30)
 
             # 5. Two jobs compared from the list.
             browser.open(base + "/jobs?f=html")
