@@ -2,9 +2,7 @@
 // a job (validation, queue bounds, idempotent retries).
 #include <algorithm>
 #include <cstdio>
-#include <cmath>
 #include <optional>
-#include <queue>
 
 #include <httplib.h>
 
@@ -12,8 +10,8 @@
 #include "common/log.hpp"
 #include "core/fnv1a.hpp"
 #include "http/json_body.hpp"
-#include "jobs/cost_model.hpp"
 #include "http/request_guard.hpp"
+#include "jobs/job_preview.hpp"
 #include "jobs/replicates.hpp"
 #include "jobs/sweep.hpp"
 #include "routes/answers.hpp"
@@ -200,13 +198,6 @@ Submission readSubmission(const std::string& text, const std::string& scenario) 
   return s;
 }
 
-/// One run of a planned job as a dry run reports it: where it sits and the estimate it was checked by.
-struct RunForecast {
-  Json swept;
-  int replicate = 0;
-  rupture::RunEstimate estimate;
-};
-
 /// The job a submission makes: its sweep expanded and replicated into runs, each run's spec checked
 /// against the operator's limits (size, memory, queue room, runs per job), and its study (replicates,
 /// refinement) recorded. With `forecasts` (a dry run) each run's estimate is kept there and the
@@ -358,108 +349,6 @@ void postExecution(ServerContext& ctx, const Request& req, Response& res) {
 
 namespace {
 
-/// When `runs` runs of `seconds` each (in queue order) end on `workers` workers taking them first
-/// come, first served, as the scheduler does: the last one's end (s).
-double queueMakespan(const std::vector<double>& seconds, int workers) {
-  std::priority_queue<double, std::vector<double>, std::greater<>> freeAt;
-  for (int w = 0; w < std::max(workers, 1); ++w) freeAt.push(0);
-  double end = 0;
-  for (double s : seconds) {
-    const double start = freeAt.top();
-    freeAt.pop();
-    freeAt.push(start + s);
-    end = std::max(end, start + s);
-  }
-  return end;
-}
-
-/// POST .../execution?dry_run=true: what the job would be, checked as a submission is, with nothing
-/// stored or queued (docs/server.md, "Preview and cost").
-Json dryRunDocument(ServerContext& ctx, const std::string& scenario, const NewJob& job,
-                    const std::vector<RunForecast>& forecasts) {
-  const int threads = ctx.scheduler->threadsPerRun();
-  const int workers = ctx.scheduler->workers();
-  Json runs = Json::array();
-  double elementsMin = 0, elementsMax = 0, elementsTotal = 0, memoryMax = 0, stepsMax = 0;
-  std::vector<double> seconds;
-  bool timed = !forecasts.empty();
-  std::string sizeField, memoryBasis, stepsBasis;
-  for (std::size_t k = 0; k < forecasts.size(); ++k) {
-    const RunForecast& f = forecasts[k];
-    const rupture::RunEstimate& e = f.estimate;
-    Json swept = Json::object();
-    for (std::size_t a = 0; a < job.sweptPaths.size() && a < f.swept.size(); ++a)
-      swept[job.sweptPaths[a].get<std::string>()] = f.swept[a];
-    const std::optional<double> s = estimatedRunSeconds(scenario, e, threads);
-    timed = timed && s.has_value();
-    if (s) seconds.push_back(*s);
-    auto estimateOrNull = [](double v) { return v > 0 && std::isfinite(v) ? Json(v) : Json(nullptr); };
-    runs.push_back({{"index", k},
-                    {"swept", swept},
-                    {"replicate", f.replicate},
-                    {"elements", e.particles > 0 ? Json(std::llround(e.particles)) : Json(nullptr)},
-                    {"memory_bytes", e.memoryBytes > 0 ? Json(std::llround(e.memoryBytes)) : Json(nullptr)},
-                    {"steps", e.steps > 0 && std::isfinite(e.steps) ? Json(std::llround(e.steps)) : Json(nullptr)},
-                    {"time_step_s", estimateOrNull(e.timeStep)},
-                    {"estimated_run_s", s ? Json(*s) : Json(nullptr)}});
-    elementsMin = k == 0 ? e.particles : std::min(elementsMin, e.particles);
-    elementsMax = std::max(elementsMax, e.particles);
-    elementsTotal += e.particles;
-    memoryMax = std::max(memoryMax, e.memoryBytes);
-    if (std::isfinite(e.steps)) stepsMax = std::max(stepsMax, e.steps);
-    if (sizeField.empty()) sizeField = e.field, memoryBasis = e.basis, stepsBasis = e.stepsBasis;
-  }
-  auto countOrNull = [](double v) { return v > 0 ? Json(std::llround(v)) : Json(nullptr); };
-  Json doc;
-  doc["dry_run"] = true;
-  doc["processID"] = scenario;
-  if (!job.name.empty()) doc["name"] = job.name;
-  doc["runs"] = forecasts.size();
-  int replicates = 1;
-  for (int r : job.replicates) replicates = std::max(replicates, r + 1);
-  doc["replicates"] = replicates;
-  doc["sweep_points"] = forecasts.size() / static_cast<std::size_t>(replicates);
-  doc["elements"] = {{"min", countOrNull(elementsMin)}, {"max", countOrNull(elementsMax)},
-                     {"total", countOrNull(elementsTotal)}, {"set_by", sizeField}};
-  doc["memory_bytes"] = countOrNull(memoryMax);  // the largest run's, as admission checks each run
-  doc["max_run_memory_bytes"] = std::isfinite(ctx.maxRunMemory) ? Json(std::llround(ctx.maxRunMemory)) : Json(nullptr);
-  doc["memory_basis"] = memoryBasis;
-  doc["steps"] = countOrNull(stepsMax);
-  doc["steps_basis"] = stepsBasis;
-  const CostModel* model = costModelFor(scenario);
-  if (timed) {
-    double total = 0;
-    for (double s : seconds) total += s;
-    doc["estimated_run_s"] = *std::max_element(seconds.begin(), seconds.end());  // the longest run
-    doc["estimated_total_s"] = total;  // every run one after the other
-    // Local workers take the queue first come, first served; on a cluster every run may start at once.
-    doc["estimated_wall_s"] = queueMakespan(seconds, workers > 0 ? workers : static_cast<int>(seconds.size()));
-  } else {
-    doc["estimated_run_s"] = doc["estimated_total_s"] = doc["estimated_wall_s"] = nullptr;
-  }
-  doc["cost_model"] = model ? Json{{"seconds_per_element_step", model->secondsPerElementStep > 0
-                                                                     ? Json(model->secondsPerElementStep)
-                                                                     : Json(nullptr)},
-                                   {"seconds_per_element", model->secondsPerElement > 0 ? Json(model->secondsPerElement)
-                                                                                         : Json(nullptr)},
-                                   {"threads_per_run", threads},
-                                   {"workers", workers > 0 ? Json(workers) : Json(nullptr)},
-                                   {"basis", model->basis},
-                                   {"uncertainty", model->uncertainty}}
-                            : Json(nullptr);
-  // The queue as it stands: the job is checked against its bounds, but a full queue does not refuse
-  // a preview (the real POST answers 503 then).
-  const int queued = std::max(0, ctx.store->queueDepth());
-  doc["queue"] = {{"queued_runs", queued},
-                  {"max_queued_runs", ctx.config.maxQueuedRuns},
-                  {"fits_now", static_cast<long long>(queued) + static_cast<long long>(forecasts.size()) <=
-                                   static_cast<long long>(ctx.config.maxQueuedRuns)}};
-  // No picture yet: the sample is counted from its spec, not built (building it is the run's first stage).
-  doc["picture"] = nullptr;
-  doc["run_estimates"] = std::move(runs);
-  return doc;
-}
-
 void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   requireToken(ctx, req);
   const bool dryRun = choiceParam(req, "dry_run", {"true", "false"}).value_or("false") == "true";
@@ -473,7 +362,9 @@ void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   if (dryRun) {  // checked as the real submission below; nothing is stored or queued
     std::vector<RunForecast> forecasts;
     const NewJob job = planJob(ctx, scenario, submission, &forecasts);
-    return sendJson(res, dryRunDocument(ctx, scenario, job, forecasts));
+    const PreviewContext where{ctx.scheduler->threadsPerRun(), ctx.scheduler->workers(), ctx.maxRunMemory,
+                               std::max(0, ctx.store->queueDepth()), ctx.config.maxQueuedRuns};
+    return sendJson(res, jobPreview(scenario, job, forecasts, where));
   }
 
   // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.

@@ -4,6 +4,7 @@
 // problem a real POST gets.
 #include <gtest/gtest.h>
 
+#include "jobs/job_preview.hpp"
 #include "server_test_support.hpp"
 
 namespace rupture::server {
@@ -137,6 +138,14 @@ TEST(DryRun, AFullQueueDoesNotRefuseAPreview) {
   EXPECT_EQ(d["queue"]["fits_now"], false);
   EXPECT_EQ(d["queue"]["queued_runs"], 2);
   EXPECT_EQ(getJson(*client, "/jobs")["jobs"].size(), 1u);
+}
+
+TEST(DryRun, TheJobsTimeTakesTheQueueFirstComeFirstServed) {
+  EXPECT_DOUBLE_EQ(queueMakespan({3, 1, 1, 1}, 2), 3) << "one worker takes the long run, the other the three short";
+  EXPECT_DOUBLE_EQ(queueMakespan({1, 1, 1, 3}, 2), 4) << "the long run, last, starts at 1 s on the worker freed first";
+  EXPECT_DOUBLE_EQ(queueMakespan({2, 2, 2}, 2), 4);
+  EXPECT_DOUBLE_EQ(queueMakespan({2, 2, 2}, 0), 6) << "no worker count: one at a time";
+  EXPECT_DOUBLE_EQ(queueMakespan({}, 4), 0);
 }
 
 TEST(DryRun, TheFormPreviewsBeforeItSubmits) {
