@@ -38,14 +38,17 @@ LOOPS = {
         "gathered": 128,
         # gather: incidenceStart (4 B), f and t written (48 B; + 48 B write-allocate not counted).
         "particle": 4 + 48,
-        # engine/dem/beam_bond.hpp beamResponse (energy and twist dead in the loop), BeamLaw's
-        # scaling by the factor (10 mul), the loop's integrity products (10 mul, 1 add):
-        # section and stiffnesses 13 mul 1 add; chord 6 mul 5 add; two end tangents 36 mul 24 add;
-        # two bending rotations (with atan2Branchless: 12 mul 15 add) 54 mul 44 add; twist 34 mul
-        # 29 add; loads 32 mul 22 add; Rankine 16 mul 15 add; = 210 mul + 141 add.
-        "flops": 351,
-        # 1/L0, 1/L, 3 atan2 × 3, 2 angle/s, σ_N's 2 and τ's 1 divisions; |d|, two sin-axis norms,
-        # the bending moment and Rankine's root.
+        # engine/dem/beam_bond.hpp beamResponse (its energy and twist are dead in the loop), then
+        # BeamLaw's scaling by the bond's factor and the loop's integrity products:
+        #   section and stiffnesses 13 mul 1 add; chord (d, |d|, n) 6 mul 5 add;
+        #   two end tangents (rotateByQuaternion) 36 mul 24 add;
+        #   two bending rotations (bendingRotation, atan2Branchless 11 mul 15 add each) 52 mul 44 add;
+        #   twist (q_j q_i*, atan2Branchless) 33 mul 29 add; loads F_j, T_i, T_j 31 mul 22 add;
+        #   moments, σ_N, τ, Rankine 16 mul 15 add; BeamLaw's factor 10 mul; integrity 10 mul 1 add:
+        #   207 mul + 141 add.
+        "flops": 348,
+        # 1/L0, 1/L, 3 per atan2 (3 of them), angle/s at both ends, σ_N's 2 and τ's 1; roots:
+        # |d|, |n × a| at both ends, the bending moment and Rankine's.
         "divisions": 16,
         "roots": 5,
         "per": "bond",
@@ -147,11 +150,22 @@ def main():
     parser.add_argument("--stream-runs", type=int, default=5, help="STREAM runs per thread count; the best triad is used")
     parser.add_argument("--workloads", default="W1,W2,W3")
     parser.add_argument("--json", help="also write every report to this file")
+    parser.add_argument("--from-json", help="print the tables of a run recorded with --json instead of running")
     args = parser.parse_args()
     threads = [int(t) for t in args.threads.split(",")]
     workloads = args.workloads.split(",")
     steps = ["--steps", str(args.steps)] if args.steps > 0 else []
 
+    if args.from_json:
+        with open(args.from_json) as f:
+            recorded = json.load(f)
+        raw = {"stream": {int(k): v for k, v in recorded["stream"].items()},
+               "workloads": {(k.split("/")[0], int(k.split("/")[1])): v for k, v in recorded["workloads"].items()}}
+        threads = sorted(raw["stream"])
+        workloads = sorted({w for w, _ in raw["workloads"]})
+        report(raw, threads, workloads, datetime.datetime.fromisoformat(recorded["started"]), recorded["commit"],
+               recorded["load"])
+        return
     started = datetime.datetime.now(datetime.timezone.utc)
     load_before = os.getloadavg()
     raw = {"stream": {}, "workloads": {}}
@@ -169,11 +183,21 @@ def main():
         raw["stream"][t] = best
         for w in workloads:
             raw["workloads"][(w, t)] = run_json([args.rupture, "bench", w, "--threads", str(t)] + steps)
-    load_after = os.getloadavg()
-    host = raw["stream"][threads[0]]["host"]
+    load = [load_before[0], os.getloadavg()[0]]
+    commit = git_commit()
+    report(raw, threads, workloads, started, commit, load)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"started": started.isoformat(), "commit": commit, "load": load,
+                       "stream": {str(k): v for k, v in raw["stream"].items()},
+                       "workloads": {f"{k[0]}/{k[1]}": v for k, v in raw["workloads"].items()}}, f, indent=1)
 
-    print(f"Measured {started:%Y-%m-%d %H:%M} UTC at {git_commit()} on {host['model_name']} (family {host['family']}, "
-          f"model {host['model']}), load average {load_before[0]:.1f} before and {load_after[0]:.1f} after "
+
+def report(raw, threads, workloads, started, commit, load):
+    """Prints the tables (bench/README.md, "Roofline")."""
+    host = raw["stream"][threads[0]]["host"]
+    print(f"Measured {started:%Y-%m-%d %H:%M} UTC at {commit} on {host['model_name']} (family {host['family']}, "
+          f"model {host['model']}), load average {load[0]:.1f} before and {load[1]:.1f} after "
           f"(a shared host: wall figures count other jobs' turns, CPU figures do not).")
     print()
     print("| threads | STREAM copy | scale | add | triad, best (median) | triad in L3 | mul-add | divisions | square roots |")
@@ -209,11 +233,6 @@ def main():
             print(f"| {w} | {t} | {b['memory'] / 1e6:.1f} M | {b['cache'] / 1e6:.1f} M | {b['compute'] / 1e6:.1f} M | "
                   f"{divider} | {r['particle_steps_per_s'] / 1e6:.2f} M | {per_cpu / 1e6:.2f} M | "
                   f"{r['particle_steps_per_s'] / tight:.0%} | {r['cpu_seconds']:.1f} | {r['time_user_s']:.1f} |")
-    if args.json:
-        with open(args.json, "w") as f:
-            json.dump({"started": started.isoformat(), "commit": git_commit(),
-                       "stream": {str(k): v for k, v in raw["stream"].items()},
-                       "workloads": {f"{k[0]}/{k[1]}": v for k, v in raw["workloads"].items()}}, f, indent=1)
 
 
 if __name__ == "__main__":
