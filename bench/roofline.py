@@ -96,7 +96,9 @@ LOOPS = {
 
 def run_json(command):
     """Runs a `rupture bench` command under /usr/bin/time; its JSON line and its user CPU seconds."""
-    proc = subprocess.run(["/usr/bin/time", "-f", "%U"] + command, capture_output=True, text=True)
+    # Passive waits: on a shared host libgomp's spinning threads would count as processor time.
+    env = dict(os.environ, OMP_WAIT_POLICY=os.environ.get("OMP_WAIT_POLICY", "passive"))
+    proc = subprocess.run(["/usr/bin/time", "-f", "%U"] + command, capture_output=True, text=True, env=env)
     if proc.returncode != 0:
         sys.exit(f"{' '.join(command)} failed ({proc.returncode}):\n{proc.stderr}")
     report = json.loads(proc.stdout.strip().splitlines()[-1])
