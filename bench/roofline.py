@@ -23,7 +23,8 @@ import sys
 # its own the same way); "gathered": particle data read at random, from cache at these sizes
 # (bench/README.md, "Roofline"); "particle": bytes streamed per particle by the loop, shared by
 # its bonds. Flops count additions and multiplications (GCC contracts some into FMAs: 2 each);
-# divisions and square roots are apart (they go to the divider, not the FMA pipes).
+# divisions and square roots are apart (they go to the divider, not the FMA pipes). W1's and W2's
+# counts match the vector loops' instructions in `objdump -d` of the build (bench/README.md).
 LOOPS = {
     "W1": {
         # engine/core/bond_loop.hpp evaluateBonds<BeamLaw, Rankine> then gatherBondLoads<true, false>.
