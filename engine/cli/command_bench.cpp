@@ -7,6 +7,7 @@
 #include "pmb_impact_benchmark.hpp"
 #include "tank_impact_benchmark.hpp"
 #include "dam_break_benchmark.hpp"
+#include "stream_benchmark.hpp"
 
 namespace rupture::cli {
 
@@ -82,12 +83,36 @@ int benchTankSeed(const Args& args) {
   return 0;
 }
 
+/// rupture bench STREAM [--threads N] [--megabytes M]: the memory bandwidth the loops' roofline is
+/// drawn against (bench/README.md, "Roofline"); M is the size of each of the three arrays in MiB.
+int benchStream(const Args& args) {
+  bench::StreamOptions options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
+    long long v = 0;
+    if (args[k] == "--threads") {
+      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
+      options.threads = static_cast<int>(v);
+    } else if (args[k] == "--megabytes") {
+      // Three arrays of M MiB each: at most 3 × 4 GiB, what a machine of this kind can hold.
+      if (!parseIntOption("--megabytes", args[k + 1], 1, 4096, v)) return 2;
+      options.megabytes = static_cast<int>(v);
+    } else {
+      return usageError("bench STREAM: unknown option '" + args[k] + "'; allowed: --threads, --megabytes");
+    }
+    ++k;
+  }
+  printReport(bench::runStream(options));
+  return 0;
+}
+
 }  // namespace
 
 int benchCommand(const Args& args) {
   if (!args.empty() && args[0] == "W2") return benchThreadsAndSteps(args, bench::runW2);  // peridynamics
   if (!args.empty() && args[0] == "W3") return benchThreadsAndSteps(args, bench::runW3);  // SPH
   if (!args.empty() && args[0] == "TANK-SEED") return benchTankSeed(args);
+  if (!args.empty() && args[0] == "STREAM") return benchStream(args);
   if (!args.empty() && args[0] == "TANK") {  // another tank-impact spec with --spec (the seed-resolution example)
     bench::TankImpactOptions options;
     if (int code = readThreadsAndSteps(args, args[0], options.threads, options.steps, &options.spec)) return code;
@@ -96,7 +121,7 @@ int benchCommand(const Args& args) {
   }
   if (args.empty() || args[0] != "W1")
     return usageError("bench: workload = '" + (args.empty() ? std::string() : args[0]) +
-                      "'; allowed: W1, W2, W3, TANK, TANK-SEED");
+                      "'; allowed: W1, W2, W3, TANK, TANK-SEED, STREAM");
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");

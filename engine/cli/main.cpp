@@ -54,6 +54,9 @@ commands:
                                           tank-impact FXA5 (or FILE), fluid and shell timed apart
   bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]
                                           the seed's TF14A5 at the seed's inputs, run whole
+  bench STREAM [--threads N] [--megabytes M]
+                                          memory bandwidth (copy, scale, add, triad over three
+                                          arrays of M MiB), the loops' roofline
                                           run a benchmark, print one JSON line
   -o, --output FILE                       the output file of run and xdmf
   --help, -h                              this text (rupture run --help: run's options in full)
