@@ -163,4 +163,18 @@ SnapshotField readSnapshotField(const io::Hdf5File& file, const std::string& roo
   return out;
 }
 
+FieldValues readFieldValues(const io::Hdf5File& file, const SnapshotRef& snapshot, const std::string& field) {
+  FieldValues out;
+  const char* dataset = datasetOf(field);
+  if (!holds(file, snapshot.group, dataset ? dataset : field.c_str())) return out;
+  const std::vector<std::size_t> dims = file.datasetDims(snapshot.group + "/position");
+  const std::size_t n = dims.empty() ? 0 : dims.front();
+  out.value = fieldValues(file, snapshot.group, field, n);
+  if (holds(file, snapshot.group, "body")) {
+    const std::vector<std::int64_t> body = file.readDatasetInt(snapshot.group + "/body");
+    out.body.assign(body.begin(), body.end());
+  }
+  return out;
+}
+
 }  // namespace rupture::render

@@ -65,4 +65,13 @@ struct SnapshotField {
 SnapshotField readSnapshotField(const io::Hdf5File& file, const std::string& root, const SnapshotRef& snapshot,
                                 const std::string& field);
 
+/// The field's values and the particles' bodies at one snapshot, without positions, sizes or
+/// bonds: what the colour range over every snapshot of a run reads. Empty values when the
+/// snapshot does not hold the field.
+struct FieldValues {
+  std::vector<double> value;
+  std::vector<int> body;  ///< empty: no bodies
+};
+FieldValues readFieldValues(const io::Hdf5File& file, const SnapshotRef& snapshot, const std::string& field);
+
 }  // namespace rupture::render
