@@ -159,10 +159,11 @@ std::string tickText(double value, double step) {
   int decimals = 0;
   if (magnitude > 0 && std::isfinite(magnitude))
     decimals = std::clamp(-static_cast<int>(std::floor(std::log10(magnitude) + 1e-9)), 0, 12);
-  // 0.30000000000000004 and 1.5000000001 read as the round values they stand for.
+  // A step of 2.5 or 0.25 needs one decimal more than its leading digit says.
+  if (magnitude > 0 && std::fmod(magnitude * std::pow(10.0, decimals), 1.0) > 1e-6) ++decimals;
+  // 0.30000000000000004 reads as the round value it stands for.
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals + (magnitude > 0 && std::fmod(magnitude * std::pow(10.0, decimals), 1.0) > 1e-6 ? 1 : 0),
-                value);
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
   std::string text = buf;
   if (text.find('.') != std::string::npos) {
     text.erase(text.find_last_not_of('0') + 1);

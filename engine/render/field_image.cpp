@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "io/xml_escape.hpp"
 #include "render/colour_map.hpp"
 #include "render/loading_marks.hpp"
 #include "render/round_ticks.hpp"
@@ -177,21 +178,14 @@ void label(cairo_t* cr, double x, double y, const std::string& text) {
 
 std::string directionName(int axis, double sign) { return std::string(sign < 0 ? "−" : "+") + axisName(axis); }
 
-/// The text of an SVG <title> or <desc>: &, < and > escaped.
-std::string xmlText(const std::string& text) {
-  std::string out;
-  for (char c : text) out += c == '&' ? "&amp;" : c == '<' ? "&lt;" : c == '>' ? "&gt;" : std::string(1, c);
-  return out;
-}
-
 /// cairo writes text as glyph outlines; a <title> and a <desc> say in words what the picture
 /// shows (its axes, colour range and loading), for screen readers and for checks of the picture.
 std::string describeSvg(std::string svg, const std::string& title, const std::string& description) {
   const std::size_t open = svg.find("<svg");
   const std::size_t end = open == std::string::npos ? open : svg.find('>', open);
   if (end == std::string::npos) return svg;
-  svg.insert(end + 1, "\n<title>" + xmlText(title) + "</title>\n<desc id=\"picture-description\">" +
-                          xmlText(description) + "</desc>");
+  svg.insert(end + 1, "\n<title>" + io::xmlEscape(title) + "</title>\n<desc id=\"picture-description\">" +
+                          io::xmlEscape(description) + "</desc>");
   return svg;
 }
 
@@ -298,7 +292,10 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   const std::vector<LoadingMark> marks = axes ? loadingMarks(file, request.root) : std::vector<LoadingMark>{};
   const double top = text ? 34 : 2, bottom = axes ? 44 : text ? 10 : 2, left = axes ? 64 : text ? 10 : 2,
                right = text ? 120 : 2;
-  const double pad = marks.empty() ? 0 : 46;  // px: an arrow's length and its label
+  // Room beside the body for the arrows at its faces and their labels (px).
+  const bool faceMarks = std::any_of(marks.begin(), marks.end(),
+                                     [](const LoadingMark& m) { return m.kind != LoadingMark::Kind::BoxArrow; });
+  const double pad = faceMarks ? 46 : 0;
   double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
   for (std::size_t k : drawn) {
     const double r = s.radius[k];
@@ -525,13 +522,14 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
           continue;
         }
         if (m.kind == LoadingMark::Kind::BoxArrow) {
-          // The arrow ends at the region (or the projectile), coming from where the load comes.
+          // The arrow starts at the region (or the projectile) and points the way it is driven: drawn
+          // over the body rather than across the axes beside it.
           const double cu = 0.5 * (m.lo[static_cast<std::size_t>(plane.u)] + m.hi[static_cast<std::size_t>(plane.u)]);
           const double cv = 0.5 * (m.lo[static_cast<std::size_t>(plane.v)] + m.hi[static_cast<std::size_t>(plane.v)]);
           const double n = std::hypot(du, dv);
-          const double x1 = X(cu), y1 = Y(cv), x0 = x1 - length * du / n, y0 = y1 + length * dv / n;
+          const double x0 = X(cu), y0 = Y(cv), x1 = x0 + length * du / n, y1 = y0 - length * dv / n;
           arrow(cr, x0, y0, x1, y1);
-          label(cr, std::max(2.0, std::min(x0 - 10, W - 150)), y0 + (dv > 0 ? 14 : -6), m.label);
+          label(cr, std::max(2.0, std::min(std::min(x0, x1), W - 150)), std::min(y0, y1) - 8, m.label);
           out.loading.push_back(m.label + ", along " + directionName(std::abs(du) >= std::abs(dv) ? plane.u : plane.v,
                                                                       std::abs(du) >= std::abs(dv) ? du : dv));
           continue;

@@ -169,13 +169,15 @@ HtmlPage runHtml(const Json& data) {
            option("snapshot", "this snapshot", range == "snapshot") + "</select></span> <button>Show</button></form>\n";
       const std::string q = query(picture);
       c += "<p><img id=\"field\" alt=\"" + xmlEscape(field) + " at snapshot " + std::to_string(snapshot) +
-           " (numbered from 0), with axes and the loading marked\" width=\"900\" height=\"600\" src=\"" +
+           " (numbered from 0)\" width=\"900\" height=\"600\" src=\"" +
            href(base + "/field?" + q + "&width=900&height=600") + "\"></p>"
            "<p>This picture as <a href=\"" + href(base + "/field?" + q + "&width=1600&height=1200") + "\">PNG</a>, <a href=\"" +
            href(base + "/field?" + q + "&format=svg") + "\">SVG</a> or <a href=\"" + href(base + "/field?" + q + "&format=pdf") +
            "\">PDF</a>. Snapshots are numbered from 0; the colours span " +
-           (minText.empty() && maxText.empty() ? std::string(range == "snapshot" ? "this snapshot's range" : "the field's range over every snapshot, so the pictures below compare by colour")
-                                               : std::string("the range asked for")) + ".</p>\n";
+           (!minText.empty() || !maxText.empty() ? "the range asked for"
+            : range == "snapshot"                ? "this snapshot's range"
+                                                 : "the field's range over every snapshot, so the pictures below compare by colour") +
+           ".</p>\n";
       // Over time: up to six snapshots spread over the run, in the same colour range.
       c += "<h3>Over time</h3><p id=\"strip\">";
       const long shown = std::min(count, 6L);
