@@ -292,10 +292,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   const std::vector<LoadingMark> marks = axes ? loadingMarks(file, request.root) : std::vector<LoadingMark>{};
   const double top = text ? 34 : 2, bottom = axes ? 44 : text ? 10 : 2, left = axes ? 64 : text ? 10 : 2,
                right = text ? 120 : 2;
-  // Room beside the body for the arrows at its faces and their labels (px).
-  const bool faceMarks = std::any_of(marks.begin(), marks.end(),
-                                     [](const LoadingMark& m) { return m.kind != LoadingMark::Kind::BoxArrow; });
-  const double pad = faceMarks ? 46 : 0;
+  const double pad = marks.empty() ? 0 : 46;  // px between the body and its axes: the arrows and their labels
   double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
   for (std::size_t k : drawn) {
     const double r = s.radius[k];
@@ -432,10 +429,12 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
       cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
       cairo_move_to(cr, barX - 4, barTop + barH + 14);
       cairo_show_text(cr, source.c_str());
-      cairo_move_to(cr, barX - 4, barTop + barH + 25);
-      cairo_show_text(cr, (formatQuantity(vmin, declaration.unit) + " to").c_str());
-      cairo_move_to(cr, barX - 4, barTop + barH + 36);
-      cairo_show_text(cr, formatQuantity(vmax, declaration.unit).c_str());
+      if (rangeSource != "fixed") {  // the ends the ticks fall between
+        cairo_move_to(cr, barX - 4, barTop + barH + 25);
+        cairo_show_text(cr, (formatQuantity(vmin, declaration.unit) + " to").c_str());
+        cairo_move_to(cr, barX - 4, barTop + barH + 36);
+        cairo_show_text(cr, formatQuantity(vmax, declaration.unit).c_str());
+      }
     }
 
     if (axes) {
@@ -444,7 +443,8 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
       cairo_set_line_width(cr, 1);
       cairo_set_font_size(cr, 11);
       cairo_text_extents_t e;
-      const double axisY = Y(vlo) + 4, axisX = X(ulo) - 4;
+      // The axes stand off the body by the arrows' room, so that no arrow crosses them.
+      const double axisY = Y(vlo) + 4 + pad, axisX = X(ulo) - 4 - pad;
       auto reach = [](const RoundTicks& t, double lo, double hi) {
         return t.values.empty() ? std::pair{lo, hi} : std::pair{std::min(lo, t.values.front()), std::max(hi, t.values.back())};
       };
@@ -529,7 +529,9 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
           const double n = std::hypot(du, dv);
           const double x0 = X(cu), y0 = Y(cv), x1 = x0 + length * du / n, y1 = y0 - length * dv / n;
           arrow(cr, x0, y0, x1, y1);
-          label(cr, std::max(2.0, std::min(std::min(x0, x1), W - 150)), std::min(y0, y1) - 8, m.label);
+          // The label beside the head of an arrow up or down, above the shaft of one across.
+          if (std::abs(dv) > std::abs(du)) label(cr, std::min(x1 + 8, W - 150), dv > 0 ? y1 + 10 : y1, m.label);
+          else label(cr, std::max(2.0, std::min(std::min(x0, x1), W - 150)), y0 - 8, m.label);
           out.loading.push_back(m.label + ", along " + directionName(std::abs(du) >= std::abs(dv) ? plane.u : plane.v,
                                                                       std::abs(du) >= std::abs(dv) ? du : dv));
           continue;

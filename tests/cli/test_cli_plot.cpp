@@ -42,7 +42,7 @@ TEST(CliPlot, DrawsTheFieldAndTheSeriesOfARun) {
 
   // The same measurable picture as the server's: snapshots numbered from 0, the colour range the
   // run's unless --range snapshot, axes with their unit and the loading named in the SVG.
-  const fs::path vector = dir.path() / "stress.svg";
+  const fs::path vector = dir.path() / "von-mises.svg";
   const auto first = runCli("plot " + run.string() + " -o " + vector.string() + " --field von_mises --snapshot 0");
   ASSERT_EQ(first.exitCode, 0) << first.err;
   EXPECT_NE(first.err.find("(snapshot 0 of 0 to "), std::string::npos) << first.err;
