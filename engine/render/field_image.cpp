@@ -318,11 +318,12 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
   // Both axes in one unit (equal scales), from the larger coordinate: µm for a 1 µm sample.
   const ScaledUnit lengthUnit =
       scaledUnit(std::max({std::abs(ulo), std::abs(uhi), std::abs(vlo), std::abs(vhi), uhi - ulo, vhi - vlo}), "m");
-  // Ticks about every 90 px across and 70 px up; a round value within 2 % beyond the drawn extent
-  // (a sample from 17.8 pm to 0.99999 µm) still gets its tick, the axis line reaching it.
+  // Ticks about every 90 px across and 70 px up, three intervals at least (a narrow column still
+  // reads); a round value within 2 % beyond the drawn extent (a sample from 17.8 pm to 0.99999 µm)
+  // still gets its tick, the axis line reaching it.
   auto axisTicks = [](double lo, double hi, double pixels, double every) {
     const double margin = 0.02 * (hi - lo);
-    return roundTicks(lo - margin, hi + margin, std::max(2, static_cast<int>(pixels / every)));
+    return roundTicks(lo - margin, hi + margin, std::max(3, static_cast<int>(pixels / every)));
   };
   const RoundTicks uTicks = axisTicks(ulo, uhi, scale * (uhi - ulo), 90);
   const RoundTicks vTicks = axisTicks(vlo, vhi, scale * (vhi - vlo), 70);
@@ -435,6 +436,29 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
         cairo_move_to(cr, barX - 4, barTop + barH + 36);
         cairo_show_text(cr, formatQuantity(vmax, declaration.unit).c_str());
       }
+    }
+
+    if (request.thumbnail && !drawn.empty()) {
+      // A scale bar instead of axes: the longest round length (1, 2 or 5 × 10^k) within a quarter
+      // of the drawn width, at the lower left on a white ground.
+      const double most = 0.25 * (uhi - ulo) * (1 + 1e-9);  // a quarter that is itself round counts
+      const double decade = std::pow(10.0, std::floor(std::log10(most)));
+      const double length = most >= 5 * decade ? 5 * decade : most >= 2 * decade ? 2 * decade : decade;
+      const std::string text = formatQuantity(length, "m");
+      cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+      cairo_set_font_size(cr, 9);
+      cairo_text_extents_t e;
+      cairo_text_extents(cr, text.c_str(), &e);
+      const double x0 = 4, y0 = H - 5, bar = scale * length;
+      cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+      cairo_rectangle(cr, x0 - 2, y0 - 15, std::max(bar, e.x_advance) + 4, 18);
+      cairo_fill(cr);
+      cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
+      cairo_rectangle(cr, x0, y0 - 2, bar, 2.5);
+      cairo_fill(cr);
+      cairo_move_to(cr, x0, y0 - 5);
+      cairo_show_text(cr, text.c_str());
+      out.scaleBar = length;
     }
 
     if (axes) {

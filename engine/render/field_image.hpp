@@ -37,7 +37,8 @@ struct FieldImageRequest {
   bool axes = true;                   ///< axes in engineering units (µm, mm) at round ticks, and
                                       ///< the loading marks; a thumbnail has neither
   int width = 800, height = 600;      ///< px (pt for PDF)
-  bool thumbnail = false;             ///< no title, no colour bar: the job page's small images
+  bool thumbnail = false;             ///< no title, colour bar or axes, a scale bar instead: the job
+                                      ///< page's small images
   ImageFormat format = ImageFormat::Png;
 };
 
@@ -62,6 +63,7 @@ struct FieldImage {
   };
   std::vector<Axis> axes;                  ///< horizontal, vertical; empty without axes
   std::vector<std::string> loading;        ///< the loading marks drawn, described for people
+  double scaleBar = 0;                     ///< m, a thumbnail's scale bar (1, 2 or 5 × 10^k); 0: none
   std::size_t drawn = 0;                   ///< particles drawn
 };
 

@@ -353,10 +353,21 @@ TEST(FieldImage, AxesInEngineeringUnitsAndRoundColourTicks) {
   EXPECT_NE(text.find("y axis (µm)"), std::string::npos) << text;
   EXPECT_NE(text.find("ticks 0 Pa 5 MPa 10 MPa 15 MPa"), std::string::npos) << text;
   EXPECT_NE(svg.find("<title>Stress xx, t = 1 ns, strain 0.001 (snapshot 1 of 0 to 1)"), std::string::npos);
-  // A thumbnail has no room for axes.
+  // A thumbnail has no room for axes: a scale bar of a round length instead, a quarter of the
+  // 20 µm width at most (5 µm).
   request.thumbnail = true;
   request.format = ImageFormat::Png;
-  EXPECT_TRUE(renderFieldImage(file, request).axes.empty());
+  request.width = 200;
+  request.height = 150;
+  const FieldImage thumbnail = renderFieldImage(file, request);
+  EXPECT_TRUE(thumbnail.axes.empty());
+  EXPECT_DOUBLE_EQ(thumbnail.scaleBar, 5e-6);
+  const auto small = probePng(thumbnail.bytes);
+  std::size_t bar = 0;  // the bar's dark pixels at the lower left
+  for (int y = small.height - 10; y < small.height; ++y)
+    for (int x = 0; x < 60; ++x) bar += (small.pixels[static_cast<std::size_t>(y * small.width + x)] & 0xFFFFFF) < 0x202020;
+  EXPECT_GT(bar, 40u);
+  EXPECT_EQ(renderFieldImage(file, FieldImageRequest{}).scaleBar, 0.0) << "the full picture has axes instead";
 }
 
 TEST(FieldImage, TheColourRangeIsTheRunsUnlessAskedOtherwise) {
