@@ -24,6 +24,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -35,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host_processor.hpp"
+#include "shell_state_hash.hpp"
 #include "scenarios/tank_impact/plate_geometry.hpp"
 #include "scenarios/tank_impact/plate_observables.hpp"
 #include "scenarios/tank_impact/tank_impact_spec.hpp"
@@ -56,6 +58,7 @@ struct Trial {
   double deflectionAtFirst = std::numeric_limits<double>::quiet_NaN();  ///< at (D + d)/4, m
   double deflectionAtEnd = std::numeric_limits<double>::quiet_NaN();
   double seconds = 0.0;
+  std::uint64_t stateHash = 0;  ///< shellStateHash at the end
   /// Per ring of the spot face at the end: radius (m), largest damage and plastic strain (1).
   std::vector<std::array<double, 3>> rings;
 };
@@ -107,6 +110,7 @@ Trial runTrial(nlohmann::json specJson, double spacing, double pressure, double 
   trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   trial.fracturedAtEnd = plate.fracturedCount() - before;
   trial.deflectionAtEnd = rupture::deflectionAtRadius(plate, geometry, gaugeRadius);
+  trial.stateHash = rupture::bench::shellStateHash(plate);
   // Rings r_k = k Δ (clampedDiskNodes): the largest damage and plastic strain on each.
   for (std::size_t i = 0; i < plate.size(); ++i) {
     const double r = std::hypot(geometry.nodes.x[i], geometry.nodes.y[i]);
@@ -174,7 +178,7 @@ int main(int argc, char** argv) {
         {"fractured_at_end", t.fracturedAtEnd},
         {"deflection_at_first_fracture", std::isnan(t.deflectionAtFirst) ? nlohmann::json(nullptr) : nlohmann::json(t.deflectionAtFirst)},
         {"deflection_at_end", t.deflectionAtEnd},
-        {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
+        {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds}, {"state_hash", t.stateHash}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
     std::printf("%s\n", line.dump().c_str());
     std::fflush(stdout);
   }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "shell/sph_shell.hpp"
+#include "shell_state_hash.hpp"
 
 int main(int argc, char** argv) {
   double spacing = 1.0e-3;
@@ -36,9 +37,12 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   shell.advance(steps, dt, {});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto& t = shell.timings();
   std::printf("{\"workload\": \"S1\", \"nodes\": %zu, \"steps\": %d, \"threads\": %d, \"seconds\": %.4f, "
-              "\"particle_steps_per_s\": %.4g, \"time_step\": %.4g, \"centre_deflection\": %.4g}\n",
+              "\"particle_steps_per_s\": %.4g, \"time_step\": %.4g, \"centre_deflection\": %.17g, "
+              "\"gradients_s\": %.3f, \"layers_s\": %.3f, \"forces_s\": %.3f, \"integration_s\": %.3f, \"state_hash\": %llu}\n",
               shell.size(), steps, omp_get_max_threads(), seconds, shell.size() * double(steps) / seconds, dt,
-              shell.deflection(0));
+              shell.deflection(0), t.gradients, t.layers, t.forces, t.integration,
+              static_cast<unsigned long long>(rupture::bench::shellStateHash(shell)));
   return 0;
 }

@@ -8,7 +8,8 @@ real rupture-server (started here on a free port with its own data directory).
    (--no-build-isolation --no-index: Debian's setuptools, wheel and pandas, no package index), from a
    copy of the sources so that nothing is written into the source tree.
 2. Runs the checks below with the venv's python, which must import the installed package:
-   submit a 2-rate sweep with 2 replicates (and the same request again with reuse=True: the same
+   preview a 2-rate sweep with 2 replicates (a dry run: 4 runs, nothing queued; a bad rate raises
+   the 400), submit it (and the same request again with reuse=True: the same
    job), wait with progress, summary per run and aggregated (DataFrames with units), a run's series,
    the files, a comparison of two jobs, a download of a valid HDF5 file, the job's RO-Crate (read with
    zipfile and checked against RO-Crate's and the Workflow Run Crate's required entities), a plot, and the errors: a
@@ -143,6 +144,15 @@ def checks(server_binary, source, data):
         spec.pop("scenario")
         spec["loading"]["initial_velocity"] = "VL"  # no preliminary run: about a second per run
         sweep = {"loading.strain_rate": [1e6, 1e7]}
+        before = len(client.jobs())
+        plan = client.preview("dynamic-tension", spec, sweep, name="client test", replicates=2)
+        assert plan["runs"] == 4 and plan["estimated_wall_s"] > 0 and plan["elements"]["max"] > 0, plan
+        assert len(client.jobs()) == before, "a preview queues nothing"
+        try:
+            client.preview("dynamic-tension", spec, {"loading.strain_rate": [1e6, -1]})
+            raise AssertionError("a negative strain rate was previewed")
+        except RuptureError as e:
+            assert e.status == 400 and e.field == "loading.strain_rate", (e.status, e.field)
         job = client.submit("dynamic-tension", spec, sweep, name="client test", replicates=2, reuse=True)
         assert client.submit("dynamic-tension", spec, sweep, name="client test", replicates=2, reuse=True) == job
         doc = client.wait(job, progress=True, poll=0.5, timeout=300)

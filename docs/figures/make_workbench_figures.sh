@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the browser figures of docs/server.md from a built tree (bash deploy/build.sh) with
 # Debian's chromium: the job page, run pages with their field pictures (dynamic tension, impact,
-# tank impact), the submission form and the compare view.
+# tank impact), the submission form, a variant's form with its preview and the compare view.
 #   bash docs/figures/make_workbench_figures.sh [BUILD_DIR]
 # Short runs stand in for the examples (each spec below says what it shortens): the pages, not the
 # physics, are what these figures show.
@@ -63,4 +63,6 @@ shot "/jobs/$dt/runs/1?f=html" html-run-page-dynamic-tension.png 1280 1500
 shot "/jobs/$impact/runs/0?f=html&snapshot=1" html-run-page-impact.png 1280 1500
 shot "/jobs/$tank/runs/0?f=html&field=pressure" html-run-page-tank-impact.png 1280 1500
 shot "/processes/dynamic-tension?f=html" html-submission-form.png 1280 1400
+# The variant of the sweep: the form filled from its request, its preview (runs, elements, memory, time) at the foot.
+shot "/processes/dynamic-tension?f=html&from=$dt" html-submission-variant-preview.png 1280 3000
 shot "/summary?jobs=$dt,$dt0&f=html" html-compare-view.png 1280 1100

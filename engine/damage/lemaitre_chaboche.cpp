@@ -47,9 +47,27 @@ bool advanceDamage(const LemaitreChabocheDamage& d, DamageState& s, double p, do
   if (s.undelayed > s.damage && dt > 0.0) {
     double lo = s.damage, hi = s.undelayed;
     const double dn = s.damage;
+    auto residual = [&](double D) { return D - dn - dt * d.delayedRate(s.undelayed, D); };
+    // The bisection's decisions are g(mid) < 0, i.e. mid below the root, wherever the rounding of
+    // g cannot flip the sign: g' >= 1, so |g(mid)| >= |mid − root|, while g's rounding error is a
+    // few ulps of its terms (<= 1 + dt/τ_c). A Newton estimate of the root (g is increasing and
+    // convex: from the upper end it converges from above) decides the far midpoints without the
+    // exponential; the near ones are evaluated as before. The same midpoints, the same decisions:
+    // the same damage, bit for bit, at a fraction of the exponentials.
+    const double margin = 1e-12 * (1.0 + dt / d.delayTime);
+    double root = hi;
+    bool converged = false;
+    for (int it = 0; it < 30 && !converged; ++it) {
+      const double e = std::exp(-d.delaySharpness * std::max(s.undelayed - root, 0.0));
+      const double slope = 1.0 + dt * d.delaySharpness * e / d.delayTime;
+      const double step = residual(root) / slope;
+      root -= step;
+      converged = std::abs(step) < 1e-3 * margin;
+    }
     for (int it = 0; it < 80 && hi - lo > 1e-16; ++it) {
       const double mid = 0.5 * (lo + hi);
-      if (mid - dn - dt * d.delayedRate(s.undelayed, mid) < 0.0) lo = mid; else hi = mid;
+      const bool below = (converged && std::abs(mid - root) > margin) ? mid < root : residual(mid) < 0.0;
+      if (below) lo = mid; else hi = mid;
     }
     s.damage = lo;  // the lower end: the rate bound (D − D_n)/dt <= 1/τ_c holds exactly
   }

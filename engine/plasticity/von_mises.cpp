@@ -76,7 +76,10 @@ PlaneTensor planeStressElastic(const ElasticPlasticMaterial& m, const PlaneTenso
 
 ReturnMapping shellReturn(const ElasticPlasticMaterial& m, PlaneTensor& stress, TransverseShear& shear, double p) {
   const IsotropicHardening& h = m.hardening;
-  if (vonMisesStress(stress, shear) <= h.yieldStress(p)) return {};
+  // σ_y(p) >= σ_y0 (the hardening modulus is >= 0): below σ_y0 the layer is elastic without the
+  // power law's std::pow, the same decision as against σ_y(p).
+  const double trialStress = vonMisesStress(stress, shear);
+  if (trialStress <= h.initialYieldStress || trialStress <= h.yieldStress(p)) return {};
   const double E = m.youngModulus, nu = m.poissonRatio, G = m.shearModulus();
   // Components in the common eigenbasis of C and P (de Souza Neto et al. 2008, eq. 9.43):
   // a1 = (σ11+σ22)/√2 (P: 1/3, C: E/(1−ν)), a2 = (σ22−σ11)/√2 (P: 1, C: 2G), σ12 (P: 2, C: 2G);

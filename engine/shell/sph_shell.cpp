@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "shell/wendland_kernel.hpp"
 
@@ -28,6 +29,53 @@ double segmentDistance(const std::array<double, 2>& a, const std::array<double, 
   s = std::clamp(s, 0.0, 1.0);
   const double dx = a[0] + s * ex - q[0], dy = a[1] + s * ey - q[1];
   return std::sqrt(dx * dx + dy * dy);
+}
+
+/// The pair quantities of one node's pairs that hang on a square root and a division (|n_i + n_j|,
+/// the pair's director n̄), computed ahead of the loop that uses them, all pairs at once: a short
+/// loop with no dependence between pairs, which the compiler vectorises, so the latency of the
+/// root and the divisions is paid once per vector instead of once per pair on the critical path.
+/// The same operations on the same operands: the results are bit for bit those of computing them
+/// inside the pair loop.
+struct PairDirectors {
+  explicit PairDirectors(std::size_t maxPairs) : capacity(maxPairs), values(5 * maxPairs) {}
+  double* length() { return values.data(); }                         ///< |n_i + n_j|
+  double* mean(int a) { return values.data() + (1 + a) * capacity; }  ///< n̄, component a
+  double* shear() { return values.data() + 4 * capacity; }           ///< s_ij (pairShear)
+  std::size_t capacity;
+  std::vector<double> values;
+};
+
+/// |n_i + n_j| and n̄ of node i's pairs first … first + count − 1 (normals: 3 per node).
+void pairMeanDirectors(const double* normal, const std::size_t* neighbour, std::size_t i, std::size_t first,
+                       std::size_t count, PairDirectors& out) {
+  const double ni0 = normal[3 * i], ni1 = normal[3 * i + 1], ni2 = normal[3 * i + 2];
+  double *length = out.length(), *m0 = out.mean(0), *m1 = out.mean(1), *m2 = out.mean(2);
+#pragma omp simd
+  for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t j3 = 3 * neighbour[first + l];
+    const double s0 = ni0 + normal[j3], s1 = ni1 + normal[j3 + 1], s2 = ni2 + normal[j3 + 2];
+    const double len = std::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
+    length[l] = len;
+    m0[l] = s0 / len;
+    m1[l] = s1 / len;
+    m2[l] = s2 / len;
+  }
+}
+
+/// s_ij = (x_j − x_i)·(n_i + n_j)/|n_i + n_j| of node i's pairs (pairShear, all at once).
+void pairShears(const double* position, const double* normal, const std::size_t* neighbour, std::size_t i,
+                std::size_t first, std::size_t count, PairDirectors& out) {
+  const double xi0 = position[3 * i], xi1 = position[3 * i + 1], xi2 = position[3 * i + 2];
+  const double ni0 = normal[3 * i], ni1 = normal[3 * i + 1], ni2 = normal[3 * i + 2];
+  double* shear = out.shear();
+#pragma omp simd
+  for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t j3 = 3 * neighbour[first + l];
+    const double m0 = ni0 + normal[j3], m1 = ni1 + normal[j3 + 1], m2 = ni2 + normal[j3 + 2];
+    const double d0 = position[j3] - xi0, d1 = position[j3 + 1] - xi1, d2 = position[j3 + 2] - xi2;
+    shear[l] = (d0 * m0 + d1 * m1 + d2 * m2) / std::sqrt(m0 * m0 + m1 * m1 + m2 * m2);
+  }
 }
 
 /// s_ij = (x_j − x_i)·n̄, n̄ = (n_i + n_j)/|n_i + n_j|: the pair's transverse-shear separation.
@@ -258,6 +306,7 @@ void SphShell::buildNeighbours() {
     std::sort(found.begin(), found.end());
     m_neighbour.insert(m_neighbour.end(), found.begin(), found.end());
     m_offset[i + 1] = m_neighbour.size();
+    m_maxPairs = std::max(m_maxPairs, found.size());
   }
   const std::size_t pairs = m_neighbour.size();
   m_reverse.resize(pairs);
@@ -280,65 +329,85 @@ void SphShell::buildNeighbours() {
     }
 }
 
+void SphShell::correctNode(std::size_t i) {
+  // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
+  double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  int count = 0;
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) continue;
+    const auto& d = m_separation[p];
+    const double r = std::hypot(d[0], d[1]);
+    const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
+    const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
+    const double g0 = -w * d[0], g1 = -w * d[1];
+    const double v = m_volume[m_neighbour[p]];
+    M[0][0] += v * d[0] * g0; M[0][1] += v * d[0] * g1;
+    M[1][0] += v * d[1] * g0; M[1][1] += v * d[1] * g1;
+    ++count;
+  }
+  // T_i = Σ_j V_j W_ij X_ij ⊗ X_ij for the pair-averaged transverse shear.
+  double T[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) continue;
+    const auto& d = m_separation[p];
+    const double vw = m_volume[m_neighbour[p]] * m_kernel[p];
+    T[0][0] += vw * d[0] * d[0]; T[0][1] += vw * d[0] * d[1]; T[1][1] += vw * d[1] * d[1];
+  }
+  T[1][0] = T[0][1];
+  const double detT = T[0][0] * T[1][1] - T[0][1] * T[1][0];
+  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+  const double trace = M[0][0] + M[1][1];
+  // A one-sided or collinear neighbourhood (a fragment, a node cut off by a crack) has no
+  // first-order gradient.
+  const double traceT = T[0][0] + T[1][1];
+  const bool valid = count >= 3 && trace > 0.0 && det > 1e-3 * 0.25 * trace * trace &&
+                     detT > 1e-3 * 0.25 * traceT * traceT;
+  m_hasGradient[i] = valid ? 1 : 0;
+  if (!valid) return;
+  // M⁻ᵀ: inverse of the transpose.
+  const double inv[2][2] = {{M[1][1] / det, -M[1][0] / det}, {-M[0][1] / det, M[0][0] / det}};
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
+    const auto& d = m_separation[p];
+    const double r = std::hypot(d[0], d[1]);
+    const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
+    const double w = kernel.derivative(r) / r;
+    const double g0 = -w * d[0], g1 = -w * d[1];
+    const double v = m_volume[m_neighbour[p]];
+    m_coeff[p] = {v * (inv[0][0] * g0 + inv[0][1] * g1), v * (inv[1][0] * g0 + inv[1][1] * g1)};
+    const double vw = v * m_kernel[p];
+    m_shearCoeff[p] = {vw * (T[1][1] * d[0] - T[0][1] * d[1]) / detT, vw * (T[0][0] * d[1] - T[1][0] * d[0]) / detT};
+  }
+}
+
+void SphShell::linkBackCoefficients(std::size_t i) {
+  for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+    const std::size_t j = m_neighbour[p];
+    m_coeffBack[p] = (m_active[p] && m_hasGradient[j]) ? m_coeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+    m_shearBack[p] = (m_active[p] && m_hasGradient[j]) ? m_shearCoeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
+    if (!m_hasGradient[i]) m_coeff[p] = m_shearCoeff[p] = {0.0, 0.0};
+  }
+}
+
 void SphShell::buildCorrections() {
   const std::size_t n = m_reference.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    // M_i = Σ_j V_j (X_j − X_i) ⊗ ∇W(X_i − X_j); B_ij = M_i⁻ᵀ ∇W(X_i − X_j).
-    double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
-    int count = 0;
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) continue;
-      const auto& d = m_separation[p];
-      const double r = std::hypot(d[0], d[1]);
-      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
-      const double w = kernel.derivative(r) / r;  // ∇W(X_i − X_j) = W'(r) (−d)/r
-      const double g0 = -w * d[0], g1 = -w * d[1];
-      const double v = m_volume[m_neighbour[p]];
-      M[0][0] += v * d[0] * g0; M[0][1] += v * d[0] * g1;
-      M[1][0] += v * d[1] * g0; M[1][1] += v * d[1] * g1;
-      ++count;
-    }
-    // T_i = Σ_j V_j W_ij X_ij ⊗ X_ij for the pair-averaged transverse shear.
-    double T[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) continue;
-      const auto& d = m_separation[p];
-      const double vw = m_volume[m_neighbour[p]] * m_kernel[p];
-      T[0][0] += vw * d[0] * d[0]; T[0][1] += vw * d[0] * d[1]; T[1][1] += vw * d[1] * d[1];
-    }
-    T[1][0] = T[0][1];
-    const double detT = T[0][0] * T[1][1] - T[0][1] * T[1][0];
-    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-    const double trace = M[0][0] + M[1][1];
-    // A one-sided or collinear neighbourhood (a fragment, a node cut off by a crack) has no
-    // first-order gradient.
-    const double traceT = T[0][0] + T[1][1];
-    const bool valid = count >= 3 && trace > 0.0 && det > 1e-3 * 0.25 * trace * trace &&
-                       detT > 1e-3 * 0.25 * traceT * traceT;
-    m_hasGradient[i] = valid ? 1 : 0;
-    if (!valid) continue;
-    // M⁻ᵀ: inverse of the transpose.
-    const double inv[2][2] = {{M[1][1] / det, -M[1][0] / det}, {-M[0][1] / det, M[0][0] / det}};
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      if (!m_active[p]) { m_coeff[p] = {0.0, 0.0}; m_shearCoeff[p] = {0.0, 0.0}; continue; }
-      const auto& d = m_separation[p];
-      const double r = std::hypot(d[0], d[1]);
-      const WendlandC2Kernel2D kernel{pairSmoothingLength(i, m_neighbour[p])};
-      const double w = kernel.derivative(r) / r;
-      const double g0 = -w * d[0], g1 = -w * d[1];
-      const double v = m_volume[m_neighbour[p]];
-      m_coeff[p] = {v * (inv[0][0] * g0 + inv[0][1] * g1), v * (inv[1][0] * g0 + inv[1][1] * g1)};
-      const double vw = v * m_kernel[p];
-      m_shearCoeff[p] = {vw * (T[1][1] * d[0] - T[0][1] * d[1]) / detT, vw * (T[0][0] * d[1] - T[1][0] * d[0]) / detT};
+  for (std::size_t i = 0; i < n; ++i) correctNode(i);
+  for (std::size_t i = 0; i < n; ++i) linkBackCoefficients(i);
+}
+
+void SphShell::buildCorrections(const std::vector<std::size_t>& nodes) {
+  // A node's corrections depend only on its own active links, so after a cut only the cut links'
+  // ends change: the same values as the rebuild of every node, without its cost per fracture.
+  for (std::size_t i : nodes) correctNode(i);
+  for (std::size_t i : nodes) {
+    linkBackCoefficients(i);
+    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {  // the neighbours' view of i
+      const std::size_t r = m_reverse[p];
+      const bool seen = m_active[r] && m_hasGradient[i];
+      m_coeffBack[r] = seen ? m_coeff[p] : std::array<double, 2>{0.0, 0.0};
+      m_shearBack[r] = seen ? m_shearCoeff[p] : std::array<double, 2>{0.0, 0.0};
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
-      const std::size_t j = m_neighbour[p];
-      m_coeffBack[p] = (m_active[p] && m_hasGradient[j]) ? m_coeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
-      m_shearBack[p] = (m_active[p] && m_hasGradient[j]) ? m_shearCoeff[m_reverse[p]] : std::array<double, 2>{0.0, 0.0};
-      if (!m_hasGradient[i]) m_coeff[p] = m_shearCoeff[p] = {0.0, 0.0};
-    }
 }
 
 void SphShell::currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const {
@@ -374,7 +443,12 @@ void SphShell::computeForces(double dt, int firing) {
   m_pointEvaluations += points;
 
   // Pass 1a: gradients and strains at the points that fire.
-#pragma omp parallel for schedule(static)
+  const double* position = m_position.data()->data();
+  const double* normal = m_normal.data()->data();
+#pragma omp parallel
+  {
+  PairDirectors directors(m_maxPairs);
+#pragma omp for schedule(static)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
     std::array<double, 6> A, G;
@@ -383,15 +457,15 @@ void SphShell::computeForces(double dt, int firing) {
     m_gradN[i] = G;
     if (m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i]) {
       const ShellVec3 a0 = column(A, 0), a1 = column(A, 1), g0 = column(G, 0), g1 = column(G, 1);
-      const ShellVec3& nrm = m_normal[i];
       // Pair-averaged transverse shear γ_i = T_i⁻¹ Σ_j V_j W_ij s_ij X_ij, s_ij = (x_j − x_i)·n̄_ij:
       // exact for a uniform shear, and zero for any quadratic deflection with matching directors
       // (trapezoidal rule), so it does not lock where the node gradient of w is one-sided.
       double gam0 = 0.0, gam1 = 0.0;
-      for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
+      const std::size_t first = m_offset[i];
+      pairShears(position, normal, m_neighbour.data(), i, first, m_offset[i + 1] - first, directors);
+      for (std::size_t p = first; p < m_offset[i + 1]; ++p) {
         if (!m_active[p]) continue;
-        const std::size_t j = m_neighbour[p];
-        const double sp = pairShear(m_position[i], m_position[j], nrm, m_normal[j]);
+        const double sp = directors.shear()[p - first];
         gam0 += sp * m_shearCoeff[p][0];
         gam1 += sp * m_shearCoeff[p][1];
       }
@@ -400,11 +474,16 @@ void SphShell::computeForces(double dt, int firing) {
                           gam0,                      gam1};
     }
   }
+  }
   const auto gradientsDone = Clock::now();
 
   // Pass 1b: the layers through the thickness and the resultants, each point's weighted by its
   // class's 2^c (exact: a power of two); the points that do not fire give no force this step.
-#pragma omp parallel for schedule(static)
+  // Dealt out in small chunks as the threads free up: a layer that flows (a return mapping, the
+  // damage) costs many times an elastic one, and the flowing points sit together (the band, the
+  // rim), so halves of the list would leave one thread with most of them. Each point writes only
+  // its own state: the same results for any schedule.
+#pragma omp parallel for schedule(dynamic, 32)
   for (std::size_t q = 0; q < points; ++q) {
     const std::size_t i = pointOrder[q];
     std::array<double, 6> P{}, R{};
@@ -412,7 +491,7 @@ void SphShell::computeForces(double dt, int firing) {
     PlaneTensor Mout{0.0, 0.0, 0.0};
     const bool stressPoint = m_hasGradient[i] && m_area[i] > 0.0 && !m_fractured[i];
     if (stressPoint) {
-      const double weight = std::ldexp(1.0, m_classes.point[i]);
+      const double weight = classWeight(m_classes.point[i]);
       const double pointDt = dt * weight;  // the interval this evaluation stands for
       const auto& A = m_gradX[i];
       const auto& G = m_gradN[i];
@@ -445,7 +524,11 @@ void SphShell::computeForces(double dt, int firing) {
           } else {
             r = planeStressPointUpdate(mat, E, m_plasticStrainTensor[idx], m_plasticStrain[idx], sig);
           }
-          if (damaging) {  // tau is zero unless the layers yield in shear
+          // A layer that neither flows nor has damage to catch up (the delay) leaves the damage as
+          // it is: advanceDamage would change nothing, so the triaxiality is not worked out for it.
+          const DamageState& before = m_damage[idx];
+          const bool damageMoves = r.plasticStrainIncrement != 0.0 || before.undelayed > before.damage;
+          if (damaging && damageMoves && !before.fractured) {  // tau is zero unless the layers yield in shear
             const double eta = triaxiality(hydrostaticStress(sig), vonMisesStress(sig, tau));
             advanceDamage(m_params.damageLaw, m_damage[idx], pBefore, r.plasticStrainIncrement, eta, pointDt);
           }
@@ -509,11 +592,16 @@ void SphShell::computeForces(double dt, int firing) {
     m_force[i] = f;
     m_directorForce[i] = {0.0, 0.0, 0.0};
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel
+  {
+  PairDirectors directors(m_maxPairs);
+#pragma omp for schedule(static)
   for (std::size_t q = 0; q < gathered; ++q) {
     const std::size_t i = gatherOrder[q];
     ShellVec3 f{0.0, 0.0, 0.0}, g{0.0, 0.0, 0.0};
     if (m_clamped[i]) { m_force[i] = f; m_directorForce[i] = g; continue; }
+    const std::size_t first = m_offset[i];
+    pairMeanDirectors(normal, m_neighbour.data(), i, first, m_offset[i + 1] - first, directors);
     const auto& Pi = m_stressP[i];
     const auto& Ri = m_stressR[i];
     const auto& Ai = m_gradX[i];
@@ -534,21 +622,20 @@ void SphShell::computeForces(double dt, int firing) {
       const auto& X = m_separation[p];
       // The hourglass stiffnesses (times hw) of a pair that fires, times its class's 2^c; a pair
       // that does not fire this step gives only the points' forces.
-      const double pairWeight = pairClass <= firing ? std::ldexp(1.0, pairClass) : 0.0;
+      const double pairWeight = pairClass <= firing ? classWeight(pairClass) : 0.0;
       const auto& stiffness = m_pairHourglass[p];
       const double kx = stiffness[0] * pairWeight, kn = stiffness[1] * pairWeight, ks = stiffness[2] * pairWeight;
       // Hourglass control. Tangential: error of the separation predicted by the mean gradient
       // (exact for quadratic fields). Normal: the separation along the mean director, a pair
       // transverse-shear measure that vanishes for Kirchhoff–Mindlin bending to third order even
       // where the field is only C¹ (at a clamp), unlike a gradient prediction of w.
-      ShellVec3 dx, ex, mean;
+      ShellVec3 dx, ex;
       for (int a = 0; a < 3; ++a) {
         dx[a] = m_position[j][a] - m_position[i][a];
         ex[a] = 0.5 * ((Ai[a] + Aj[a]) * X[0] + (Ai[3 + a] + Aj[3 + a]) * X[1]) - dx[a];
-        mean[a] = m_normal[i][a] + m_normal[j][a];
       }
-      const double meanLength = std::sqrt(dot(mean, mean));
-      for (int a = 0; a < 3; ++a) mean[a] /= meanLength;
+      const double meanLength = directors.length()[p - first];
+      const ShellVec3 mean = {directors.mean(0)[p - first], directors.mean(1)[p - first], directors.mean(2)[p - first]};
       const double exNormal = dot(ex, mean), dxNormal = dot(dx, mean);
       // Transverse shear: E = Σ_i ½ Q_i·γ_i with γ_i linear in s_ij = Δx·n̄.
       const double q = m_shearQ[i][0] * m_shearCoeff[p][0] + m_shearQ[i][1] * m_shearCoeff[p][1] -
@@ -567,12 +654,13 @@ void SphShell::computeForces(double dt, int firing) {
     }
     if (pressure != 0.0 && !m_fractured[i] && m_classes.point[i] <= firing) {
       const ShellVec3 areaNormal = m_hasGradient[i] ? cross(column(Ai, 0), column(Ai, 1)) : m_normal[i];
-      const double load = pressure * std::ldexp(1.0, m_classes.point[i]);
+      const double load = pressure * classWeight(m_classes.point[i]);
       for (int a = 0; a < 3; ++a) f[a] += load * m_area[i] * areaNormal[a];
     }
     for (int a = 0; a < 3; ++a) f[a] += m_external[i][a];
     m_force[i] = f;
     m_directorForce[i] = g;
+  }
   }
 
   const auto forcesDone = Clock::now();
@@ -783,25 +871,41 @@ void SphShell::fractureNode(std::size_t i) {
     m_fractureOrder.push_back(i);
   }
   m_fractured[i] = 1;
-  cutLinksOf(i);
-  rebuildAfterCuts();
+  rebuildAfterCuts(cutLinksOf(i));
 }
 
 void SphShell::rebuildAfterCuts() {
   // Nodes left without a first-order gradient become fragments: their links go too.
   for (bool changed = true; changed;) {
     buildCorrections();
-    changed = false;
-    for (std::size_t j = 0; j < m_position.size(); ++j) {
-      if (m_hasGradient[j]) continue;
-      for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p)
-        if (m_active[p]) {
-          m_active[p] = 0;
-          m_active[m_reverse[p]] = 0;
-          changed = true;
-        }
-    }
+    changed = !cutFragmentLinks().empty();
   }
+}
+
+void SphShell::rebuildAfterCuts(std::vector<std::size_t> touched) {
+  // As rebuildAfterCuts(), rebuilding only the nodes whose links were cut (the others' corrections
+  // would come out the same); the search for fragments still covers every node, as there.
+  while (!touched.empty()) {
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    buildCorrections(touched);
+    touched = cutFragmentLinks();
+  }
+}
+
+std::vector<std::size_t> SphShell::cutFragmentLinks() {
+  std::vector<std::size_t> ends;
+  for (std::size_t j = 0; j < m_position.size(); ++j) {
+    if (m_hasGradient[j]) continue;
+    for (std::size_t p = m_offset[j]; p < m_offset[j + 1]; ++p)
+      if (m_active[p]) {
+        m_active[p] = 0;
+        m_active[m_reverse[p]] = 0;
+        ends.push_back(j);
+        ends.push_back(m_neighbour[p]);
+      }
+  }
+  return ends;
 }
 
 namespace {
@@ -847,13 +951,15 @@ std::size_t SphShell::linksCrossing(const std::array<double, 2>& a, const std::a
   return count;
 }
 
-void SphShell::cutLinksOf(std::size_t i) {
+std::vector<std::size_t> SphShell::cutLinksOf(std::size_t i) {
   // The cracked cell is an opaque disc of radius √V/2 (visibility criterion, Belytschko et al.
   // 1994): its own links go, and so does every link whose segment crosses the disc.
   const double rc = 0.5 * std::sqrt(m_volume[i]);
+  std::vector<std::size_t> ends{i};
   for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
     m_active[p] = 0;
     m_active[m_reverse[p]] = 0;
+    ends.push_back(m_neighbour[p]);
   }
   for (std::size_t p = m_offset[i]; p < m_offset[i + 1]; ++p) {
     const std::size_t j = m_neighbour[p];
@@ -863,9 +969,11 @@ void SphShell::cutLinksOf(std::size_t i) {
       if (segmentDistance(m_reference[j], m_reference[k], m_reference[i]) < rc) {
         m_active[q] = 0;
         m_active[m_reverse[q]] = 0;
+        ends.push_back(k);  // j is among i's neighbours already
       }
     }
   }
+  return ends;
 }
 
 void SphShell::exchangeState(StateArchive& archive) {
@@ -897,6 +1005,8 @@ void SphShell::exchangeState(StateArchive& archive) {
   archive.value("point_evaluations", m_pointEvaluations);
   archive.record("timings", m_timings);
   computePairHourglass();  // derived from the arrays just read (or written)
+  m_maxPairs = 0;
+  for (std::size_t i = 0; i + 1 < m_offset.size(); ++i) m_maxPairs = std::max(m_maxPairs, m_offset[i + 1] - m_offset[i]);
 }
 
 }  // namespace rupture

@@ -157,6 +157,10 @@ private:
   }
   void buildNeighbours();
   void buildCorrections();
+  /// buildCorrections for `nodes` only (sorted, unique) and the back coefficients of their links.
+  void buildCorrections(const std::vector<std::size_t>& nodes);
+  void correctNode(std::size_t i);
+  void linkBackCoefficients(std::size_t i);
   /// The forces of the terms whose class is at most `firing` (all of them in the single rate),
   /// each weighted by its 2^c: the impulse of its interval over the fine step dt.
   void computeForces(double dt, int firing);
@@ -166,8 +170,13 @@ private:
   /// node without a gradient).
   void currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const;
   void computePairHourglass();
-  void cutLinksOf(std::size_t i);
+  /// Cuts the links of fractured node i and those crossing its cell; returns the cut links' ends.
+  std::vector<std::size_t> cutLinksOf(std::size_t i);
   void rebuildAfterCuts();
+  /// rebuildAfterCuts after cuts whose links' ends are `touched`.
+  void rebuildAfterCuts(std::vector<std::size_t> touched);
+  /// Cuts every link of a node without a gradient; returns the cut links' ends.
+  std::vector<std::size_t> cutFragmentLinks();
 
   ShellParameters m_params;
   ThroughThicknessRule m_rule;
@@ -205,6 +214,7 @@ private:
 
   // Pairs in CSR order (i's neighbours j), both directions stored.
   std::vector<std::size_t> m_offset, m_neighbour, m_reverse;
+  std::size_t m_maxPairs = 0;  ///< the most pairs of one node (the pair loops' scratch)
   std::vector<std::uint8_t> m_active;
   std::vector<std::array<double, 2>> m_separation;  ///< X_j − X_i
   std::vector<std::array<double, 2>> m_coeff;       ///< V_j B_ij

@@ -28,6 +28,10 @@ namespace rupture {
 /// dominates long before).
 inline constexpr int kMaxStepClass = 6;
 
+/// 2^c, the weight of a term of class c (exact; an integer conversion, not a call to std::ldexp in
+/// the loops over the pairs).
+inline double classWeight(int c) { return static_cast<double>(1u << c); }
+
 /// How an interval is cut: K fine steps of δ = interval / K, classes up to `coarsest`.
 struct SubcyclingPlan {
   long fineSteps = 1;

@@ -141,7 +141,7 @@ CREATE TABLE IF NOT EXISTS idempotency_keys(  -- POST Idempotency-Key -> the job
 
 constexpr const char* kJobColumns =
     "id, process_id, name, status, sweep_mode, swept_paths, inputs, sweep, message, created, started, "
-    "finished, updated, study, provenance";
+    "finished, updated, study, provenance, request";
 
 constexpr const char* kRunColumns =
     "job_id, idx, swept, spec, status, progress, summary, error, result_path, started, finished, updated, "
@@ -170,6 +170,7 @@ JobRecord readJob(const Stmt& q) {
   j.updated = q.text(12);
   j.study = q.json(13);
   j.provenance = q.json(14);
+  j.request = q.json(15);
   return j;
 }
 
@@ -259,6 +260,7 @@ void JobStore::migrate() {
   // progress: the run's stage message. A database from before gets them with their neutral values.
   if (!hasColumn("jobs", "study")) exec("ALTER TABLE jobs ADD COLUMN study TEXT");
   if (!hasColumn("jobs", "provenance")) exec("ALTER TABLE jobs ADD COLUMN provenance TEXT");
+  if (!hasColumn("jobs", "request")) exec("ALTER TABLE jobs ADD COLUMN request TEXT");
   if (!hasColumn("runs", "replicate")) exec("ALTER TABLE runs ADD COLUMN replicate INTEGER NOT NULL DEFAULT 0");
   if (!hasColumn("runs", "stage")) exec("ALTER TABLE runs ADD COLUMN stage TEXT NOT NULL DEFAULT ''");
   // 1: runs.spec holds a JSON Patch against the job's base spec (the inputs are stored once per job).
@@ -307,6 +309,23 @@ Json jobBaseSpec(const std::string& processId, const Json& inputs) {
   return base;
 }
 
+Json submittedRequest(const JobRecord& job) {
+  Json request = job.request.is_object() ? job.request : Json::object();
+  if (!job.request.is_object()) {  // a job from before the body was kept: rebuilt from its parts
+    if (job.sweep.is_object() && !job.sweep.empty()) {
+      request["sweep"] = job.sweep;
+      request["sweep_mode"] = job.sweepMode;
+    }
+    if (!job.name.empty()) request["name"] = job.name;
+    if (job.study.is_object()) {
+      if (job.study.contains("replicates")) request["replicates"] = job.study["replicates"];
+      if (job.study.contains("refine")) request["refine"] = job.study["refine"];
+    }
+  }
+  request["inputs"] = job.inputs;
+  return request;
+}
+
 Json runSpec(const JobRecord& job, const RunRecord& run) {
   if (!run.spec.is_null() || run.specPatch.is_null()) return run.spec;
   return jobBaseSpec(job.processId, job.inputs).patch(run.specPatch);
@@ -343,13 +362,21 @@ CreatedJob JobStore::createJobOnce(const NewJob& job) {
   }
   Stmt insertJob(m_db,
                  "INSERT INTO jobs(process_id, name, status, sweep_mode, swept_paths, inputs, sweep, "
-                 "message, created, updated, study, provenance) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                 "message, created, updated, study, provenance, request) VALUES(?, ?, 'accepted', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insertJob.bind(1, job.processId).bind(2, job.name).bind(3, job.sweepMode).bind(4, job.sweptPaths.dump())
       .bind(5, job.inputs.dump()).bind(6, job.sweep.dump())
       .bind(7, std::to_string(job.runs.size()) + (job.runs.size() == 1 ? " run queued" : " runs queued"))
       .bind(8, now).bind(9, now);
   if (job.study.is_null()) insertJob.bindNull(10); else insertJob.bind(10, job.study.dump());
   if (job.provenance.is_null()) insertJob.bindNull(11); else insertJob.bind(11, job.provenance.dump());
+  // The body as posted, less its inputs (stored once, above): submittedRequest() joins them again.
+  if (job.request.is_object()) {
+    Json rest = job.request;
+    rest.erase("inputs");
+    insertJob.bind(12, rest.dump());
+  } else {
+    insertJob.bindNull(12);
+  }
   insertJob.run();
   const std::int64_t id = sqlite3_last_insert_rowid(m_db);
   Stmt insertRun(m_db,
@@ -665,6 +692,33 @@ std::vector<int> JobStore::retryFailedRuns(std::int64_t jobId) {
          "UPDATE runs SET status = 'accepted', progress = 0, rate_from = NULL, error = NULL, started = NULL, finished = NULL, "
          "updated = ? WHERE job_id = ? AND status = 'failed'");
   u.bind(1, now).bind(2, jobId).run();
+  updateJobStatus(jobId, now);
+  tx.commit();
+  return indices;
+}
+
+std::vector<int> JobStore::resumeUnfinishedRuns(std::int64_t jobId) {
+  std::lock_guard lock(m_mutex);
+  const std::string now = utcNow();
+  Transaction tx(m_db);
+  auto job = jobLocked(jobId);
+  // Only an ended job, and only once its cancelled runs have stopped (a run still running would
+  // end dismissed after the resume and leave the job unfinished).
+  if (!job || !(job->status == Status::Failed || job->status == Status::Dismissed) || job->runsRunning > 0) return {};
+  std::vector<int> indices;
+  {
+    Stmt q(m_db, "SELECT idx FROM runs WHERE job_id = ? AND status IN ('failed', 'dismissed', 'accepted') ORDER BY idx");
+    q.bind(1, jobId);
+    while (q.step()) indices.push_back(static_cast<int>(q.i64(0)));
+  }
+  if (indices.empty()) return indices;
+  Stmt u(m_db,
+         "UPDATE runs SET status = 'accepted', progress = 0, rate_from = NULL, error = NULL, started = NULL, finished = NULL, "
+         "updated = ? WHERE job_id = ? AND status IN ('failed', 'dismissed', 'accepted')");
+  u.bind(1, now).bind(2, jobId).run();
+  // The job is no longer dismissed: updateJobStatus derives its status from the runs again.
+  Stmt j(m_db, "UPDATE jobs SET status = 'accepted', finished = NULL WHERE id = ?");
+  j.bind(1, jobId).run();
   updateJobStatus(jobId, now);
   tx.commit();
   return indices;

@@ -85,6 +85,9 @@ struct JobRecord {
   /// What the job was submitted to: the server's build and host (io/provenance.hpp), its executor
   /// and threads per run; null for a job from before it was recorded. Each run's file has its own.
   Json provenance;
+  /// The POST body as sent, less "inputs" (kept once, above); null for a job from before it was
+  /// kept. submittedRequest() gives the whole body.
+  Json request;
 };
 
 /// A job and its runs as one read: its counts, progress and `updated` agree with the runs listed
@@ -97,6 +100,10 @@ struct JobWithRuns {
 /// The spec every run of a job starts from: {"scenario": processId} followed by the inputs as
 /// posted (without their own "scenario"). Sweeps, replicates and refinement change it by paths.
 Json jobBaseSpec(const std::string& processId, const Json& inputs);
+
+/// The body of the POST that made `job` (what "Submit a variant" starts from): as posted, or for a
+/// job from before bodies were kept, rebuilt from its inputs, sweep, name and study.
+Json submittedRequest(const JobRecord& job);
 
 /// The full spec of `run` of `job`: its stored spec, or the job's base spec with the run's patch.
 Json runSpec(const JobRecord& job, const RunRecord& run);
@@ -125,6 +132,7 @@ struct NewJob {
   std::vector<int> replicates;  ///< replicate index per run (empty: all 0)
   Json study;                   ///< JobRecord::study (null: none)
   Json provenance;              ///< JobRecord::provenance
+  Json request;                 ///< the POST body as sent (JobRecord::request)
   std::string idempotencyKey;  ///< the POST's Idempotency-Key header, "" when none
   std::string requestHash;     ///< identifies the request body sent with that key
 };
@@ -202,6 +210,11 @@ public:
   /// failed -> accepted for every failed run of a job that is not dismissed (POST /jobs/{id}/retry);
   /// their errors are cleared. Returns the run indices, in order (empty: nothing to retry).
   std::vector<int> retryFailedRuns(std::int64_t jobId);
+  /// Every run of a failed or dismissed (cancelled) job that did not succeed (failed, cancelled,
+  /// never started) -> accepted, and the job runs again (POST /jobs/{id}/resume). Returns the run
+  /// indices, in order; empty when the job has not ended, still has a run stopping, or has nothing
+  /// left to run.
+  std::vector<int> resumeUnfinishedRuns(std::int64_t jobId);
 
   /// Cancels a job: its accepted runs become dismissed and the job `dismissed`. Jobs already
   /// successful or failed are left as they are. Returns the job after the change, or nullopt.

@@ -202,8 +202,8 @@ void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan&
     validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes, maxSteps);
 }
 
-void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan& plan, double maxElements,
-                        double maxMemoryBytes, double maxSteps) {
+rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan& plan,
+                                        double maxElements, double maxMemoryBytes, double maxSteps) {
   double memoryEstimate = -1;  // set when the point is refused for memory
   double stepsEstimate = -1;   // set when the point is refused for its length
   try {
@@ -233,7 +233,7 @@ void validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan&
     }
     stepsEstimate = estimate.steps;  // quoted in the problem when checkRunSteps refuses it
     rupture::checkRunSteps(spec, estimate, maxSteps);
-    stepsEstimate = -1;
+    return estimate;
   } catch (const rupture::SpecError& e) {
     Json extra = Json::object();
     extra["in"] = "inputs";

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/problem.hpp"
+#include "rupture/run.hpp"
 
 namespace rupture::server {
 
@@ -59,8 +60,9 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
                          double maxMemoryBytes, double maxSteps);
 
-/// validateSweepPoints for the one point at run index `index`.
-void validateSweepPoint(const SweepPoint& point, std::size_t index, const SweepPlan& plan, double maxElements,
+/// validateSweepPoints for the one point at run index `index`; returns the estimate it checked
+/// (the dry run of a submission reports it).
+rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t index, const SweepPlan& plan, double maxElements,
                         double maxMemoryBytes, double maxSteps);
 
 /// "a.b.0.c" -> {"a","b","0","c"}; empty segments are an error (returns empty vector).

@@ -23,6 +23,7 @@ void getJobs(ServerContext&, const httplib::Request&, httplib::Response&);
 void getJob(ServerContext&, const httplib::Request&, httplib::Response&);
 void deleteJob(ServerContext&, const httplib::Request&, httplib::Response&);
 void postRetry(ServerContext&, const httplib::Request&, httplib::Response&);
+void postResume(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRuns(ServerContext&, const httplib::Request&, httplib::Response&);
 void getRun(ServerContext&, const httplib::Request&, httplib::Response&);
 // result_handlers.cpp

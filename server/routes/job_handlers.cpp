@@ -183,6 +183,29 @@ void postRetry(ServerContext& ctx, const Request& req, Response& res) {
   sendJson(res, doc);
 }
 
+void postResume(ServerContext& ctx, const Request& req, Response& res) {
+  requireToken(ctx, req);
+  const std::int64_t id = jobIdFrom(req);
+  if (!ctx.store->job(id)) throw noSuchJob(std::to_string(id));
+  const std::vector<int> indices = ctx.store->resumeUnfinishedRuns(id);
+  if (indices.empty()) {
+    const JobRecord job = *ctx.store->job(id);
+    const bool ended = job.status == Status::Failed || job.status == Status::Dismissed;
+    const std::string why = !ended            ? "it has not ended; cancel it first, or let it finish"
+                            : job.runsRunning ? "a cancelled run is still stopping; resume again in a few seconds"
+                                              : "every run is successful";
+    throw ApiError(409, problem::kNothingToRetry, "Nothing to resume",
+                   "job " + std::to_string(id) + " cannot be resumed (" + toString(job.status) + "): " + why, "",
+                   Json{{"jobStatus", toString(job.status)}});
+  }
+  ctx.scheduler->resubmit(id, indices);
+  logLine("job " + std::to_string(id) + ": resumed, " + std::to_string(indices.size()) + " unfinished run(s) re-queued");
+  auto [job, runs] = ctx.store->jobWithRuns(id).value();
+  Json doc = statusInfo(job, &runs);
+  doc["resumed_runs"] = indices;
+  sendJson(res, doc);
+}
+
 namespace {
 
 /// What the run page shows: the run, its declared summary fields, the pictures its file can give,

@@ -11,6 +11,7 @@
 #include "core/fnv1a.hpp"
 #include "http/json_body.hpp"
 #include "http/request_guard.hpp"
+#include "jobs/job_preview.hpp"
 #include "jobs/replicates.hpp"
 #include "jobs/sweep.hpp"
 #include "routes/answers.hpp"
@@ -32,7 +33,8 @@ namespace {
 /// Queued work is bounded for the whole server, in runs (--max-queued-runs) and in stored bytes
 /// of inputs (--max-queued-bytes): a job that can never fit is the client's mistake (400); one
 /// that fits once the queue drains is told to come back (503).
-void requireQueueRoom(ServerContext& ctx, std::size_t runs, std::size_t inputBytes) {
+/// A dry run (`queueNow` false) checks only the bounds no wait can lift: it queues nothing.
+void requireQueueRoom(ServerContext& ctx, std::size_t runs, std::size_t inputBytes, bool queueNow) {
   struct Bound {
     std::size_t amount, queued, limit;
     const char *what, *flag, *key, *field, *title;
@@ -51,7 +53,7 @@ void requireQueueRoom(ServerContext& ctx, std::size_t runs, std::size_t inputByt
                          std::to_string(b.limit) + " in this server (" + flag + ")",
                      b.field, Json{{"in", "body"}, {"job_" + key, b.amount}, {"max_queued_" + key, b.limit}});
     }
-    if (b.queued + b.amount > b.limit) {
+    if (queueNow && b.queued + b.amount > b.limit) {
       throw ApiError(503, problem::kQueueFull, "Queue full",
                      "unfinished jobs hold " + std::to_string(b.queued) + " " + b.what + " and this server allows " +
                          std::to_string(b.limit) + " (" + flag + "); this job's " + std::to_string(b.amount) +
@@ -198,8 +200,10 @@ Submission readSubmission(const std::string& text, const std::string& scenario) 
 
 /// The job a submission makes: its sweep expanded and replicated into runs, each run's spec checked
 /// against the operator's limits (size, memory, queue room, runs per job), and its study (replicates,
-/// refinement) recorded.
-NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission& submission) {
+/// refinement) recorded. With `forecasts` (a dry run) each run's estimate is kept there and the
+/// queue's present fill is not checked: a preview is not refused because others are queued.
+NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission& submission,
+               std::vector<RunForecast>* forecasts = nullptr) {
   const Json& inputs = submission.inputs();
   const SweepPlan plan = parseSweepPlan(submission.member("sweep"), submission.member("sweep_mode"));
   const ReplicatePlan replicates = parseReplicatePlan(submission.member("replicates"), scenario, plan);
@@ -221,15 +225,17 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   const ReplicateExpander replicator(replicates, scenario);
   forEachSweepPoint(scenario, inputs, plan, maxRuns, [&](SweepPoint&& point) {
     replicator.expand(std::move(point), [&](ReplicatedPoint&& rp) {
-      validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements), ctx.maxRunMemory,
-                         static_cast<double>(ctx.config.maxRunSteps));
+      const rupture::RunEstimate estimate =
+          validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements),
+                             ctx.maxRunMemory, static_cast<double>(ctx.config.maxRunSteps));
+      if (forecasts) forecasts->push_back({rp.point.swept, rp.replicate, estimate});
       job.runPatches.push_back(Json::diff(base, rp.point.spec).dump());
       job.runs.emplace_back(std::move(rp.point.swept), Json());
       job.replicates.push_back(rp.replicate);
     });
   });
   const std::size_t runCount = job.runs.size();
-  requireQueueRoom(ctx, runCount, inputs.dump().size());
+  requireQueueRoom(ctx, runCount, inputs.dump().size(), forecasts == nullptr);
   const std::optional<RefinePlan> refine =
       parseRefinePlan(submission.member("refine"), scenario, plan, replicates.count, runCount, maxRuns);
 
@@ -239,6 +245,7 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   job.sweptPaths = Json::array();
   for (const SweepAxis& axis : plan.axes) job.sweptPaths.push_back(axis.path);
   job.inputs = inputs;
+  job.request = submission.body;  // what "Submit a variant" starts from
   const Json* sweep = submission.member("sweep");
   job.sweep = sweep && sweep->is_object() ? *sweep : Json::object();
   job.provenance = buildDocument();
@@ -308,7 +315,7 @@ void getProcess(ServerContext& ctx, const Request& req, Response& res) {
   };
   if (wantsHtml(req)) {
     // ?from=JOB: the form starts from that job's inputs as posted, to submit a variant of it.
-    Json start = Json::object();
+    Json start = Json::object(), request;
     if (req.has_param("from")) {
       const auto id = parseIndex(req.get_param_value("from"));
       const auto job = id ? ctx.store->job(*id) : std::nullopt;
@@ -318,8 +325,9 @@ void getProcess(ServerContext& ctx, const Request& req, Response& res) {
                        "job " + std::to_string(*id) + " runs " + job->processId + ", not " + name, "from",
                        Json{{"in", "query"}});
       if (job->inputs.is_object()) start = job->inputs;
+      request = submittedRequest(*job);  // its sweep, replicates and name fill the form too
     }
-    return sendHtml(res, processHtml(doc, start));
+    return sendHtml(res, processHtml(doc, start, request));
   }
   sendJson(res, doc);
 }
@@ -343,6 +351,7 @@ namespace {
 
 void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   requireToken(ctx, req);
+  const bool dryRun = choiceParam(req, "dry_run", {"true", "false"}).value_or("false") == "true";
   if (ctx.stopping) {
     throw ApiError(503, problem::kShuttingDown, "Service Unavailable",
                    "the server is stopping; submit again once it is back");
@@ -350,6 +359,13 @@ void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   const std::string scenario = req.matches[1];
   if (!knownScenario(scenario)) throw noSuchProcess(scenario);
   const Submission submission = readSubmission(req.body, scenario);
+  if (dryRun) {  // checked as the real submission below; nothing is stored or queued
+    std::vector<RunForecast> forecasts;
+    const NewJob job = planJob(ctx, scenario, submission, &forecasts);
+    const PreviewContext where{ctx.scheduler->threadsPerRun(), ctx.scheduler->workers(), ctx.maxRunMemory,
+                               std::max(0, ctx.store->queueDepth()), ctx.config.maxQueuedRuns};
+    return sendJson(res, jobPreview(scenario, job, forecasts, where));
+  }
 
   // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.
   const std::string idempotencyKey = idempotencyKeyOf(req);

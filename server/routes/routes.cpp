@@ -55,6 +55,7 @@ const std::vector<Route>& routeTable() {
       {"GET", "/jobs/" + kId, getJob},
       {"DELETE", "/jobs/" + kId, deleteJob},
       {"POST", "/jobs/" + kId + "/retry", postRetry},
+      {"POST", "/jobs/" + kId + "/resume", postResume},
       {"GET", "/jobs/" + kId + "/results", getJobResults},
       {"GET", "/jobs/" + kId + "/crate", getJobCrate},
       {"GET", "/jobs/" + kId + "/report", getJobReport},

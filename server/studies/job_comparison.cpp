@@ -1,6 +1,8 @@
 #include "studies/job_comparison.hpp"
 
 #include <algorithm>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "rupture/result_fields.hpp"
@@ -27,6 +29,53 @@ void addColumn(Json& columns, const Json& column) {
 
 std::string jobLabel(const JobRecord& job) {
   return job.name.empty() ? "job " + std::to_string(job.id) : std::to_string(job.id) + ": " + job.name;
+}
+
+namespace {
+
+/// Every leaf of `node` by dotted path (arrays are leaves: a size or a list of radii is one input).
+void flattenInputs(const Json& node, const std::string& prefix, std::map<std::string, Json>& out) {
+  if (node.is_object() && !node.empty()) {
+    for (const auto& [key, value] : node.items()) flattenInputs(value, prefix.empty() ? key : prefix + "." + key, out);
+    return;
+  }
+  if (!prefix.empty()) out[prefix] = node;
+}
+
+}  // namespace
+
+Json differingInputs(const std::vector<ComparedJob>& jobs) {
+  Json list = Json::array();
+  if (jobs.size() < 2) return list;
+  std::vector<std::map<std::string, Json>> flat(jobs.size());
+  std::set<std::string> paths;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    flattenInputs(jobs[k].job.inputs, "", flat[k]);
+    // A swept path shows as its list of values: the job's rows vary it.
+    if (jobs[k].job.sweep.is_object())
+      for (const auto& [path, values] : jobs[k].job.sweep.items()) flat[k][path] = Json{{"swept", values}};
+    if (jobs[k].job.study.is_object() && jobs[k].job.study.contains("replicates"))
+      flat[k]["replicates"] = jobs[k].job.study["replicates"];
+    for (const auto& [path, value] : flat[k]) paths.insert(path);
+  }
+  if (std::any_of(jobs.begin(), jobs.end(), [&](const ComparedJob& j) { return j.job.processId != jobs[0].job.processId; })) {
+    Json values = Json::object();
+    for (const ComparedJob& j : jobs) values[std::to_string(j.job.id)] = j.job.processId;
+    list.push_back({{"path", "scenario"}, {"values", values}});
+  }
+  for (const std::string& path : paths) {
+    Json values = Json::object();
+    bool differs = false;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const auto it = flat[k].find(path);
+      const Json value = it == flat[k].end() ? Json() : it->second;  // null: left to the default
+      const auto first = flat[0].find(path);
+      differs = differs || value != (first == flat[0].end() ? Json() : first->second);
+      values[std::to_string(jobs[k].job.id)] = value;
+    }
+    if (differs) list.push_back({{"path", path}, {"values", values}});
+  }
+  return list;
 }
 
 Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
@@ -60,6 +109,7 @@ Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate) {
   for (const auto& c : columns) units[c.value("name", "")] = c.value("unit", "");
   doc["units"] = units;
   doc["rows"] = rows;
+  doc["differing_inputs"] = differingInputs(jobs);
   return doc;
 }
 

@@ -22,8 +22,15 @@ struct ComparedJob {
 std::string jobLabel(const JobRecord& job);
 
 /// {"jobs": [{jobID, name, label, processID, status, runs_total, runs_successful}], "aggregate",
-///  "columns": [{name, kind, unit, label, description}], "rows": [{job, ...}]}
+///  "columns": [{name, kind, unit, label, description}], "rows": [{job, ...}],
+///  "differing_inputs": differingInputs(jobs)}
 Json comparisonJson(const std::vector<ComparedJob>& jobs, bool aggregate);
+
+/// The inputs that differ between the jobs, by dotted path: [{path, values: {jobID: value}}], a
+/// value null where a job leaves it to the default, {"swept": [values]} where a job sweeps it, the
+/// path "replicates" for the replicate plan and "scenario" when the jobs run different scenarios.
+/// Empty for one job.
+Json differingInputs(const std::vector<ComparedJob>& jobs);
 
 /// The same rows as CSV: job,job_name, then the union of the columns (statistics as
 /// <scalar>.mean, ... when aggregated).

@@ -123,6 +123,24 @@ std::string replicateTable(const Json& points) {
   return scrolling(h + "</table>");
 }
 
+/// How many times a run was started, marked when more than once (a retry, a resume or a restart
+/// after a stop) or when it continued from its checkpoint: what was asked again shows.
+std::string attemptsCell(const Json& run) {
+  const int attempts = run.value("attempts", run.contains("started") ? 1 : 0);
+  std::string text = std::to_string(attempts), title;
+  if (attempts > 1) {
+    text += " <span class=\"mark\">&#x21bb; retried</span>";
+    title = "started " + std::to_string(attempts) + " times: retried, resumed, or restarted after a stop";
+  }
+  if (const int resumes = run.value("resumes", 0); resumes > 0) {
+    text += " <span class=\"mark\">continued</span>";
+    title += std::string(title.empty() ? "" : "; ") + "continued from its checkpoint " + std::to_string(resumes) +
+             (resumes == 1 ? " time" : " times");
+  }
+  return "<td class=\"num at\"" + (title.empty() ? std::string() : " title=\"" + xmlEscape(title) + "\"") + ">" +
+         text + "</td>";
+}
+
 // Cancel and retry: the token (when the server has one) is kept in the browser session, sent as a
 // header, never put in a URL.
 constexpr const char* kActionScript =
@@ -163,15 +181,22 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
         reasons += "<br>run " + esc(r["index"]) + ": " + esc(r["error"]);
     c += "<p class=\"error\" id=\"reason\">Why: " + esc(status["message"]) + reasons + "</p>\n";
   }
-  // Actions: cancel while it runs, retry when a run failed, a variant through the form.
+  // Actions: cancel while it runs, retry when a run failed, resume a cancelled job's unfinished runs,
+  // a variant through the form.
   const bool active = jobStatus == "accepted" || jobStatus == "running";
-  const bool anyFailed = status.contains("runs_by_status") && status["runs_by_status"].value("failed", 0) > 0;
+  const Json byStatus = status.value("runs_by_status", Json::object());
+  const bool anyFailed = byStatus.value("failed", 0) > 0;
+  const int unfinished = byStatus.value("failed", 0) + byStatus.value("dismissed", 0);
+  const bool resumable = jobStatus == "dismissed" && unfinished > 0;
   c += "<p id=\"actions\">";
   if (active) c += "<button id=\"cancel\" data-method=\"DELETE\" data-url=\"" + href(base) + "\">Cancel</button>";
-  if (anyFailed && !active)
+  if (anyFailed && !active && !resumable)
     c += "<button id=\"retry\" data-method=\"POST\" data-url=\"" + href(base + "/retry") + "\">Retry failed runs</button>";
+  if (resumable)
+    c += "<button id=\"resume\" data-method=\"POST\" data-url=\"" + href(base + "/resume") + "\">Resume: run the " +
+         std::to_string(unfinished) + " unfinished run" + (unfinished == 1 ? "" : "s") + " again</button>";
   c += "<a href=\"" + href("/processes/" + status.value("processID", "") + "?f=html&from=" + id) + "\">Submit a variant</a>";
-  if (active || anyFailed)
+  if (active || anyFailed || resumable)
     c += " Token <input id=\"token\" type=\"password\" autocomplete=\"off\" size=\"16\"> <span class=\"hint\">(only if "
          "the server has one)</span>";
   c += " <span class=\"error\" id=\"action-error\" role=\"alert\"></span></p>\n";
@@ -189,7 +214,8 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     const std::string label = sweptLabel.count(path) ? sweptLabel[path] : path;
     c += "<th title=\"" + xmlEscape(path) + "\">" + xmlEscape(label) + "</th>";
   }
-  c += "<th>Status</th><th>Progress</th><th>Stage</th><th>Files</th><th>Picture</th></tr>\n";
+  c += "<th>Status</th><th>Progress</th><th title=\"times the run was started\">Attempts</th><th>Stage</th>"
+       "<th>Files</th><th>Picture</th></tr>\n";
   for (const auto& r : status.value("runs", Json::array())) {
     const std::string k = std::to_string(r.value("index", 0));
     const std::string runPage = base + "/runs/" + k + "?f=html";
@@ -199,7 +225,7 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
       c += quantityCell(r["swept"].value(path, Json()), sweptUnit[path]);
     }
     c += "<td class=\"st\">" + esc(r["status"]) + "</td><td class=\"num pr\">" + esc(r["progress"]) +
-         "</td><td class=\"sg\">" + stageText(r) + "</td><td>";
+         "</td>" + attemptsCell(r) + "<td class=\"sg\">" + stageText(r) + "</td><td>";
     if (r["status"] == "successful") {
       const std::string rb = base + "/runs/" + k;
       c += "<a href=\"" + href(rb + "/results") + "\">HDF5</a> <a href=\"" + href(rb + "/bundle") +
@@ -271,6 +297,31 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
   }
   c += "</p>";
   if (!plotPath.empty()) c += "<p><img id=\"compare-plot\" alt=\"comparison plot\" src=\"" + href(plotPath) + "\"></p>";
+  // What was asked differently: the inputs whose values differ between the jobs (one job: none).
+  const Json differing = comparison.value("differing_inputs", Json::array());
+  const Json jobs = comparison.value("jobs", Json::array());
+  if (jobs.size() > 1) {
+    if (differing.empty()) {
+      c += "<p id=\"differing\">The jobs were asked with the same inputs.</p>";
+    } else {
+      c += "<h2>Inputs that differ</h2><table id=\"differing\"><tr><th>Input</th>";
+      for (const auto& j : jobs) c += "<th>Job " + esc(j["jobID"]) + "</th>";
+      c += "</tr>";
+      for (const auto& d : differing) {
+        c += "<tr><td><code>" + esc(d["path"]) + "</code></td>";
+        for (const auto& j : jobs) {
+          const Json v = d["values"].value(j.value("jobID", ""), Json());
+          const std::string text = v.is_null()                           ? "(default)"
+                                   : v.is_object() && v.contains("swept") ? "swept: " + v["swept"].dump()
+                                   : v.is_string()                        ? v.get<std::string>()
+                                                                          : v.dump();
+          c += "<td>" + xmlEscape(text) + "</td>";
+        }
+        c += "</tr>";
+      }
+      c += "</table>";
+    }
+  }
   c += "<h2>Rows</h2>" + summaryTable(comparison, "compare") + "<p><a href=\"" +
        href("/summary?jobs=" + ids + "&format=csv") + "\">CSV</a> <a href=\"" + href("/summary?jobs=" + ids) +
        "\">JSON</a></p>";

@@ -30,17 +30,6 @@ std::int64_t modified(const fs::path& path) {
   return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::file_clock::to_sys(t).time_since_epoch()).count();
 }
 
-/// The request as accepted: the body of POST /processes/{scenario}/execution that makes this job.
-Json acceptedRequest(const JobRecord& job) {
-  Json request = {{"inputs", job.inputs}, {"sweep", job.sweep}, {"sweep_mode", job.sweepMode}};
-  if (!job.name.empty()) request["name"] = job.name;
-  if (job.study.is_object()) {
-    if (job.study.contains("replicates")) request["replicates"] = job.study["replicates"];
-    if (job.study.contains("refine")) request["refine"] = job.study["refine"];
-  }
-  return request;
-}
-
 const char* actionStatus(Status status) {
   switch (status) {
     case Status::Successful: return "http://schema.org/CompletedActionStatus";
@@ -94,7 +83,7 @@ std::shared_ptr<ZipArchive> jobCrate(const JobRecord& job, const std::vector<Run
   CrateBuilder crate(now);
   const std::string jobName = "job " + std::to_string(job.id) + (job.name.empty() ? "" : " (" + job.name + ")");
 
-  crate.text("request.json", dumpJson(acceptedRequest(job)),
+  crate.text("request.json", dumpJson(submittedRequest(job)),
              {{"@type", Json::array({"File", "SoftwareSourceCode", "ComputationalWorkflow"})},
               {"name", "The sweep of " + job.processId + " that made " + jobName},
               {"description", "The request as the server accepted it: POST it to /processes/" + job.processId +

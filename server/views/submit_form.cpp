@@ -141,7 +141,8 @@ struct FormBuilder {
   }
 };
 
-// Builds the request from the form and posts it; shows the job or the problem that names the field.
+// Builds the request from the form; Preview posts it as a dry run (run count, elements, memory, time),
+// Submit posts it and shows the job or the problem that names the field.
 constexpr const char* kSubmitScript = R"js(
 const form=document.getElementById('submit-form');const out=document.getElementById('form-error');
 const token=document.getElementById('token');token.value=sessionStorage.getItem('rupture-token')||'';
@@ -157,24 +158,52 @@ function parse(el){const t=el.value.trim(),k=el.dataset.kind,p=el.dataset.path;i
  if(k==='enum'){const v=Number(t);return isFinite(v)&&String(v)===t?v:t;}
  return t;}
 function list(text){return text.split(',').map(s=>s.trim()).filter(s=>s!=='').map(s=>{const v=Number(s);return isFinite(v)?v:s;});}
-form.addEventListener('submit',async e=>{e.preventDefault();out.textContent='';
- for(const el of form.querySelectorAll('.bad'))el.classList.remove('bad');
- const body={inputs:{}};
- try{for(const el of form.querySelectorAll('[data-path]')){const v=parse(el);if(v!==undefined)setPath(body.inputs,el.dataset.path,v);}}
- catch(x){out.textContent=x.message;return;}
+function build(){const body=JSON.parse(form.dataset.extra||'{}');body.inputs=body.inputs||{};
+ for(const el of form.querySelectorAll('[data-path]')){const v=parse(el);if(v!==undefined)setPath(body.inputs,el.dataset.path,v);}
  const name=document.getElementById('job-name').value.trim();if(name)body.name=name;
  const sweep={};for(const row of form.querySelectorAll('.sweep-row')){const p=row.querySelector('select').value,
   v=row.querySelector('input').value;if(p&&v.trim())sweep[p]=list(v);}
- if(Object.keys(sweep).length){body.sweep=sweep;body.sweep_mode=document.getElementById('sweep-mode').value;}
+ if(Object.keys(sweep).length){body.sweep=sweep;const m=document.getElementById('sweep-mode').value;if(m)body.sweep_mode=m;}
  const n=parseInt(document.getElementById('replicates').value,10);
  if(n>1)body.replicates={count:n,vary:document.getElementById('vary').value.trim()};
- const t=token.value.trim();if(t)sessionStorage.setItem('rupture-token',t);else sessionStorage.removeItem('rupture-token');
- const headers={'Content-Type':'application/json','Accept':'application/json'};if(t)headers.Authorization='Bearer '+t;
- let r,d={};try{r=await fetch(form.dataset.action,{method:'POST',headers,body:JSON.stringify(body)});d=await r.json();}
+ return body;}
+function headers(){const t=token.value.trim();if(t)sessionStorage.setItem('rupture-token',t);else sessionStorage.removeItem('rupture-token');
+ const h={'Content-Type':'application/json','Accept':'application/json'};if(t)h.Authorization='Bearer '+t;return h;}
+function mark(d){for(const el of form.querySelectorAll('.bad'))el.classList.remove('bad');
+ if(d.field){const el=form.querySelector('[data-path="'+CSS.escape(d.field)+'"]');if(el){el.classList.add('bad');el.focus();}}}
+function bytes(b){if(b===null||b===undefined)return 'not estimated';const u=['B','KiB','MiB','GiB','TiB'];let k=0;
+ while(b>=1024&&k<u.length-1){b/=1024;k++;}return (k?b.toPrecision(3):b)+' '+u[k];}
+function duration(s){if(s===null||s===undefined)return 'not estimated';if(s<1)return 'under 1 s';
+ if(s<120)return Math.round(s)+' s';if(s<7200)return (s/60).toPrecision(2)+' min';if(s<172800)return (s/3600).toPrecision(2)+' h';
+ return (s/86400).toPrecision(2)+' days';}
+function count(n){return n===null||n===undefined?'not estimated':Number(n).toLocaleString('en');}
+const preview=document.getElementById('preview');
+async function showPreview(){let body;try{body=build();}catch(x){preview.textContent=x.message;return;}
+ preview.textContent='estimating...';let r,d={};
+ try{r=await fetch(form.dataset.action+'?dry_run=true',{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
+ catch(x){preview.textContent='no answer from the server: '+x;return;}
+ mark(d);if(r.status!==200){preview.textContent=(d.detail||('HTTP '+r.status))+(d.field?' (field: '+d.field+')':'');return;}
+ const e=d.elements||{},rows=[['Runs',d.runs+(d.replicates>1?' ('+d.sweep_points+' points x '+d.replicates+' replicates)':'')],
+  ['Elements per run',e.min===e.max?count(e.max):count(e.min)+' to '+count(e.max)],
+  ['Memory per run (largest)',bytes(d.memory_bytes)+(d.max_run_memory_bytes?' of '+bytes(d.max_run_memory_bytes)+' allowed':'')],
+  ['Time steps per run (most)',count(d.steps)],
+  ['Estimated time',d.estimated_wall_s===null?'not estimated (no cost model for this scenario)':
+   duration(d.estimated_wall_s)+' for the job'+(d.runs>1?', '+duration(d.estimated_run_s)+' for its longest run':'')+
+   ' (a rough estimate: '+(d.cost_model?d.cost_model.uncertainty:'')+')'],
+  ['Queue',d.queue.fits_now?'room for it now':'full: the job would be refused until runs finish'],
+  ['Picture','none yet: the sample is counted from its spec, not built']];
+ preview.replaceChildren();const t=document.createElement('table');t.id='preview-table';
+ for(const [k,v] of rows){const tr=t.insertRow();tr.insertCell().textContent=k;tr.insertCell().textContent=v;}
+ preview.appendChild(t);}
+document.getElementById('preview-button').addEventListener('click',showPreview);
+let pending;form.addEventListener('change',()=>{clearTimeout(pending);pending=setTimeout(showPreview,600);});
+showPreview();
+form.addEventListener('submit',async e=>{e.preventDefault();out.textContent='';
+ let body;try{body=build();}catch(x){out.textContent=x.message;return;}
+ let r,d={};try{r=await fetch(form.dataset.action,{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
  catch(x){out.textContent='no answer from the server: '+x;return;}
  if(r.status===201){location.href='/jobs/'+encodeURIComponent(d.jobID)+'?f=html';return;}
- out.textContent=(d.detail||('HTTP '+r.status))+(d.field?' (field: '+d.field+')':'');
- if(d.field){const el=form.querySelector('[data-path="'+CSS.escape(d.field)+'"]');if(el){el.classList.add('bad');el.focus();}}});
+ out.textContent=(d.detail||('HTTP '+r.status))+(d.field?' (field: '+d.field+')':'');mark(d);});
 )js";
 
 /// The form for `process`, filled from `start` (empty: the schema's first example).
@@ -190,16 +219,127 @@ FormBuilder buildForm(const Json& schema, const Json& start) {
   return form;
 }
 
+/// A sweep value the form's value list gives back unchanged: a number, or a string the script
+/// will not read as a number, without commas or edge spaces.
+bool listable(const Json& v) {
+  if (v.is_number()) return true;
+  if (!v.is_string()) return false;
+  const std::string t = v.get<std::string>();
+  if (t.empty() || t.find(',') != std::string::npos || t.front() == ' ' || t.back() == ' ') return false;
+  char* end = nullptr;
+  std::strtod(t.c_str(), &end);
+  return end != t.c_str() + t.size();
+}
+
+/// What the form's job part starts from when opened from a job's request ("Submit a variant"): the
+/// sweep rows, mode, replicates and name, and the members it has no field for, sent as they were.
+struct JobPart {
+  std::vector<std::pair<std::string, std::string>> sweepRows;  // path, values as typed
+  Json sweep = Json::object();                                 // the same, as the script posts it
+  std::string mode;  // "" leaves it to the server (grid)
+  int replicates = 1;
+  std::string vary, name;
+  Json extra = Json::object();
+};
+
+/// The members of `start` the form has no field for (`formed`: what its fields post), e.g. a
+/// description: a variant sends them as they were.
+Json unformed(const Json& start, const Json& formed) {
+  Json kept = Json::object();
+  for (const auto& [key, value] : start.items()) {
+    const auto f = formed.find(key);
+    if (f == formed.end()) kept[key] = value;
+    else if (value.is_object() && f->is_object())
+      if (Json inner = unformed(value, *f); !inner.empty()) kept[key] = std::move(inner);
+  }
+  return kept;
+}
+
+/// The dotted paths of what a variant keeps without a field, for the page's note: each member, and
+/// within "inputs" each leaf.
+void keptPaths(const Json& kept, const std::string& prefix, std::string& out) {
+  for (const auto& [key, value] : kept.items()) {
+    const std::string path = prefix.empty() ? key : prefix + "." + key;
+    if (value.is_object() && !value.empty() && (prefix.empty() ? key == "inputs" : true)) keptPaths(value, path, out);
+    else out += (out.empty() ? "" : ", ") + path;
+  }
+}
+
+/// `formed`: what the form's fields post of the request's inputs.
+JobPart jobPartOf(const Json& request, bool seeded, const Json& formed) {
+  JobPart part;
+  part.vary = seeded ? "sample.seed" : "";
+  if (!request.is_object()) return part;
+  if (const auto in = request.find("inputs"); in != request.end() && in->is_object())
+    if (Json kept = unformed(*in, formed); !kept.empty()) part.extra["inputs"] = std::move(kept);
+  bool sweepListable = true;
+  if (const auto sw = request.find("sweep"); sw != request.end() && sw->is_object()) {
+    for (const auto& [path, values] : sw->items()) {
+      if (!values.is_array() || values.empty()) sweepListable = false;
+      else
+        for (const auto& v : values) sweepListable = sweepListable && listable(v);
+    }
+    if (sweepListable) {
+      for (const auto& [path, values] : sw->items()) {
+        std::string text;
+        for (const auto& v : values) text += (text.empty() ? "" : ", ") + (v.is_string() ? v.get<std::string>() : shortest(v));
+        part.sweepRows.emplace_back(path, text);
+      }
+      part.sweep = *sw;
+    }
+  }
+  for (const auto& [key, value] : request.items()) {
+    if (key == "inputs") continue;
+    if (key == "name" && value.is_string()) part.name = value.get<std::string>();
+    else if (key == "sweep_mode" && value.is_string() && sweepListable && !part.sweepRows.empty())
+      part.mode = value.get<std::string>();
+    else if (key == "sweep" && sweepListable) continue;
+    else if (key == "replicates" && value.is_object() && value.value("count", Json()).is_number_integer() &&
+             value["count"].get<int>() > 1 && value.value("vary", Json()).is_string() && value.size() == 2) {
+      part.replicates = value["count"].get<int>();
+      part.vary = value["vary"].get<std::string>();
+    } else {
+      part.extra[key] = value;  // no field for it (refine, an unlistable sweep, ...): sent as it was
+    }
+  }
+  return part;
+}
+
+bool hasSeed(const FormBuilder& form) {
+  return std::find(form.sweepable.begin(), form.sweepable.end(), "sample.seed") != form.sweepable.end();
+}
+
 }  // namespace
 
 Json formInputs(const Json& process, const Json& start) {
   return buildForm(process.value("inputsSchema", Json::object()), start).inputs;
 }
 
-HtmlPage processHtml(const Json& process, const Json& start) {
+Json formRequest(const Json& process, const Json& request) {
+  const Json inputs = request.is_object() ? request.value("inputs", Json::object()) : Json::object();
+  const FormBuilder form = buildForm(process.value("inputsSchema", Json::object()), inputs);
+  const JobPart part = jobPartOf(request, hasSeed(form), form.inputs);
+  Json body = part.extra;
+  Json posted = body.value("inputs", Json::object());  // the kept members, then the fields over them
+  for (const auto& [key, value] : form.inputs.items()) {
+    if (value.is_object() && posted.contains(key) && posted[key].is_object()) posted[key].update(value, true);
+    else posted[key] = value;
+  }
+  body["inputs"] = posted;
+  if (!part.name.empty()) body["name"] = part.name;
+  if (!part.sweep.empty()) {
+    body["sweep"] = part.sweep;
+    if (!part.mode.empty()) body["sweep_mode"] = part.mode;
+  }
+  if (part.replicates > 1) body["replicates"] = {{"count", part.replicates}, {"vary", part.vary}};
+  return body;
+}
+
+HtmlPage processHtml(const Json& process, const Json& start, const Json& request) {
   const std::string id = process.value("id", "");
   const Json schema = process.value("inputsSchema", Json::object());
   const FormBuilder form = buildForm(schema, start);
+  const JobPart part = jobPartOf(request, hasSeed(form), form.inputs);
 
   std::string c = "<p>" + esc(process.value("description", Json(""))) + "</p>\n"
                   "<h2>Submit a job</h2><p>The form starts from " +
@@ -209,24 +349,46 @@ HtmlPage processHtml(const Json& process, const Json& start) {
                   "chosen model or shape. Units are SI. "
                   "The same request as JSON: <code>POST /processes/" + xmlEscape(id) +
                   "/execution</code> (docs/server.md).</p>"
-                  "<form id=\"submit-form\" data-action=\"" + href("/processes/" + id + "/execution") + "\">\n" +
+                  "<form id=\"submit-form\" data-action=\"" + href("/processes/" + id + "/execution") + "\"" +
+                  (part.extra.empty() ? std::string() : " data-extra=\"" + xmlEscape(part.extra.dump()) + "\"") + ">\n" +
                   form.html +
                   "<h3>Sweep</h3><p class=\"hint\">Each row varies one field over a list of values "
                   "(comma-separated, e.g. <code>1e5, 1e6, 1e7</code>); grid runs every combination, zip pairs the "
                   "lists.</p>";
-  for (int row = 0; row < 3; ++row) {
+  // Three rows, or one more than the job it was opened from sweeps.
+  const std::size_t sweepRows = std::max<std::size_t>(3, part.sweepRows.size() + 1);
+  for (std::size_t row = 0; row < sweepRows; ++row) {
+    const std::string chosen = row < part.sweepRows.size() ? part.sweepRows[row].first : "";
     c += "<div class=\"sweep-row\"><select aria-label=\"swept field\"><option value=\"\"></option>";
-    for (const std::string& path : form.sweepable) c += "<option>" + xmlEscape(path) + "</option>";
-    c += "</select> <input size=\"40\" aria-label=\"values\" placeholder=\"values, comma-separated\"></div>\n";
+    std::vector<std::string> options = form.sweepable;
+    if (!chosen.empty() && std::find(options.begin(), options.end(), chosen) == options.end()) options.push_back(chosen);
+    for (const std::string& path : options)
+      c += "<option" + std::string(path == chosen ? " selected" : "") + ">" + xmlEscape(path) + "</option>";
+    c += "</select> <input size=\"40\" aria-label=\"values\" placeholder=\"values, comma-separated\" value=\"" +
+         xmlEscape(row < part.sweepRows.size() ? part.sweepRows[row].second : "") + "\"></div>\n";
   }
-  const bool seeded = std::find(form.sweepable.begin(), form.sweepable.end(), "sample.seed") != form.sweepable.end();
-  c += "<p>Mode <select id=\"sweep-mode\"><option>grid</option><option>zip</option></select></p>"
-       "<h3>Replicates</h3><p>Runs per sweep point <input id=\"replicates\" size=\"4\" value=\"1\"> varying "
-       "<input id=\"vary\" size=\"20\" value=\"" + std::string(seeded ? "sample.seed" : "") +
-       "\"> <span class=\"hint\">(an integer field; each replicate adds 1)</span></p>"
-       "<h3>Job</h3><p>Name <input id=\"job-name\" size=\"40\"> Token <input id=\"token\" type=\"password\" "
+  auto modeOption = [&](const std::string& value, const std::string& label) {
+    return "<option value=\"" + value + "\"" + (part.mode == value ? " selected" : "") + ">" + label + "</option>";
+  };
+  c += "<p>Mode <select id=\"sweep-mode\">" + modeOption("", "grid (the default)") + modeOption("grid", "grid") +
+       modeOption("zip", "zip") + "</select></p>"
+       "<h3>Replicates</h3><p>Runs per sweep point <input id=\"replicates\" size=\"4\" value=\"" +
+       std::to_string(part.replicates) + "\"> varying <input id=\"vary\" size=\"20\" value=\"" + xmlEscape(part.vary) +
+       "\"> <span class=\"hint\">(an integer field; each replicate adds 1)</span></p>";
+  if (!part.extra.empty()) {
+    std::string kept;
+    keptPaths(part.extra, "", kept);
+    c += "<p class=\"hint\" id=\"kept\">Kept from the job as it was asked, with no field here: <code>" + xmlEscape(kept) +
+         "</code></p>";
+  }
+  c += "<h3>Job</h3><p>Name <input id=\"job-name\" size=\"40\" value=\"" + xmlEscape(part.name) + "\"> Token <input id=\"token\" type=\"password\" "
        "autocomplete=\"off\" size=\"24\"> <span class=\"hint\">(only if the server has one; kept for this "
-       "browser session)</span></p><p><button id=\"submit\">Submit</button> <span class=\"error\" id=\"form-error\" "
+       "browser session)</span></p>"
+       "<h3>Preview</h3><p class=\"hint\">What the job would be, checked as a submission is but not queued: its runs, "
+       "elements, memory and an estimated time (<code>POST .../execution?dry_run=true</code>). It is shown as the form "
+       "opens and updates as you change a field.</p><p><button type=\"button\" id=\"preview-button\">Preview</button></p>"
+       "<div id=\"preview\" role=\"status\"></div>"
+       "<p><button id=\"submit\">Submit</button> <span class=\"error\" id=\"form-error\" "
        "role=\"alert\"></span></p></form>\n";
   std::string rows;
   inputRows(schema, "", rows);

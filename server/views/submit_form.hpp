@@ -11,11 +11,18 @@
 namespace rupture::server {
 
 /// `process`: the process document (with "inputsSchema"); `start`: the inputs the form starts
-/// from (an object; empty: the schema's first example).
-HtmlPage processHtml(const Json& process, const Json& start);
+/// from (an object; empty: the schema's first example); `request`: the whole body of the job it was
+/// opened from (null: none), whose sweep rows, mode, replicates and name fill the job part, and
+/// whose members without a field here are sent as they were. The page also previews the job
+/// (a dry run: runs, elements, memory, estimated time) before it is submitted.
+HtmlPage processHtml(const Json& process, const Json& start, const Json& request = Json());
 
 /// The inputs the form's script posts when the form is submitted as opened (the same arguments):
 /// the starting spec's fields that the form has.
 Json formInputs(const Json& process, const Json& start);
+
+/// The whole body the script posts when the form opened from `request` (a job's body as posted,
+/// with "inputs") is submitted unchanged: a variant keeps the sweep, replicates and name.
+Json formRequest(const Json& process, const Json& request);
 
 }  // namespace rupture::server

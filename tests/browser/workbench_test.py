@@ -9,9 +9,12 @@
    each run has a loaded thumbnail.
 2. Opens a run page: its field picture loads at 900 x 600 and is not one colour.
 3. A job whose run fails: its page and its run's page show the reason; Retry runs it again.
-4. Submits a slow job through the form and cancels it with the job page's button.
+4. Submits a slow job through the form and cancels it with the job page's button; resumes it with
+   the page's Resume button (it runs again) and cancels it again.
 5. Compares two jobs from the job list: the comparison page has both jobs' rows.
-6. Opens every scenario's form and submits it unchanged (on a second server whose runs wait for
+6. Opens the sweep's "Submit a variant" form: its preview (a dry run) shows the run count and an
+   estimated time; submitted unchanged, it makes the sweep's runs again, spec for spec.
+7. Opens every scenario's form and submits it unchanged (on a second server whose runs wait for
    disk space, so nothing runs): each lands on its new job's page.
 """
 import json
@@ -240,6 +243,15 @@ def main():
             browser.open(base + f"/jobs/{slow}?f=html")
             browser.click_and_reload("cancel")
             wait_until("the cancel", lambda: http_json(base, "/jobs/" + slow)["status"] == "dismissed", 30)
+            # Resumed from its page, it runs again; cancelled again, so that it does not hold the worker.
+            wait_until("the cancelled run to stop", lambda: http_json(base, "/jobs/" + slow)["runs"][0]["status"] ==
+                       "dismissed", 30)
+            browser.open(base + f"/jobs/{slow}?f=html")
+            browser.click_and_reload("resume")
+            assert http_json(base, "/jobs/" + slow)["status"] in ("accepted", "running")
+            assert browser.js("document.getElementById('status').textContent") in ("accepted", "running")
+            browser.click_and_reload("cancel")
+            wait_until("the second cancel", lambda: http_json(base, "/jobs/" + slow)["status"] == "dismissed", 30)
 
             # 5. Two jobs compared from the list.
             browser.open(base + "/jobs?f=html")
@@ -252,10 +264,29 @@ def main():
             rows = browser.js("document.querySelectorAll('#compare tr').length")
             assert rows == 1 + 3, rows  # header, two runs of the sweep, the failed run
 
+            # 6. A variant of the sweep keeps what was asked: its preview counts its runs, and submitted
+            # unchanged it makes the same runs, spec for spec, under the same name.
+            browser.open(base + f"/processes/dynamic-tension?f=html&from={job}")
+            browser.js("document.getElementById('preview-button').click(), true")
+            preview = wait_until("the preview", lambda: browser.js(
+                "(document.getElementById('preview-table') || {}).textContent || ''"), 30)
+            assert "Runs2" in preview and "Estimated time" in preview and "not estimated" not in preview, preview
+            browser.js("document.getElementById('submit').click(), true")
+            path = wait_until("the variant's page", lambda: (lambda p: p if p.startswith("/jobs/") else None)(
+                browser.js("location.pathname")), 60)
+            variant = path.split("/")[2]
+            assert variant not in (job, failed, slow), variant
+            old, new = http_json(base, "/jobs/" + job), http_json(base, "/jobs/" + variant)
+            for key in ("name", "swept", "sweep_mode", "runs_total"):
+                assert new.get(key) == old.get(key), (key, old.get(key), new.get(key))
+            for k in range(old["runs_total"]):
+                assert http_json(base, f"/jobs/{variant}/runs/{k}")["spec"] == http_json(base, f"/jobs/{job}/runs/{k}")["spec"], k
+
             forms = forms_as_opened(browser, scratch)
 
             assert not browser.dialogs, f"a page opened a dialog (script injection?): {browser.dialogs}"
-            print(f"ok: sweep job {job}, failed job {failed}, cancelled job {slow}, {forms} forms submitted as opened")
+            print(f"ok: sweep job {job}, failed job {failed}, cancelled job {slow}, variant {variant}, "
+                  f"{forms} forms submitted as opened")
         finally:
             if browser:
                 browser.close()

@@ -72,6 +72,17 @@ class _ProgressLine:
             print(file=sys.stderr, flush=True)
 
 
+def _request_body(inputs, sweep, name, sweep_mode, replicates, refine):
+    """The body of POST /processes/{scenario}/execution; an int `replicates` n varies sample.seed."""
+    body = {"inputs": inputs, "sweep_mode": sweep_mode}
+    if isinstance(replicates, int) and not isinstance(replicates, bool):
+        replicates = {"count": replicates, "vary": "sample.seed"}
+    for key, value in (("sweep", sweep), ("name", name), ("replicates", replicates), ("refine", refine)):
+        if value is not None:
+            body[key] = value
+    return body
+
+
 class Client:
     def __init__(self, base_url="http://127.0.0.1:8080", token=None, timeout=60.0):
         self.base = base_url.rstrip("/")
@@ -143,12 +154,7 @@ class Client:
         refinement request (docs/server.md, "Studies"). With reuse=True the same request returns the
         job an earlier identical request made (through an Idempotency-Key derived from the request),
         unless that job failed or was dismissed: then a new job is made."""
-        body = {"inputs": inputs, "sweep_mode": sweep_mode}
-        if isinstance(replicates, int) and not isinstance(replicates, bool):
-            replicates = {"count": replicates, "vary": "sample.seed"}
-        for key, value in (("sweep", sweep), ("name", name), ("replicates", replicates), ("refine", refine)):
-            if value is not None:
-                body[key] = value
+        body = _request_body(inputs, sweep, name, sweep_mode, replicates, refine)
         path = "/processes/" + urllib.parse.quote(scenario, safe="") + "/execution"
         if not reuse:
             return self._json("POST", path, body)["jobID"]
@@ -159,6 +165,14 @@ class Client:
             if self.status(job)["status"] not in ("failed", "dismissed"):
                 return job
         raise RuptureError(0, {}, "reuse: 100 earlier identical jobs all failed or were dismissed")
+
+    def preview(self, scenario, inputs, sweep=None, name=None, sweep_mode="grid", replicates=None, refine=None):
+        """What submit() with the same arguments would make, checked as a submission is but not
+        queued (the server's dry run): runs, elements, memory_bytes, steps, estimated_wall_s,
+        run_estimates, ... (docs/server.md, "Preview and cost"). Raises RuptureError where submit()
+        would."""
+        body = _request_body(inputs, sweep, name, sweep_mode, replicates, refine)
+        return self._json("POST", "/processes/" + urllib.parse.quote(scenario, safe="") + "/execution?dry_run=true", body)
 
     def status(self, job):
         """The job's status document (status, progress, stage, elapsed_s, eta_s, runs, ...)."""
@@ -209,6 +223,11 @@ class Client:
     def retry(self, job):
         """Puts the job's failed runs back in the queue."""
         return self._json("POST", "/jobs/" + self._id(job) + "/retry", {})
+
+    def resume(self, job):
+        """Runs again every run of a cancelled or failed job that did not succeed (cancelled, failed,
+        never started); the successful runs stay. Returns the job's status document."""
+        return self._json("POST", "/jobs/" + self._id(job) + "/resume", {})
 
     # -- tables ------------------------------------------------------------------------------------
 

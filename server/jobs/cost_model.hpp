@@ -1,0 +1,31 @@
+#pragma once
+// The wall time a run will take, estimated before it is queued (the dry run of a submission, the
+// form's preview): its estimated elements (or particles) times its estimated time steps times the
+// seconds one such element-step costs in its scenario (per element where the scenario estimates no
+// steps), measured with the built binary on each scenario's example at one thread (docs/server.md,
+// "Preview and cost", gives the figures and how far off they can be).
+#include <optional>
+#include <string>
+
+#include "rupture/run.hpp"
+
+namespace rupture::server {
+
+/// One scenario's measured cost.
+struct CostModel {
+  double secondsPerElementStep = 0;  ///< s per estimated element (or particle) per estimated step, one thread
+  double secondsPerElement = 0;      ///< s per element, for a scenario whose estimate counts no steps
+  const char* basis = "";            ///< what was measured, for the answer that quotes it
+  const char* uncertainty = "";      ///< how far an estimate can be off, and why
+};
+
+/// The scenario's cost model, or nullptr for one without (validation: its runs are whole cases).
+const CostModel* costModelFor(const std::string& scenario);
+
+/// Seconds one run is expected to take on `threads` OpenMP threads (the measured cost divided by
+/// the threads: ideal scaling, so an underestimate where threads do not pay); nullopt when the
+/// scenario has no cost model or the estimate gives no elements or steps.
+std::optional<double> estimatedRunSeconds(const std::string& scenario, const rupture::RunEstimate& estimate,
+                                          int threads);
+
+}  // namespace rupture::server
