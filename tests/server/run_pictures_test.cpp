@@ -201,8 +201,12 @@ TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
     needle.append(run(1)).append(kind);
     const std::size_t at = html.find(needle);
     ASSERT_NE(at, std::string::npos) << needle;
-    std::string src = html.substr(at + 5, html.find('"', at + 5) - at - 5);
-    for (std::size_t amp; (amp = src.find("&amp;")) != std::string::npos;) src.replace(amp, 5, "&");
+    std::string src;  // the attribute unescaped, copied rather than replaced in place (GCC 12's -Wrestrict)
+    for (std::size_t i = at + 5; i < html.size() && html[i] != '"';) {
+      const bool amp = html.compare(i, 5, "&amp;") == 0;
+      src += html[i];
+      i += amp ? 5 : 1;
+    }
     auto image = client->Get(src.c_str());
     ASSERT_TRUE(image) << src;
     EXPECT_EQ(image->status, 200) << src << ": " << image->body.substr(0, 300);
