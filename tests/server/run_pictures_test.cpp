@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
+#include "support/html_check.hpp"
 #include "support/png_probe.hpp"
 #include "views/render_gate.hpp"
 
@@ -138,6 +139,31 @@ TEST_F(RunPictures, TheColourRangeIsTheRunsByDefaultAndFollowsMinAndMax) {
   ASSERT_TRUE(plain);
   EXPECT_NE(plain->body.find("the field's range over every snapshot"), std::string::npos)
       << "the default said in words";
+}
+
+// Issue 55: every form and picture page passes an HTML check (closed in order, quoted, unique ids).
+TEST_F(RunPictures, EveryPicturePageAndFormPassesTheHtmlCheck) {
+  auto client = live->client();
+  const std::string job = "/jobs/" + std::to_string(jobId);
+  std::vector<std::string> pages = {run(0) + "?f=html", run(1) + "?f=html&field=von_mises&min=1e6&max=5e7&range=snapshot",
+                                    job + "?f=html", "/jobs?f=html", "/summary?f=html&jobs=" + std::to_string(jobId),
+                                    "/?f=html", "/processes?f=html"};
+  const Json processes = test::getJson(*client, "/processes");
+  for (const auto& p : processes.value("processes", Json::array()))
+    pages.push_back("/processes/" + p.value("id", "") + "?f=html");
+  ASSERT_GT(pages.size(), 9u) << "every scenario's form";
+  for (const std::string& path : pages) {
+    auto res = client->Get(path.c_str());
+    ASSERT_TRUE(res) << path;
+    ASSERT_EQ(res->status, 200) << path << ": " << res->body.substr(0, 300);
+    EXPECT_EQ(rupture::testing::htmlProblems(res->body), "") << path;
+  }
+  // The check finds what it is for.
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p>a</div></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p id=a></p></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p id=\"a\"></p><b id=\"a\"></b></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body>R & D</body></html>"), "");
+  EXPECT_EQ(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><img src=\"a\"><br>R &amp; D</body></html>"), "");
 }
 
 TEST_F(RunPictures, TheSeriesAsAPlot) {
