@@ -304,7 +304,8 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
     if (differing.empty()) {
       c += "<p id=\"differing\">The jobs were asked with the same inputs.</p>";
     } else {
-      c += "<h2>Inputs that differ</h2><table id=\"differing\"><tr><th>Input</th>";
+      // One column per job: as wide as the jobs compared, so it scrolls inside the page too.
+      c += "<h2>Inputs that differ</h2><div class=\"scroll\"><table id=\"differing\"><tr><th>Input</th>";
       for (const auto& j : jobs) c += "<th>Job " + esc(j["jobID"]) + "</th>";
       c += "</tr>";
       for (const auto& d : differing) {
@@ -319,7 +320,7 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
         }
         c += "</tr>";
       }
-      c += "</table>";
+      c += "</table></div>";
     }
   }
   c += "<h2>Rows</h2>" + summaryTable(comparison, "compare") + "<p><a href=\"" +
