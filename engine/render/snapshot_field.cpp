@@ -79,6 +79,10 @@ std::vector<SnapshotRef> listSnapshots(const io::Hdf5File& file, const std::stri
     ref.strain = numberAttribute(file, group, "strain");
     out.push_back(std::move(ref));
   }
+  // A strain of 0 on every snapshot is the XDMF layout's placeholder (impact imposes none), not a
+  // strain: the pictures and pages do not say "strain 0".
+  if (std::all_of(out.begin(), out.end(), [](const SnapshotRef& r) { return !r.strain || *r.strain == 0; }))
+    for (SnapshotRef& r : out) r.strain.reset();
   return out;
 }
 

@@ -41,7 +41,7 @@ const FieldDeclaration* findFieldDeclaration(const std::string& name);
 struct SnapshotRef {
   std::string group;             ///< full path, e.g. "/run-2/snapshots/000003"
   double time = 0;               ///< s
-  std::optional<double> strain;  ///< (1), tension runs
+  std::optional<double> strain;  ///< (1), tension runs; none when every snapshot says 0 (impact's placeholder)
 };
 
 /// The snapshots under root + "/snapshots", in order; empty when there are none.

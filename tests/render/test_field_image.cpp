@@ -441,6 +441,28 @@ TEST(FieldImage, MarksTheLoadingFromTheSpec) {
   EXPECT_EQ(fluid.loading[0], "piston at 5 m/s, along −z at the largest z face");
 }
 
+TEST(SnapshotField, AStrainOfZeroOnEverySnapshotIsNoStrain) {
+  ScratchDir dir;
+  const std::string path = writeBondedRun(dir.path(), 4);
+  {
+    const io::Hdf5File tension = io::Hdf5File::openReadOnly(path);
+    const std::vector<SnapshotRef> snapshots = listSnapshots(tension, "");
+    ASSERT_EQ(snapshots.size(), 2u);
+    EXPECT_EQ(snapshots[0].strain, 0.0) << "a tension run's first snapshot is at strain 0";
+    EXPECT_EQ(snapshots[1].strain, 1e-3);
+  }
+  {
+    io::Hdf5File f = io::Hdf5File::openReadWrite(path);
+    f.setAttribute("/snapshots/000001", "strain", 0.0);  // as impact writes every snapshot
+  }
+  const io::Hdf5File impact = io::Hdf5File::openReadOnly(path);
+  for (const SnapshotRef& s : listSnapshots(impact, "")) EXPECT_FALSE(s.strain.has_value()) << s.group;
+  FieldImageRequest request;
+  request.format = ImageFormat::Svg;
+  const std::string svg = renderFieldImage(impact, request).bytes;
+  EXPECT_EQ(svg.find("strain 0"), std::string::npos) << "the title says no strain";
+}
+
 TEST(SeriesPlot, PlotsAgainstStrainByDefaultAndRefusesMixedUnits) {
   ScratchDir dir;
   const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path(), 4));
