@@ -24,7 +24,7 @@ commands:
                                           for a job's merged file (RESULT.run-<k>.xdmf2); an
                                           existing sidecar is replaced only with --force
   plot RESULT.h5 -o OUT.png|svg|pdf [--field F] [--snapshot K|--time T] [--view xy|xz|yz]
-       [--body all|fluid|N] [--slice D] [--bonds broken|all|none] [--min V] [--max V]
+       [--body all|fluid|N] [--slice D] [--bonds broken|all|none] [--min V] [--max V] [--range run|snapshot]
        [--width W] [--height H] [--run K] [--force]
                                           a picture of a run's field at a snapshot (damage, stress,
                                           speed, pressure; broken bonds in red)
