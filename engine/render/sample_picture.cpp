@@ -43,6 +43,10 @@ std::size_t drawPanel(cairo_t* cr, const PreviewPanel& panel, const Frame& frame
     lo[0] = std::min(lo[0], c.at[0] - c.at[2]), hi[0] = std::max(hi[0], c.at[0] + c.at[2]);
     lo[1] = std::min(lo[1], c.at[1] - c.at[2]), hi[1] = std::max(hi[1], c.at[1] + c.at[2]);
   }
+  for (const auto& b : panel.boxes) {
+    lo[0] = std::min(lo[0], b.at[0]), hi[0] = std::max(hi[0], b.at[2]);
+    lo[1] = std::min(lo[1], b.at[1]), hi[1] = std::max(hi[1], b.at[3]);
+  }
   text(cr, frame.left, frame.top + 13, panel.title, 12, true);
   if (!(hi[0] > lo[0]) || !(hi[1] > lo[1])) {
     text(cr, frame.left, frame.top + 40, "no points in this view", 12);

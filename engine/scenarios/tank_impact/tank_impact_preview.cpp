@@ -37,14 +37,19 @@ SamplePreview previewTankImpact(const TankImpactSpec& spec, const std::atomic<bo
     top.v.push_back(nodes.y[n]);
     top.radius.push_back(0.5 * spacing);
     top.group.push_back(group);
-    if (std::fabs(nodes.y[n]) <= 0.5 * spacing) {  // the plate in the section: its mid-surface z = 0
+    if (std::fabs(nodes.y[n]) <= 0.5 * spacing) {  // the nodes in the section, on the mid-surface z = 0
       side.u.push_back(nodes.x[n]);
       side.v.push_back(0.0);
-      side.radius.push_back(0.5 * spec.plate.shell.thickness);
+      side.radius.push_back(0.5 * spacing);
       side.group.push_back(group);
     }
   }
+  // The plate's thickness about its mid-surface, across the spot face.
+  const double t = spec.plate.shell.thickness, r = 0.5 * spec.plate.diameter;
+  side.boxes.push_back({{-r, -0.5 * t, r, 0.5 * t}, "plate, " + formatQuantity(t, "m") + " thick"});
   if (plate.holeRadius > 0) top.circles.push_back({{0.0, 0.0, plate.holeRadius}, "hole"});
+  // With the thick bottom, the spot face's rim is the step where the plate tears.
+  if (spec.plate.bottom) top.circles.push_back({{0.0, 0.0, 0.5 * spec.plate.diameter}, "spot face (the step)"});
   for (const PlateSegment& c : plate.precracks) top.segments.push_back({{c.a[0], c.a[1], c.b[0], c.b[1]}, "pre-crack"});
   out.panels.insert(out.panels.begin(), std::move(top));
 
@@ -52,7 +57,8 @@ SamplePreview previewTankImpact(const TankImpactSpec& spec, const std::atomic<bo
                       formatQuantity(nodes.spacing, "m") +
                       (plateRefinedAtStep(spec.plate) ? ", refined about the step" : std::string()) +
                       "), spot face " + formatQuantity(spec.plate.diameter, "m") + ", thickness " +
-                      formatQuantity(spec.plate.shell.thickness, "m") + ", pre-crack: " + toString(spec.plate.precrack.shape));
+                      formatQuantity(spec.plate.shell.thickness, "m") + ", pre-crack: " + toString(spec.plate.precrack.shape) +
+                      (plate.holeRadius > 0 ? " of " + formatQuantity(2 * plate.holeRadius, "m") : std::string()));
   out.facts.push_back("water column " + formatQuantity(2 * g.R(), "m") + " across, " + formatQuantity(g.H(), "m") +
                       " high; carriage " + formatQuantity(spec.impactor.mass, "kg") + " at " +
                       formatQuantity(spec.impactor.speed, "m/s"));
