@@ -79,6 +79,7 @@ std::size_t drawPanel(cairo_t* cr, const PreviewPanel& panel, const Frame& frame
   }
   for (const auto& c : panel.circles) {
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_new_path(cr);  // a label's text leaves a current point the arc would join with a line
     cairo_arc(cr, px(c.at[0]), py(c.at[1]), scale * c.at[2], 0, 2 * M_PI);
     cairo_stroke(cr);
     text(cr, px(c.at[0] + c.at[2]) + 3, py(c.at[1]), c.label, 10);
@@ -87,6 +88,7 @@ std::size_t drawPanel(cairo_t* cr, const PreviewPanel& panel, const Frame& frame
     cairo_set_source_rgb(cr, 0.55, 0.0, 0.55);
     const double dash = 5;
     cairo_set_dash(cr, &dash, 1, 0);
+    cairo_new_path(cr);
     cairo_rectangle(cr, px(b.at[0]), py(b.at[3]), scale * (b.at[2] - b.at[0]), scale * (b.at[3] - b.at[1]));
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);

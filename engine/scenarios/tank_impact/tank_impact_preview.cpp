@@ -37,7 +37,9 @@ SamplePreview previewTankImpact(const TankImpactSpec& spec, const std::atomic<bo
     top.v.push_back(nodes.y[n]);
     top.radius.push_back(0.5 * spacing);
     top.group.push_back(group);
-    if (std::fabs(nodes.y[n]) <= 0.5 * spacing) {  // the nodes in the section, on the mid-surface z = 0
+    // The nodes within a spacing of the section (each ring has one there, whatever its phase), on
+    // the mid-surface z = 0.
+    if (std::fabs(nodes.y[n]) < spacing) {
       side.u.push_back(nodes.x[n]);
       side.v.push_back(0.0);
       side.radius.push_back(0.5 * spacing);
