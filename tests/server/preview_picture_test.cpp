@@ -123,6 +123,24 @@ TEST(PreviewPicture, OfASweepIsTheFirstRunsAndSaysSo) {
   EXPECT_NE(d["picture"]["note"].get<std::string>().find("first of the job's 2 runs"), std::string::npos);
 }
 
+TEST(PreviewPicture, FillsTheSampleCacheSoTheRunReadsTheSampleItShowed) {
+  ASSERT_TRUE(test::scenarioAvailable());
+  LiveServer live;
+  auto client = live.client();
+  Json inputs = test::smallInputs();
+  inputs["run"]["max_steps"] = 2;
+  const Json picture = pictureOf(*client, test::kScenario, inputs);
+  ASSERT_EQ(picture["available"], true) << picture.dump();
+  EXPECT_EQ(picture["sample_from_cache"], false) << "a fresh server: built";
+  EXPECT_EQ(pictureOf(*client, test::kScenario, inputs)["sample_from_cache"], true) << "asked again: read back";
+  const std::int64_t id = test::submit(*client, Json{{"inputs", inputs}});
+  const Json done = test::waitForJob(*client, id, {"successful", "failed"}, 120);
+  ASSERT_EQ(done["status"], "successful") << done.dump();
+  const Json run = test::getJson(*client, "/jobs/" + std::to_string(id) + "/runs/0");
+  EXPECT_EQ(run["summary"]["sample_from_cache"], 1) << "the run read the sample the preview built";
+  EXPECT_EQ(run["summary"]["elements"], picture["elements"]);
+}
+
 TEST(PreviewPicture, IsAskedOnlyWithADryRunAndNotDrawnUnlessAsked) {
   ASSERT_TRUE(test::scenarioAvailable());
   LiveServer live;
