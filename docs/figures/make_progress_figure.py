@@ -82,18 +82,12 @@ def panel(x0, title, ylabel, ymax, series, total):
     sx = lambda t: x0 + left + t / total * (w - left - 20)
     sy = lambda y: top + (1 - y / ymax) * (h - top - 50)
     out = [f'<text x="{x0 + w / 2}" y="20" text-anchor="middle" font-size="15">{title}</text>']
-    step = nice_step(total)
-    t = 0.0
-    while t <= total + 1e-9:
+    for t in ticks(total):  # the time axis: tick marks below it
         out.append(f'<line x1="{sx(t):.1f}" y1="{sy(0):.1f}" x2="{sx(t):.1f}" y2="{sy(0) + 5:.1f}" stroke="#000"/>')
         out.append(f'<text x="{sx(t):.1f}" y="{sy(0) + 20:.1f}" text-anchor="middle" font-size="12">{t:g}</text>')
-        t += step
-    ystep = nice_step(ymax)
-    y = 0.0
-    while y <= ymax + 1e-9:
+    for y in ticks(ymax):  # the value axis: grid lines across
         out.append(f'<line x1="{sx(0) - 5:.1f}" y1="{sy(y):.1f}" x2="{sx(total):.1f}" y2="{sy(y):.1f}" stroke="#ddd"/>')
         out.append(f'<text x="{sx(0) - 8:.1f}" y="{sy(y) + 4:.1f}" text-anchor="end" font-size="12">{y:g}</text>')
-        y += ystep
     out.append(f'<line x1="{sx(0)}" y1="{sy(0)}" x2="{sx(total)}" y2="{sy(0)}" stroke="#000"/>')
     out.append(f'<line x1="{sx(0)}" y1="{sy(0)}" x2="{sx(0)}" y2="{sy(ymax)}" stroke="#000"/>')
     out.append(f'<text x="{x0 + left + (w - left) / 2}" y="{h - 8}" text-anchor="middle" font-size="13">wall time since the run started (s)</text>')
@@ -105,6 +99,12 @@ def panel(x0, title, ylabel, ymax, series, total):
                    + (f' stroke-dasharray="{dash}"' if dash else "") + "/>")
         out.append(f'<text x="{x0 + w - 155}" y="{ly + 4}" font-size="12">{label}</text>')
     return out
+
+
+def ticks(span):
+    """Round values 0, s, 2s, ... up to span (s a 1-2-5 step)."""
+    step = nice_step(span)
+    return [k * step for k in range(int(span / step + 1e-9) + 1)]
 
 
 def nice_step(span):

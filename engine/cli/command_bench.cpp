@@ -19,19 +19,26 @@ void printReport(nlohmann::json report) {
   std::cout << report.dump() << std::endl;
 }
 
+/// Reads an integer option's value in [lo, hi] into `out` (an int or a size); false after printing
+/// the usage error (exit code 2).
+template <class T>
+bool readInteger(const std::string& name, const std::string& value, long long lo, long long hi, T& out) {
+  long long v = 0;
+  if (!parseIntOption(name, value, lo, hi, v)) return false;
+  out = static_cast<T>(v);
+  return true;
+}
+
 /// Reads the "--threads N" and "--steps N" that follow the workload name (and "--spec FILE" where
 /// `spec` is given: TANK); returns 0, or 2 after printing what is wrong.
 int readThreadsAndSteps(const Args& args, const std::string& workload, int& threads, int& steps,
                         std::string* spec = nullptr) {
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
-    long long v = 0;
     if (args[k] == "--threads") {
-      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
-      threads = static_cast<int>(v);
+      if (!readInteger("--threads", args[k + 1], 1, 1024, threads)) return 2;
     } else if (args[k] == "--steps") {
-      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
-      steps = static_cast<int>(v);
+      if (!readInteger("--steps", args[k + 1], 1, 100000000, steps)) return 2;
     } else if (spec && args[k] == "--spec") {
       *spec = args[k + 1];
     } else {
@@ -61,9 +68,7 @@ int benchTankSeed(const Args& args) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
     const std::string& value = args[k + 1];
     if (args[k] == "--threads") {
-      long long v = 0;
-      if (!parseIntOption("--threads", value, 1, 1024, v)) return 2;
-      options.threads = static_cast<int>(v);
+      if (!readInteger("--threads", value, 1, 1024, options.threads)) return 2;
     } else if (args[k] == "--end-time") {
       char* end = nullptr;
       const double t = std::strtod(value.c_str(), &end);
@@ -89,14 +94,11 @@ int benchStream(const Args& args) {
   bench::StreamOptions options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
-    long long v = 0;
     if (args[k] == "--threads") {
-      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
-      options.threads = static_cast<int>(v);
+      if (!readInteger("--threads", args[k + 1], 1, 1024, options.threads)) return 2;
     } else if (args[k] == "--megabytes") {
       // Three arrays of M MiB each: at most 3 × 4 GiB, what a machine of this kind can hold.
-      if (!parseIntOption("--megabytes", args[k + 1], 1, 4096, v)) return 2;
-      options.megabytes = static_cast<int>(v);
+      if (!readInteger("--megabytes", args[k + 1], 1, 4096, options.megabytes)) return 2;
     } else {
       return usageError("bench STREAM: unknown option '" + args[k] + "'; allowed: --threads, --megabytes");
     }
@@ -125,16 +127,12 @@ int benchCommand(const Args& args) {
   bench::W1Options options;
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (k + 1 >= args.size()) return usageError("bench: option " + args[k] + " needs a value");
-    long long v = 0;
     if (args[k] == "--threads") {
-      if (!parseIntOption("--threads", args[k + 1], 1, 1024, v)) return 2;
-      options.threads = static_cast<int>(v);
+      if (!readInteger("--threads", args[k + 1], 1, 1024, options.threads)) return 2;
     } else if (args[k] == "--particles") {
-      if (!parseIntOption("--particles", args[k + 1], 32, 100000000, v)) return 2;
-      options.particles = static_cast<std::size_t>(v);
+      if (!readInteger("--particles", args[k + 1], 32, 100000000, options.particles)) return 2;
     } else if (args[k] == "--steps") {
-      if (!parseIntOption("--steps", args[k + 1], 1, 100000000, v)) return 2;
-      options.steps = static_cast<int>(v);
+      if (!readInteger("--steps", args[k + 1], 1, 100000000, options.steps)) return 2;
     } else if (args[k] == "--stiffness-weibull") {
       char* end = nullptr;
       const double m = std::strtod(args[k + 1].c_str(), &end);

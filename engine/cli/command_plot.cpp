@@ -25,7 +25,7 @@ constexpr const char* kPlotUsage =
     "  a field picture (the default):\n"
     "  --field F               damage, von_mises, stress_xx, pressure, speed or density (default: the\n"
     "                          first the run recorded, in this order)\n"
-    "  --snapshot K            snapshot index, negative from the end (default -1: the last)\n"
+    "  --snapshot K            snapshot index from 0, negative from the end (default -1: the last)\n"
     "  --time T                the snapshot nearest T seconds (instead of --snapshot)\n"
     "  --view xy|xz|yz         the plane drawn (default: the section or plane that shows most)\n"
     "  --body all|fluid|N      which particles of an SPH run (default: the plate for damage, else fluid)\n"
@@ -33,6 +33,8 @@ constexpr const char* kPlotUsage =
     "  --bonds broken|all|none bonds drawn as lines (default: the broken ones in red, none for\n"
     "                          peridynamics, whose damage field shows its cracks)\n"
     "  --min V, --max V        the colour range, in the field's SI unit\n"
+    "  --range run|snapshot    the default colour range: the field's over every snapshot of the run\n"
+    "                          (run, the default: snapshots compare by colour) or this snapshot's\n"
     "  a series plot:\n"
     "  --series Y[,Y...]       plot these /series datasets (one unit) against --x\n"
     "  --x X                   the x series (default: strain when recorded, else time)\n"
@@ -82,7 +84,7 @@ int plotCommand(const Args& args) {
   static const std::vector<std::string> valued = {"-o",     "--output", "--field", "--snapshot", "--time",
                                                   "--view", "--body",   "--slice", "--bonds",    "--min",
                                                   "--max",  "--width",  "--height", "--run",     "--series",
-                                                  "--x"};
+                                                  "--x",    "--range"};
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     if (a == "--help" || a == "-h") {
@@ -162,6 +164,7 @@ int plotCommand(const Args& args) {
       request.view = values["--view"];
       request.body = values["--body"];
       if (values.count("--bonds")) request.bonds = values["--bonds"];
+      if (values.count("--range")) request.range = values["--range"];
       if (values.count("--snapshot")) {
         if (!parseIntOption("--snapshot", values["--snapshot"], -1000000, 1000000, snapshot)) return 2;
         request.snapshot = static_cast<long>(snapshot);
@@ -178,9 +181,10 @@ int plotCommand(const Args& args) {
       const render::FieldImage image = render::renderFieldImage(file, request);
       bytes = image.bytes;
       what = image.field + " at t = " + formatQuantity(image.time, "s") + " (snapshot " +
-             std::to_string(image.snapshot + 1) + " of " + std::to_string(image.snapshots) + "), " +
+             std::to_string(image.snapshot) + " of 0 to " + std::to_string(image.snapshots - 1) + "), " +
              std::to_string(image.drawn) + " particles, colours " + formatQuantity(image.min, image.unit) + " to " +
-             formatQuantity(image.max, image.unit);
+             formatQuantity(image.max, image.unit) +
+             (image.range == "run" ? " (over every snapshot)" : image.range == "snapshot" ? " (this snapshot)" : "");
     }
     if (!writeAtomically(output, bytes)) {
       std::cerr << "rupture plot: cannot write '" << output << "'\n";

@@ -60,7 +60,8 @@ void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const n
     auto it = summary.find(f.name);
     if (it == summary.end()) continue;
     // As people read them (rupture/quantity_text.hpp); the JSON on stdout keeps full precision.
-    const std::string value = it->is_number()   ? formatQuantity(it->get<double>(), f.unitFor(dimension))
+    const std::string value = it->is_number() && f.isFlag() ? formatFlag(it->get<double>() != 0)
+                              : it->is_number()   ? formatQuantity(it->get<double>(), f.unitFor(dimension))
                               : it->is_string() ? it->get<std::string>()
                               : it->is_null()   ? "n/a"
                                                 : it->dump();
@@ -271,7 +272,7 @@ int runCommand(const Args& args) {
   };
   control.log = [&view, &progressFile, &noticeInterrupt](const std::string& text) {
     noticeInterrupt();
-    view.message(text);
+    view.message(roundNumbersInText(text));  // for people; the progress file keeps the digits
     progressFile.stage(text);
   };
   RunOutcome outcome;

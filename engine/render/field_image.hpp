@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/hdf5_file.hpp"
 #include "render/canvas.hpp"
@@ -29,10 +30,15 @@ struct FieldImageRequest {
   std::string bonds;                  ///< "broken", "all" or "none"; "": broken where a particle has a
                                       ///< few bonds (discrete elements, lattices), none for a dense
                                       ///< peridynamic family (its damage field shows the crack)
-  std::optional<double> min, max;     ///< colour range in the field's unit; default: the data's
-                                      ///< (0..1 for damage)
+  std::optional<double> min, max;     ///< colour range in the field's unit; default: see `range`
+  std::string range;                  ///< the default colour range: "run" (or ""): the field's range
+                                      ///< over every snapshot of the run, so that snapshots compare
+                                      ///< by colour; "snapshot": this snapshot's own. Damage: 0..1
+  bool axes = true;                   ///< axes in engineering units (µm, mm) at round ticks, and
+                                      ///< the loading marks; a thumbnail has neither
   int width = 800, height = 600;      ///< px (pt for PDF)
-  bool thumbnail = false;             ///< no title, no colour bar: the job page's small images
+  bool thumbnail = false;             ///< no title, colour bar or axes, a scale bar instead: the job
+                                      ///< page's small images
   ImageFormat format = ImageFormat::Png;
 };
 
@@ -45,8 +51,24 @@ struct FieldImage {
   std::size_t snapshot = 0, snapshots = 0; ///< the index drawn, of how many
   double time = 0;                         ///< s
   double min = 0, max = 0;                 ///< the colour range used
+  std::string range;                       ///< where min..max came from: "run", "snapshot",
+                                           ///< "fixed" (damage), "asked" (min and max given)
+  std::vector<double> colourTicks;         ///< the colour bar's ticks (field unit), round values
+  std::string colourUnit;                  ///< the unit its labels read in ("MPa")
+  struct Axis {
+    std::string name;                      ///< "x", "y" or "z"
+    std::string unit;                      ///< the labels' unit ("µm")
+    double lo = 0, hi = 0;                 ///< m, the drawn extent
+    std::vector<double> ticks;             ///< m, round values in the unit
+  };
+  std::vector<Axis> axes;                  ///< horizontal, vertical; empty without axes
+  std::vector<std::string> loading;        ///< the loading marks drawn, described for people
+  double scaleBar = 0;                     ///< m, a thumbnail's scale bar (1, 2 or 5 × 10^k); 0: none
   std::size_t drawn = 0;                   ///< particles drawn
 };
+
+/// Snapshots are numbered from 0 wherever a person reads them (the title, the run page, the CLI),
+/// as the `snapshot` index of the request and the HDF5 groups /snapshots/<k> are.
 
 /// Renders the picture. Throws FieldImageError naming the member at fault (an unknown field, a
 /// snapshot out of range, a run without snapshots: "snapshot"), std::runtime_error when the file

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "render/colour_map.hpp"
+#include "render/round_ticks.hpp"
 #include "rupture/quantity_text.hpp"
 #include "rupture/run.hpp"
 
@@ -18,18 +19,6 @@ std::string stringAttribute(const io::Hdf5File& file, const std::string& path, c
   } catch (const std::exception&) {
     return "";
   }
-}
-
-/// Ticks at 1, 2 or 5 × 10^k covering [lo, hi] with about five intervals.
-std::vector<double> niceTicks(double lo, double hi) {
-  const double span = hi - lo;
-  const double raw = span / 5;
-  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-  const double step = magnitude * (raw / magnitude < 1.5 ? 1 : raw / magnitude < 3.5 ? 2 : raw / magnitude < 7.5 ? 5 : 10);
-  std::vector<double> ticks;
-  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span && ticks.size() < 20; t += step)
-    ticks.push_back(std::abs(t) < 1e-12 * span ? 0.0 : t);
-  return ticks;
 }
 
 }  // namespace
@@ -118,7 +107,7 @@ SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& r
     cairo_set_font_size(cr, 11);
     cairo_set_line_width(cr, 1);
     cairo_text_extents_t e;
-    for (double t : niceTicks(xlo, xhi)) {
+    for (double t : roundTicks(xlo, xhi).values) {
       cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
       cairo_move_to(cr, X(t), top);
       cairo_line_to(cr, X(t), top + plotH);
@@ -129,7 +118,7 @@ SeriesPlot renderSeriesPlot(const io::Hdf5File& file, const SeriesPlotRequest& r
       cairo_move_to(cr, X(t) - 0.5 * e.width, top + plotH + 16);
       cairo_show_text(cr, text.c_str());
     }
-    for (double t : niceTicks(ylo, yhi)) {
+    for (double t : roundTicks(ylo, yhi).values) {
       cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
       cairo_move_to(cr, left, Y(t));
       cairo_line_to(cr, left + plotW, Y(t));

@@ -79,6 +79,10 @@ std::vector<SnapshotRef> listSnapshots(const io::Hdf5File& file, const std::stri
     ref.strain = numberAttribute(file, group, "strain");
     out.push_back(std::move(ref));
   }
+  // A strain of 0 on every snapshot is the XDMF layout's placeholder (impact imposes none), not a
+  // strain: the pictures and pages do not say "strain 0".
+  if (std::all_of(out.begin(), out.end(), [](const SnapshotRef& r) { return !r.strain || *r.strain == 0; }))
+    for (SnapshotRef& r : out) r.strain.reset();
   return out;
 }
 
@@ -159,6 +163,20 @@ SnapshotField readSnapshotField(const io::Hdf5File& file, const std::string& roo
       (intact[b] ? out.intactBonds : out.brokenBonds)
           .push_back({static_cast<std::size_t>(i), static_cast<std::size_t>(j)});
     }
+  }
+  return out;
+}
+
+FieldValues readFieldValues(const io::Hdf5File& file, const SnapshotRef& snapshot, const std::string& field) {
+  FieldValues out;
+  const char* dataset = datasetOf(field);
+  if (!holds(file, snapshot.group, dataset ? dataset : field.c_str())) return out;
+  const std::vector<std::size_t> dims = file.datasetDims(snapshot.group + "/position");
+  const std::size_t n = dims.empty() ? 0 : dims.front();
+  out.value = fieldValues(file, snapshot.group, field, n);
+  if (holds(file, snapshot.group, "body")) {
+    const std::vector<std::int64_t> body = file.readDatasetInt(snapshot.group + "/body");
+    out.body.assign(body.begin(), body.end());
   }
   return out;
 }

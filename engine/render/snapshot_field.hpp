@@ -41,7 +41,7 @@ const FieldDeclaration* findFieldDeclaration(const std::string& name);
 struct SnapshotRef {
   std::string group;             ///< full path, e.g. "/run-2/snapshots/000003"
   double time = 0;               ///< s
-  std::optional<double> strain;  ///< (1), tension runs
+  std::optional<double> strain;  ///< (1), tension runs; none when every snapshot says 0 (impact's placeholder)
 };
 
 /// The snapshots under root + "/snapshots", in order; empty when there are none.
@@ -64,5 +64,14 @@ struct SnapshotField {
 /// the positions, sizes, bodies and, when the run has bonds, the bond pairs split by their state.
 SnapshotField readSnapshotField(const io::Hdf5File& file, const std::string& root, const SnapshotRef& snapshot,
                                 const std::string& field);
+
+/// The field's values and the particles' bodies at one snapshot, without positions, sizes or
+/// bonds: what the colour range over every snapshot of a run reads. Empty values when the
+/// snapshot does not hold the field.
+struct FieldValues {
+  std::vector<double> value;
+  std::vector<int> body;  ///< empty: no bodies
+};
+FieldValues readFieldValues(const io::Hdf5File& file, const SnapshotRef& snapshot, const std::string& field);
 
 }  // namespace rupture::render

@@ -9,6 +9,7 @@
 #include "core/format_number.hpp"
 #include "io/checkpoint_file.hpp"
 #include "scenarios/run_support.hpp"
+#include "rupture/quantity_text.hpp"
 
 namespace rupture {
 
@@ -63,7 +64,7 @@ void RunCheckpoints::restore(bool partsFollow) {
   m_control.resumedFromStep.store(header.step);
   m_last = Clock::now();
   logStage(m_control, "resumed from the checkpoint at step " + std::to_string(header.step) + ", time " +
-                          formatNumber(header.time) + " s (written " + header.written + ")");
+                          formatQuantity(header.time, "s") + " (written " + header.written + ")");
 }
 
 void RunCheckpoints::restorePart(const State& part) {
@@ -100,8 +101,8 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
   m_control.checkpointBytes.store(static_cast<double>(bytes));
   m_control.checkpointSeconds.store(seconds);
   m_control.phases.charge("writing checkpoints", seconds);
-  logStage(m_control, "checkpoint at step " + std::to_string(step) + ": " + formatNumber(bytes / 1e6) + " MB in " +
-                          formatNumber(seconds) + " s");
+  logStage(m_control, "checkpoint at step " + std::to_string(step) + ": " + formatQuantity(bytes / 1e6, "1") + " MB in " +
+                          formatQuantity(seconds, "s"));
 }
 
 std::uintmax_t RunCheckpoints::bytesForNextCheckpoint() const {

@@ -27,6 +27,12 @@ struct ResultField {
 
   /// The unit in a run of the given dimension (2 or 3).
   const std::string& unitFor(int dimension) const { return dimension == 2 && !unit2d.empty() ? unit2d : unit; }
+  /// A yes/no stored as 1/0 (dimensionless, described "1 when ..." or "1 if ..."): people read
+  /// it as yes/no (formatFlag), machines as 1/0.
+  bool isFlag() const { return describesFlag(unit, description); }
+  static bool describesFlag(const std::string& unit, const std::string& description) {
+    return unit == "1" && (description.rfind("1 when ", 0) == 0 || description.rfind("1 if ", 0) == 0);
+  }
 };
 
 using ResultFields = std::vector<ResultField>;

@@ -219,7 +219,7 @@ Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, c
   if (scenario) {
     const int dimension = rupture::specDimension(rupture::scenarioSchema(scenario->name), run.spec);
     for (const rupture::ResultField& f : scenario->summary)
-      fields.push_back({{"name", f.name}, {"label", f.label}, {"unit", f.unitFor(dimension)}});
+      fields.push_back({{"name", f.name}, {"label", f.label}, {"unit", f.unitFor(dimension)}, {"description", f.description}});
   }
   data["summary_fields"] = fields;
   data["swept_fields"] = sweptFields(job);
@@ -242,6 +242,14 @@ Json runPageData(ServerContext& ctx, const Request& req, const JobRecord& job, c
     }
     if (auto view = choiceParam(req, "view", {"", "xy", "xz", "yz"})) chosen["view"] = *view;
     if (auto bonds = choiceParam(req, "bonds", {"", "broken", "all", "none"})) chosen["bonds"] = *bonds;
+    // The colour range (empty fields of the page's form: the default) and its default's source.
+    for (const char* bound : {"min", "max"})
+      if (req.has_param(bound) && !req.get_param_value(bound).empty())
+        if (auto value = numberParam(req, bound)) chosen[bound] = *value;
+    if (auto range = choiceParam(req, "range", {"", "run", "snapshot"}); range && !range->empty()) chosen["range"] = *range;
+    if (chosen.contains("min") && chosen.contains("max") && !(chosen["max"].get<double>() > chosen["min"].get<double>()))
+      throw ApiError(400, problem::kInvalidParameter, "Invalid parameter", "max must be greater than min", "max",
+                     Json{{"in", "query"}});
   }
   data["chosen"] = chosen;
   data["run"] = std::move(doc);

@@ -89,8 +89,8 @@ render::StopCheck stopCheck(const RenderGate& gate) {
 namespace handlers {
 
 void getRunField(ServerContext& ctx, const Request& req, Response& res) {
-  refuseUnknownParams(req, {"field", "snapshot", "time", "view", "body", "slice", "bonds", "min", "max", "width",
-                            "height", "format", "thumbnail"});
+  refuseUnknownParams(req, {"field", "snapshot", "time", "view", "body", "slice", "bonds", "min", "max", "range",
+                            "width", "height", "format", "thumbnail"});
   const JobRecord job = loadJob(ctx, req);
   const RunRecord run = finishedRun(ctx, req, job);
   render::FieldImageRequest r;
@@ -112,6 +112,7 @@ void getRunField(ServerContext& ctx, const Request& req, Response& res) {
   r.slice = numberParam(req, "slice");
   r.min = numberParam(req, "min");
   r.max = numberParam(req, "max");
+  r.range = choiceParam(req, "range", {"run", "snapshot"}).value_or("run");
   r.thumbnail = choiceParam(req, "thumbnail", {"0", "1"}).value_or("0") == "1";
   r.width = static_cast<int>(intParam(req, "width", r.thumbnail ? 200 : 800, render::kMinImageSide, render::kMaxImageSide));
   r.height = static_cast<int>(intParam(req, "height", r.thumbnail ? 150 : 600, render::kMinImageSide, render::kMaxImageSide));
@@ -128,6 +129,9 @@ void getRunField(ServerContext& ctx, const Request& req, Response& res) {
         render::renderFieldImage(io::Hdf5File::openReadOnly(file.string()), r, stopCheck(*ctx.renders));
     res.set_header("X-Field", image.field);
     res.set_header("X-Snapshot", std::to_string(image.snapshot));
+    // The colour range drawn and where it came from, so that a client can ask for the same again.
+    res.set_header("X-Colour-Range", Json::array({image.min, image.max}).dump());
+    res.set_header("X-Colour-Range-Source", image.range);
     res.set_content(image.bytes, image.mediaType);
   } catch (const render::FieldImageError& e) {
     badRequest(e);

@@ -7,6 +7,7 @@
 
 #include "io/xml_escape.hpp"
 #include "rupture/quantity_text.hpp"
+#include "rupture/result_fields.hpp"
 
 namespace rupture::server {
 
@@ -53,7 +54,11 @@ HtmlPage page(const std::string& title, const std::string& content, const std::s
            "nav a{margin-right:1em}progress{width:16em}.unit{color:#666;font-weight:normal}"
            "img{max-width:100%;border:1px solid #ddd}.error{color:#a40000}"
            ".field{margin:.15em 0}.field label{display:inline-block;min-width:20em}.group{margin-left:1.5em}"
-           ".hint{color:#666;font-size:.9em}.bad{outline:2px solid #a40000}button{margin-right:.5em}</style></head><body>"
+           ".hint{color:#666;font-size:.9em}.bad{outline:2px solid #a40000}button{margin-right:.5em}"
+           // A wide table scrolls inside the page; its first column (the run) stays in view.
+           ".scroll{overflow-x:auto;max-width:100%}.scroll table{margin:0}"
+           ".scroll tr>:first-child{position:sticky;left:0;background:#fff}.scroll tr>th:first-child{background:#f3f3f3}"
+           "td.none{color:#999;text-align:center}</style></head><body>"
            "<nav><a href=\"/?f=html\">Rupture</a><a href=\"/processes?f=html\">Scenarios</a>"
            "<a href=\"/jobs?f=html\">Jobs</a><a href=\"/openapi.yaml\">API</a></nav>\n<h1>" +
            xmlEscape(title) + "</h1>\n" + content;
@@ -72,23 +77,64 @@ HtmlPage document(std::string html) {
   return p;
 }
 
-std::string cell(const Json& v) {
+std::string cell(const Json& v, const std::string& whyEmpty) {
+  if (v.is_null() || (v.is_string() && v.get<std::string>().empty()))
+    return "<td class=\"none\" title=\"" + xmlEscape(whyEmpty) + "\">—</td>";
+  if (v.is_boolean()) return "<td>" + rupture::formatFlag(v.get<bool>()) + "</td>";
   const bool number = v.is_number();
   return std::string(number ? "<td class=\"num\">" : "<td>") + esc(v) + "</td>";
 }
 
 /// A table cell for a value in `unit`: a number as people read it (rupture::formatQuantity), its
 /// full precision in the title; anything else as cell() writes it.
-std::string quantityCell(const Json& v, const std::string& unit) {
-  if (!v.is_number()) return cell(v);
+std::string quantityCell(const Json& v, const std::string& unit, const std::string& whyEmpty, bool flag) {
+  if (flag && v.is_number()) return "<td title=\"" + esc(v) + "\">" + rupture::formatFlag(v.get<double>() != 0) + "</td>";
+  if (!v.is_number()) return cell(v, whyEmpty);
   return "<td class=\"num\" title=\"" + esc(v) + "\">" + xmlEscape(rupture::formatQuantity(v.get<double>(), unit)) + "</td>";
 }
+
+bool isFlag(const Json& column) {
+  return column.is_object() && ResultField::describesFlag(column.value("unit", ""), column.value("description", ""));
+}
+
+std::string whyEmpty(const Json& row) {
+  const std::string status = row.is_object() ? row.value("status", "") : "";
+  if (status == "failed") return "run failed";
+  if (status == "dismissed") return "run cancelled";
+  if (status == "accepted" || status == "running") return "not finished yet";
+  return "not measured by this run";
+}
+
+const std::string& numberScript() {
+  static const std::string script =
+      "function fq(v,u){if(v===null||v===undefined||!isFinite(v))return null;if(v===0)return u?'0 '+u:'0';"
+      "const a=Math.abs(v),g=v<0?'-':'';let e=Math.floor(Math.log10(a));if(Math.round(a*Math.pow(10,2-e))>=1000)e++;"
+      "const p=(m,x)=>String(+m.toFixed(Math.max(0,2-x)));"
+      "if(u==='s'){const n=Math.min(0,Math.max(-18,Math.floor(e/3)*3));"
+      "if(e>=n&&e<n+5)return g+p(a/Math.pow(10,n),e-n)+' '+['a','f','p','n','µ','m',''][(n+18)/3]+'s';}"
+      "const t=u?' '+u:'';if(!u&&a<1e15&&a===Math.floor(a))return g+a.toFixed(0);"
+      "if(e>=-3&&e<4)return g+p(a,e)+t;return g+p(a/Math.pow(10,e),0)+'e'+e+t;}"
+      "function r3(s){return (s||'').replace(/(^|[^\\w.])(\\d+\\.\\d+(?:[eE][-+]?\\d+)?|\\d+[eE][-+]?\\d+)/g,"
+      "(w,b,n)=>{const d=n.split(/[eE]/)[0].replace('.','').replace(/^0+/,'').length;"
+      "return !/[eE]/.test(n)&&d<=4?w:b+fq(+n,'');});}";
+  return script;
+}
+
+std::string etaText(const Json& etaSeconds, bool active) {
+  if (etaSeconds.is_number())
+    return "<span id=\"eta\">" + xmlEscape(rupture::formatQuantity(etaSeconds.get<double>(), "s")) + "</span>";
+  return active ? "<span id=\"eta\" title=\"not enough of the run measured yet to estimate the time left\">unknown</span>"
+                : "<span id=\"eta\" title=\"the job has ended\">—</span>";
+}
+
+std::string scrolling(const std::string& table) { return "<div class=\"scroll\">" + table + "</div>"; }
 
 
 std::string summaryTable(const Json& summary, const std::string& id, std::size_t shownResults) {
   struct Column {
     std::string name, unit, label;
     bool swept;
+    bool flag = false;  ///< yes/no stored as 1/0
     bool input = false;  ///< an input every run shares: under "All columns" only
   };
   std::vector<Column> columns;
@@ -107,6 +153,7 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
       for (const auto& row : summary.value("rows", Json::array()))
         k.swept = k.swept || row.value(k.name, Json()) != summary["rows"][0].value(k.name, Json());
     k.input = kind == "input" && !k.swept;
+    k.flag = isFlag(col);
     columns.push_back(std::move(k));
   }
   const Json rows = summary.value("rows", Json::array());
@@ -131,13 +178,14 @@ std::string summaryTable(const Json& summary, const std::string& id, std::size_t
     h += "</tr>\n";
     for (const auto& row : rows) {
       h += "<tr>";
-      if (jobFirst) h += cell(row.value("job", Json()));
-      for (const std::string& name : lead) h += cell(row.value(name, Json()));
+      const std::string why = whyEmpty(row);
+      if (jobFirst) h += cell(row.value("job", Json()), why);
+      for (const std::string& name : lead) h += cell(row.value(name, Json()), why);
       for (const Column* k : shown)
-        if (!(jobFirst && k == &columns.front())) h += quantityCell(row.value(k->name, Json()), k->unit);
+        if (!(jobFirst && k == &columns.front())) h += quantityCell(row.value(k->name, Json()), k->unit, why, k->flag);
       h += "</tr>\n";
     }
-    return h + "</table>";
+    return scrolling(h + "</table>");
   };
   std::vector<const Column*> all, headline;
   std::size_t results = 0;

@@ -62,7 +62,7 @@ HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios)
     const std::string id = j.value("jobID", "");
     c += "<tr><td><input type=\"checkbox\" name=\"jobs\" value=\"" + xmlEscape(id) + "\" aria-label=\"compare job " +
          xmlEscape(id) + "\"></td><td><a href=\"" + href("/jobs/" + id + "?f=html") + "\">" + xmlEscape(id) + "</a></td>" +
-         cell(j.value("name", Json(""))) + cell(j["processID"]) + cell(j["status"]) + cell(j["progress"]) +
+         cell(j.value("name", Json("")), "no name given") + cell(j["processID"]) + cell(j["status"]) + cell(j["progress"]) +
          cell(j["runs_total"]) + cell(j["created"]) + "</tr>\n";
   }
   c += "</table><p><button id=\"compare\">Compare the chosen jobs</button> <a href=\"/processes?f=html\">Submit a job</a>"
@@ -75,6 +75,17 @@ HtmlPage jobsHtml(const Json& jobList, const Json& query, const Json& scenarios)
 }
 
 namespace {
+
+/// A run's or a job's stage as people read it: long decimals rounded (the JSON keeps them).
+std::string stageText(const Json& status) {
+  const Json stage = status.value("stage", Json(""));
+  return stage.is_string() ? xmlEscape(roundNumbersInText(stage.get<std::string>())) : esc(stage);
+}
+
+/// Seconds as people read them ("12.3 s", "450 ms"); nothing when not known.
+std::string secondsText(const Json& seconds) {
+  return seconds.is_number() ? xmlEscape(formatQuantity(seconds.get<double>(), "s")) : "";
+}
 
 /// The replicate table: per sweep point its swept values, n, and mean ± 95 % half-width of the
 /// first results, in their units.
@@ -99,13 +110,17 @@ std::string replicateTable(const Json& points) {
       const Json stats = row.value(col.value("name", ""), Json::object());
       const std::string unit = col.value("unit", "");
       const Json mean = stats.value("mean", Json()), half = stats.value("ci95_half_width", Json());
-      std::string text = mean.is_number() ? rupture::formatQuantity(mean.get<double>(), unit) : "n/a";
+      if (!mean.is_number()) {  // no successful run at this point
+        h += cell(Json(), "no successful run at this point");
+        continue;
+      }
+      std::string text = rupture::formatQuantity(mean.get<double>(), unit);
       if (half.is_number()) text += " ± " + rupture::formatQuantity(half.get<double>(), unit);
       h += "<td class=\"num\" title=\"" + esc(stats.dump()) + "\">" + xmlEscape(text) + "</td>";
     }
     h += "</tr>\n";
   }
-  return h + "</table>";
+  return scrolling(h + "</table>");
 }
 
 /// How many times a run was started, marked when more than once (a retry, a resume or a restart
@@ -150,10 +165,11 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
                   esc(status["created"]) + ".</p>"
                   "<p>Status <b id=\"status\">" + esc(status["status"]) + "</b> <progress id=\"bar\" max=\"100\" value=\"" +
                   esc(status["progress"]) + "\"></progress> <span id=\"progress\">" + esc(status["progress"]) +
-                  "</span> %, <span id=\"stage\">" + esc(status.value("stage", Json(""))) + "</span>; elapsed <span id=\"elapsed\">" +
-                  esc(status.value("elapsed_s", Json())) + "</span> s, ETA <span id=\"eta\">" +
-                  esc(status.value("eta_s", Json())) + "</span> s; updated <span id=\"updated\">" + esc(status["updated"]) +
-                  "</span></p>\n";
+                  "</span> %, <span id=\"stage\">" + stageText(status) + "</span>; elapsed <span id=\"elapsed\">" +
+                  secondsText(status.value("elapsed_s", Json())) + "</span>, ETA " +
+                  etaText(status.value("eta_s", Json()),
+                          status.value("status", "") == "accepted" || status.value("status", "") == "running") +
+                  "; updated <span id=\"updated\">" + esc(status["updated"]) + "</span></p>\n";
   // A job that did not succeed says why (the same message as its JSON), before anything else.
   const std::string jobStatus = status.value("status", "");
   if ((jobStatus == "failed" || jobStatus == "dismissed") && !status.value("message", "").empty()) {
@@ -184,7 +200,7 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
     c += " Token <input id=\"token\" type=\"password\" autocomplete=\"off\" size=\"16\"> <span class=\"hint\">(only if "
          "the server has one)</span>";
   c += " <span class=\"error\" id=\"action-error\" role=\"alert\"></span></p>\n";
-  c += "<h2>Runs</h2><table id=\"runs\"><tr><th>Run</th>";
+  c += "<h2>Runs</h2><div class=\"scroll\"><table id=\"runs\"><tr><th>Run</th>";
   const Json swept = status.value("swept", Json::array());
   // Each swept path headed by its label (the path on hover), its values in its unit.
   std::map<std::string, std::string> sweptUnit, sweptLabel;
@@ -209,7 +225,7 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
       c += quantityCell(r["swept"].value(path, Json()), sweptUnit[path]);
     }
     c += "<td class=\"st\">" + esc(r["status"]) + "</td><td class=\"num pr\">" + esc(r["progress"]) +
-         "</td>" + attemptsCell(r) + "<td class=\"sg\">" + esc(r.value("stage", Json(""))) + "</td><td>";
+         "</td>" + attemptsCell(r) + "<td class=\"sg\">" + stageText(r) + "</td><td>";
     if (r["status"] == "successful") {
       const std::string rb = base + "/runs/" + k;
       c += "<a href=\"" + href(rb + "/results") + "\">HDF5</a> <a href=\"" + href(rb + "/bundle") +
@@ -223,7 +239,7 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
            href(base + "/runs/" + k + "/field?thumbnail=1&width=160&height=120") + "\"></a>";
     c += "</td></tr>\n";
   }
-  c += "</table>\n";
+  c += "</table></div>\n";
   if (points.is_object()) c += "<h2>Replicates</h2>" + replicateTable(points);
   if (summary.is_object()) c += "<h2>Summary</h2>" + summaryTable(summary, "summary");
   if (!plotPath.empty()) c += "<h2>Plot</h2><p><img alt=\"summary plot\" src=\"" + href(plotPath) + "\"></p>";
@@ -254,16 +270,17 @@ HtmlPage jobHtml(const Json& status, const Json& summary, const std::string& plo
          " executor, " + esc(p.value("threads_per_run", Json(""))) + " thread(s) per run.</p>\n";
   }
   // Live progress: poll the JSON while the job runs; reload once it ends (for the summary and plot).
-  const std::string script =
+  const std::string script = numberScript() +
       "const final=['successful','failed','dismissed'];let seen='" + esc(status["status"]) + "';"
       "function put(id,v){const e=document.getElementById(id);if(e)e.textContent=v===null||v===undefined?'':v;}"
       "async function poll(){if(final.includes(seen))return;"
       "try{const r=await fetch('" + base + "',{headers:{Accept:'application/json'}});const d=await r.json();"
-      "put('status',d.status);put('progress',d.progress);put('stage',d.stage);put('elapsed',d.elapsed_s);"
-      "put('eta',d.eta_s);put('updated',d.updated);document.getElementById('bar').value=d.progress;"
+      "put('status',d.status);put('progress',d.progress);put('stage',r3(d.stage));put('elapsed',fq(d.elapsed_s,'s'));"
+      "put('eta',d.eta_s===null||d.eta_s===undefined?(final.includes(d.status)?'—':'unknown'):fq(d.eta_s,'s'));"
+      "put('updated',d.updated);document.getElementById('bar').value=d.progress;"
       "for(const run of d.runs||[]){const tr=document.getElementById('run-'+run.index);if(!tr)continue;"
       "tr.querySelector('.st').textContent=run.status;tr.querySelector('.pr').textContent=run.progress;"
-      "tr.querySelector('.sg').textContent=run.stage||'';}"
+      "tr.querySelector('.sg').textContent=r3(run.stage);}"
       "if(final.includes(d.status)){location.reload();return;}seen=d.status;}catch(e){}"
       "setTimeout(poll,2000);}setTimeout(poll,2000);";
   return page("Job " + id + (status.contains("name") ? ": " + status["name"].get<std::string>() : ""), c,
@@ -287,7 +304,8 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
     if (differing.empty()) {
       c += "<p id=\"differing\">The jobs were asked with the same inputs.</p>";
     } else {
-      c += "<h2>Inputs that differ</h2><table id=\"differing\"><tr><th>Input</th>";
+      // One column per job: as wide as the jobs compared, so it scrolls inside the page too.
+      c += "<h2>Inputs that differ</h2><div class=\"scroll\"><table id=\"differing\"><tr><th>Input</th>";
       for (const auto& j : jobs) c += "<th>Job " + esc(j["jobID"]) + "</th>";
       c += "</tr>";
       for (const auto& d : differing) {
@@ -302,7 +320,7 @@ HtmlPage comparisonHtml(const Json& comparison, const std::string& plotPath) {
         }
         c += "</tr>";
       }
-      c += "</table>";
+      c += "</table></div>";
     }
   }
   c += "<h2>Rows</h2>" + summaryTable(comparison, "compare") + "<p><a href=\"" +

@@ -97,7 +97,9 @@ HtmlPage runHtml(const Json& data) {
                   (job.contains("name") ? ": " + esc(job["name"]) : "") + "</a>, scenario " + esc(job["processID"]) +
                   ". Status <b id=\"status\">" + xmlEscape(status) + "</b> <progress id=\"bar\" max=\"100\" value=\"" +
                   esc(run["progress"]) + "\"></progress> <span id=\"progress\">" + esc(run["progress"]) +
-                  "</span> %, <span id=\"stage\">" + esc(run.value("stage", Json(""))) + "</span></p>\n";
+                  "</span> %, <span id=\"stage\">" +
+                  (run.value("stage", Json("")).is_string() ? xmlEscape(roundNumbersInText(run.value("stage", ""))) : "") +
+                  "</span></p>\n";
   if (run.contains("error")) c += "<p class=\"error\" id=\"reason\">Why: " + esc(run["error"]) + "</p>\n";
   if (run.contains("resumes"))  // docs/checkpoints.md
     c += "<p id=\"resumed\">Continued from its checkpoint " + esc(run["resumes"]) +
@@ -135,12 +137,22 @@ HtmlPage runHtml(const Json& data) {
       if (snapshot < 0) snapshot += count;
       snapshot = std::clamp(snapshot, 0L, count - 1);
       const std::string view = chosen.value("view", ""), bonds = chosen.value("bonds", "");
-      const std::vector<std::pair<std::string, std::string>> picture = {
+      const std::string range = chosen.value("range", "");
+      // The colour range: as asked (both bounds, or one with the other from the default), else
+      // the field's range over every snapshot of the run, the same on each picture of the page.
+      auto bound = [&](const char* name) {
+        return chosen.contains(name) && chosen[name].is_number() ? chosen[name].dump() : "";  // shortest exact text
+      };
+      const std::string minText = bound("min"), maxText = bound("max");
+      const std::vector<std::pair<std::string, std::string>> colours = {
+          {"min", minText}, {"max", maxText}, {"range", range}};
+      std::vector<std::pair<std::string, std::string>> picture = {
           {"field", field}, {"snapshot", std::to_string(snapshot)}, {"view", view}, {"bonds", bonds}};
+      picture.insert(picture.end(), colours.begin(), colours.end());
       c += "<h2>Field</h2><form method=\"get\" action=\"" + href(base) + "\" id=\"picture-form\">"
            "<input type=\"hidden\" name=\"f\" value=\"html\"> Field <select name=\"field\">";
       for (const auto& f : fields) c += option(f.get<std::string>(), f.get<std::string>(), f == field);
-      c += "</select> Snapshot <select name=\"snapshot\">";
+      c += "</select> Snapshot <select name=\"snapshot\" title=\"numbered from 0\">";
       for (const auto& s : snapshots) {
         const long index = s.value("index", 0L);
         c += option(std::to_string(index), std::to_string(index) + ": " + snapshotText(s), index == snapshot);
@@ -149,22 +161,36 @@ HtmlPage runHtml(const Json& data) {
       for (const char* v : {"xy", "xz", "yz"}) c += option(v, v, view == v);
       c += "</select> Bonds <select name=\"bonds\">" + option("", "auto", bonds.empty());
       for (const char* b : {"broken", "all", "none"}) c += option(b, b, bonds == b);
-      c += "</select> <button>Show</button></form>\n";
+      c += "</select><br><span id=\"colour-range\">Colours from <input type=\"number\" step=\"any\" name=\"min\" "
+           "size=\"10\" aria-label=\"colour range minimum\" value=\"" + xmlEscape(minText) + "\"> to "
+           "<input type=\"number\" step=\"any\" name=\"max\" size=\"10\" aria-label=\"colour range maximum\" value=\"" +
+           xmlEscape(maxText) + "\"> (SI unit of the field: Pa, m/s, kg/m^3; empty: the default) "
+           "default <select name=\"range\">" + option("", "all snapshots", range.empty() || range == "run") +
+           option("snapshot", "this snapshot", range == "snapshot") + "</select></span> <button>Show</button></form>\n";
       const std::string q = query(picture);
       c += "<p><img id=\"field\" alt=\"" + xmlEscape(field) + " at snapshot " + std::to_string(snapshot) +
-           "\" width=\"900\" height=\"600\" src=\"" + href(base + "/field?" + q + "&width=900&height=600") + "\"></p>"
+           " (numbered from 0)\" width=\"900\" height=\"600\" src=\"" +
+           href(base + "/field?" + q + "&width=900&height=600") + "\"></p>"
            "<p>This picture as <a href=\"" + href(base + "/field?" + q + "&width=1600&height=1200") + "\">PNG</a>, <a href=\"" +
            href(base + "/field?" + q + "&format=svg") + "\">SVG</a> or <a href=\"" + href(base + "/field?" + q + "&format=pdf") +
-           "\">PDF</a>.</p>\n";
-      // Over time: up to six snapshots spread over the run.
+           "\">PDF</a>. Snapshots are numbered from 0; the colours span " +
+           (!minText.empty() || !maxText.empty() ? "the range asked for"
+            : range == "snapshot"                ? "this snapshot's range"
+                                                 : "the field's range over every snapshot, so the pictures below compare by colour") +
+           ".</p>\n";
+      // Over time: up to six snapshots spread over the run, in the same colour range.
       c += "<h3>Over time</h3><p id=\"strip\">";
       const long shown = std::min(count, 6L);
       for (long i = 0; i < shown; ++i) {
         const long index = shown == 1 ? 0 : i * (count - 1) / (shown - 1);
-        const std::string small = query({{"field", field}, {"snapshot", std::to_string(index)}, {"view", view}});
-        c += "<a href=\"" + href(base + "?f=html&" + small) + "\"><img alt=\"snapshot " + std::to_string(index) +
-             "\" title=\"" + xmlEscape(snapshotText(snapshots[static_cast<std::size_t>(index)])) +
-             "\" width=\"200\" height=\"150\" src=\"" + href(base + "/field?" + small + "&thumbnail=1") + "\"></a> ";
+        std::vector<std::pair<std::string, std::string>> small = {
+            {"field", field}, {"snapshot", std::to_string(index)}, {"view", view}};
+        small.insert(small.end(), colours.begin(), colours.end());
+        const std::string smallQuery = query(small);
+        c += "<a href=\"" + href(base + "?f=html&" + smallQuery) + "\"><img alt=\"snapshot " + std::to_string(index) +
+             "\" title=\"snapshot " + std::to_string(index) + ": " +
+             xmlEscape(snapshotText(snapshots[static_cast<std::size_t>(index)])) +
+             "\" width=\"200\" height=\"150\" src=\"" + href(base + "/field?" + smallQuery + "&thumbnail=1") + "\"></a> ";
       }
       c += "</p>\n";
     }
@@ -188,11 +214,11 @@ HtmlPage runHtml(const Json& data) {
       if (!run["summary"].contains(name)) continue;
       done.push_back(name);
       c += "<tr><td title=\"" + xmlEscape(name) + "\">" + esc(f["label"]) + "</td>" +
-           quantityCell(run["summary"][name], f.value("unit", "")) + "</tr>";
+           quantityCell(run["summary"][name], f.value("unit", ""), whyEmpty(run), isFlag(f)) + "</tr>";
     }
     for (const auto& [name, value] : run["summary"].items())
       if (std::find(done.begin(), done.end(), name) == done.end())
-        c += "<tr><td>" + xmlEscape(name) + "</td>" + cell(value) + "</tr>";
+        c += "<tr><td>" + xmlEscape(name) + "</td>" + cell(value, whyEmpty(run)) + "</tr>";
     c += "</table>\n";
   }
   if (status == "successful") {
@@ -207,10 +233,10 @@ HtmlPage runHtml(const Json& data) {
   // While the run runs: poll its JSON, reload when it ends (for its pictures and summary).
   std::string script;
   if (status == "accepted" || status == "running")
-    script = "const final=['successful','failed','dismissed'];"
+    script = numberScript() + "const final=['successful','failed','dismissed'];"
              "function put(id,v){const e=document.getElementById(id);if(e)e.textContent=v===null||v===undefined?'':v;}"
              "async function poll(){try{const r=await fetch('" + base + "',{headers:{Accept:'application/json'}});"
-             "const d=await r.json();put('status',d.status);put('progress',d.progress);put('stage',d.stage);"
+             "const d=await r.json();put('status',d.status);put('progress',d.progress);put('stage',r3(d.stage));"
              "document.getElementById('bar').value=d.progress;if(final.includes(d.status)){location.reload();return;}}"
              "catch(e){}setTimeout(poll,2000);}setTimeout(poll,2000);";
   return page("Job " + id + ", run " + k, c, script);

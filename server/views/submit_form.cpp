@@ -93,7 +93,7 @@ struct FormBuilder {
         // A nested object: open when the starting spec has it, else folded away (and sent only
         // if something in it is filled in).
         html += std::string("<details") + (given ? " open" : "") + "><summary><code>" + xmlEscape(path) + "</code> " +
-                xmlEscape(sub.value("description", "")).substr(0, 160) + "</summary><div class=\"group\">";
+                xmlEscape(sub.value("description", "")) + "</summary><div class=\"group\">";  // whole: a cut could split an entity
         fields(sub, given ? start[key] : Json(), path, depth + 1);
         html += "</div></details>\n";
         continue;

@@ -37,18 +37,6 @@ std::string superscript(int n) {
 
 std::string powerOfTen(int n) { return "10" + superscript(n); }
 
-/// Fixed-point text with as few decimals as the tick step needs (0.25 -> 2), never e-notation.
-std::string fixedLabel(double v, double step) {
-  int decimals = 0;
-  while (decimals < 8 && std::abs(step * std::pow(10.0, decimals) - std::round(step * std::pow(10.0, decimals))) >
-                             1e-6 * std::max(1.0, step * std::pow(10.0, decimals)))
-    ++decimals;
-  if (std::abs(v) < step * 1e-9) v = 0;
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 /// A value in a tooltip or message: 4 significant digits, exponent without '+' and leading zeros ("2.5e7").
 std::string shortNumber(double v) {
   char buf[32];
@@ -166,7 +154,7 @@ Axis numericAxis(const std::vector<double>& values, AxisScale scale, const std::
   axis.lo = lo ? mn : std::floor(mn / step) * step;
   axis.hi = hi ? mx : std::ceil(mx / step) * step;
   for (double t = std::ceil(axis.lo / step - 1e-9) * step; t <= axis.hi + step * 1e-9; t += step) {
-    axis.ticks.push_back({t, fixedLabel(t, step)});
+    axis.ticks.push_back({t, tickText(t, step)});  // as the field pictures label theirs
   }
   return axis;
 }
@@ -228,8 +216,6 @@ std::vector<std::string> wrapWords(const std::string& text, std::size_t maxChars
 }  // namespace
 
 DisplayUnit displayUnit(const std::string& siUnit, double maxAbs) {
-  static const std::map<int, const char*> prefixes = {{-12, "p"}, {-9, "n"}, {-6, "µ"}, {-3, "m"}, {0, ""},
-                                                      {3, "k"},   {6, "M"},  {9, "G"},  {12, "T"}};
   if (!(maxAbs > 0) || !std::isfinite(maxAbs)) return {1, siUnit == "1" ? "" : siUnit};
   const int exponent = static_cast<int>(std::floor(std::log10(maxAbs) / 3.0 + 1e-9)) * 3;
   // The leading symbol (up to a space or '/') takes the prefix when it is a base unit without a power.
@@ -237,9 +223,9 @@ DisplayUnit displayUnit(const std::string& siUnit, double maxAbs) {
   const std::string head = siUnit.substr(0, end);
   static const char* prefixable[] = {"Pa", "s", "m", "J", "N", "W"};
   const bool takesPrefix = std::find(std::begin(prefixable), std::end(prefixable), head) != std::end(prefixable);
-  if (takesPrefix) {
-    const int e = std::clamp(exponent, -12, head == "s" ? 0 : 12);
-    return {std::pow(10.0, e), prefixes.at(e) + siUnit};
+  if (takesPrefix) {  // the prefix every number a person reads takes (rupture::formatQuantity)
+    const ScaledUnit scaled = scaledUnit(maxAbs, siUnit);
+    return {scaled.factor, scaled.unit};
   }
   const std::string shown = siUnit == "1" ? "" : siUnit;
   if (maxAbs >= 1e4 || maxAbs < 1e-2) {

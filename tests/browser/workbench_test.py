@@ -177,6 +177,14 @@ def main():
             assert browser.js("document.scripts.length") == 1, "only the page's own script"
             thumbs = browser.js("[...document.querySelectorAll('img.thumb')].map(i => i.naturalWidth)")
             assert thumbs == [160, 160], thumbs
+            # Every column opened ("All N columns"), the wide table scrolls inside the page, which
+            # stays as wide as the window (issue 55: it was 4,123 px), its first column held.
+            browser.js("document.querySelectorAll('details').forEach(d => d.open = true), true")
+            assert browser.js("document.getElementById('summary-all').offsetWidth > window.innerWidth"), \
+                "the table is wider than the window, as it should be for this check"
+            widths = browser.js("[document.documentElement.scrollWidth, window.innerWidth]")
+            assert widths[0] <= widths[1], widths
+            assert browser.js("getComputedStyle(document.querySelector('#summary-all td')).position") == "sticky"
 
             # 2. A run page: the field picture loads and holds a field, not one colour.
             browser.open(base + f"/jobs/{job}/runs/0?f=html")
@@ -191,6 +199,15 @@ def main():
                 for (let k = 0; k < d.length; k += 4 * 7) seen.add(d[k] << 16 | d[k + 1] << 8 | d[k + 2]);
                 return seen.size; })()""")
             assert colours > 50, colours
+            # Measurable: the colour range is settable on the page, and the picture follows it.
+            browser.js("""(() => { const f = document.getElementById('picture-form');
+                f.querySelector('[name=field]').value = 'von_mises';
+                f.querySelector('[name=min]').value = '0'; f.querySelector('[name=max]').value = '5e7';
+                f.submit(); return true; })()""")
+            wait_until("the page with the range", lambda: "max=5e7" in browser.js("location.search"), 30)
+            browser.settle()
+            assert "max=50000000" in browser.js("document.getElementById('field').src")
+            assert browser.js("document.getElementById('field').naturalWidth") == 900
 
             # 3. A run that fails: the job page and the run page say why; Retry runs it again. (A sample
             # narrower than an element is refused at POST now; pores that two could hold but three

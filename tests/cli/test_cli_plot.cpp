@@ -1,6 +1,7 @@
 // `rupture plot` on a real run file: the damage picture (a PNG of the asked size with the field's
 // colours, not one colour), the series plot, the formats by extension, and bad options exiting 2
-// naming the option; an existing picture is not replaced without --force.
+// naming the option; an existing picture is not replaced without --force; the picture's colour
+// range is the run's across snapshots (numbered from 0) unless --range snapshot.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -38,6 +39,29 @@ TEST(CliPlot, DrawsTheFieldAndTheSeriesOfARun) {
   EXPECT_EQ(again.exitCode, 2);
   EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
   EXPECT_EQ(runCli("plot " + run.string() + " -o " + picture.string() + " --force --field von_mises --snapshot 0").exitCode, 0);
+
+  // The same measurable picture as the server's: snapshots numbered from 0, the colour range the
+  // run's unless --range snapshot, axes with their unit and the loading named in the SVG.
+  const fs::path vector = dir.path() / "von-mises.svg";
+  const auto first = runCli("plot " + run.string() + " -o " + vector.string() + " --field von_mises --snapshot 0");
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  EXPECT_NE(first.err.find("(snapshot 0 of 0 to "), std::string::npos) << first.err;
+  EXPECT_NE(first.err.find("(over every snapshot)"), std::string::npos) << first.err;
+  const std::string svg = readWhole(vector);
+  EXPECT_NE(svg.find("x axis (µm)"), std::string::npos);
+  EXPECT_NE(svg.find("loading: pulled at"), std::string::npos);
+  const auto last = runCli("plot " + run.string() + " -o " + vector.string() + " --force --field von_mises");
+  ASSERT_EQ(last.exitCode, 0) << last.err;
+  auto colours = [](const std::string& said) { return said.substr(said.find("colours ")); };
+  EXPECT_EQ(colours(first.err), colours(last.err)) << "one range for every snapshot";
+  const auto own = runCli("plot " + run.string() + " -o " + vector.string() + " --force --field von_mises "
+                          "--snapshot 0 --range snapshot");
+  ASSERT_EQ(own.exitCode, 0) << own.err;
+  EXPECT_NE(own.err.find("(this snapshot)"), std::string::npos) << own.err;
+  EXPECT_NE(colours(own.err), colours(first.err));
+  const auto badRange = runCli("plot " + run.string() + " -o " + vector.string() + " --force --range job");
+  EXPECT_EQ(badRange.exitCode, 2);
+  EXPECT_NE(badRange.err.find("--range"), std::string::npos) << badRange.err;
 
   const fs::path series = dir.path() / "stress.svg";
   const auto s = runCli("plot " + run.string() + " --series stress_mean -o " + series.string());

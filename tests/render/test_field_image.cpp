@@ -9,6 +9,8 @@
 #include "io/hdf5_file.hpp"
 #include "render/colour_map.hpp"
 #include "render/field_image.hpp"
+#include "render/round_ticks.hpp"
+#include "rupture/quantity_text.hpp"
 #include "render/series_plot.hpp"
 #include "support/png_probe.hpp"
 #include "support/test_support.hpp"
@@ -20,7 +22,8 @@ using rupture::testing::probePng;
 using rupture::testing::ScratchDir;
 
 /// A 2D bonded run: an n x n square grid (spacing 1 µm, radius 0.5 µm), damage 0 on the left
-/// half and 1 on the right, a bond between horizontal neighbours, broken across the middle.
+/// half and 1 on the right, a bond between horizontal neighbours, broken across the middle;
+/// σ_xx = 1 MPa × column index at the second snapshot, half that at the first.
 std::string writeBondedRun(const std::filesystem::path& dir, int n = 20) {
   const std::string path = (dir / "bonded.h5").string();
   io::Hdf5File f = io::Hdf5File::create(path);
@@ -52,7 +55,10 @@ std::string writeBondedRun(const std::filesystem::path& dir, int n = 20) {
     f.writeDataset(g + "/velocity", velocity, {count, 3}, "m/s");
     f.writeDataset(g + "/damage", damage, {count}, "1");
     f.writeDataset(g + "/radius", radius, {count}, "m");
-    f.writeDataset(g + "/stress", stress, {count, 3, 3}, "Pa");
+    std::vector<double> scaled = stress;
+    if (std::string(name).back() == '0')
+      for (double& v : scaled) v *= 0.5;
+    f.writeDataset(g + "/stress", scaled, {count, 3, 3}, "Pa");
     f.writeDataset(g + "/bond_intact", intact, {intact.size()}, "1");
   }
   std::vector<double> strain, mean, time, fraction;
@@ -277,6 +283,184 @@ TEST(FieldImage, RefusesWhatItCannotDrawNamingTheMember) {
   request.min.reset();
   request.slice = -1;
   EXPECT_THROW(renderFieldImage(file, request), FieldImageError);
+}
+
+/// Whether every tick is a whole multiple of a 1-2-5 step, and the steps between ticks are equal.
+::testing::AssertionResult roundTicksOf(const std::vector<double>& ticks) {
+  if (ticks.size() < 2) return ::testing::AssertionFailure() << ticks.size() << " ticks";
+  const double step = ticks[1] - ticks[0];
+  const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
+  if (std::abs(mantissa - 1) > 1e-9 && std::abs(mantissa - 2) > 1e-9 && std::abs(mantissa - 5) > 1e-9)
+    return ::testing::AssertionFailure() << "step " << step << " is not 1, 2 or 5 x 10^k";
+  for (double t : ticks)
+    if (std::abs(t / step - std::round(t / step)) > 1e-6)
+      return ::testing::AssertionFailure() << "tick " << t << " is not a multiple of " << step;
+  return ::testing::AssertionSuccess();
+}
+
+TEST(RoundTicks, FallOnOneTwoFiveSteps) {
+  const RoundTicks stress = roundTicks(0, 211e6, 5);  // the issue's 70.5, 141, 211 MPa
+  EXPECT_DOUBLE_EQ(stress.step, 50e6);
+  EXPECT_EQ(stress.values, (std::vector<double>{0, 50e6, 100e6, 150e6, 200e6}));
+  const RoundTicks small = roundTicks(0.1, 0.7, 6);
+  EXPECT_DOUBLE_EQ(small.step, 0.1);
+  ASSERT_EQ(small.values.size(), 7u);
+  EXPECT_EQ(small.values[2], 3 * 0.1) << "multiples by index, no drift";
+  EXPECT_TRUE(roundTicksOf(roundTicks(-3.3e-6, 17.2e-6, 4).values));
+  EXPECT_TRUE(roundTicks(1, 1, 5).values.empty());
+  EXPECT_EQ(tickText(150e6 / 1e6, 50e6 / 1e6), "150");
+  EXPECT_EQ(tickText(0.30000000000000004, 0.1), "0.3");
+  EXPECT_EQ(tickText(2.5, 2.5), "2.5");
+  EXPECT_EQ(tickText(-1e-17, 0.5), "0");
+}
+
+TEST(FieldImage, AxesInEngineeringUnitsAndRoundColourTicks) {
+  ScratchDir dir;
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path()));
+  FieldImageRequest request;
+  request.field = "stress_xx";
+  const FieldImage image = renderFieldImage(file, request);
+  // The 20 x 20 µm grid: both axes in µm, at round ticks over the drawn extent (-0.5 to 19.5 µm).
+  ASSERT_EQ(image.axes.size(), 2u);
+  EXPECT_EQ(image.axes[0].name, "x");
+  EXPECT_EQ(image.axes[1].name, "y");
+  for (const FieldImage::Axis& axis : image.axes) {
+    EXPECT_EQ(axis.unit, "µm");
+    EXPECT_NEAR(axis.lo, -0.5e-6, 1e-12);
+    EXPECT_NEAR(axis.hi, 19.5e-6, 1e-12);
+    EXPECT_TRUE(roundTicksOf(axis.ticks));
+    EXPECT_GE(axis.ticks.size(), 3u);
+  }
+  // σ_xx from 0 to 19 MPa: the colour bar's ticks at 0, 5, 10, 15 MPa, labelled in MPa.
+  EXPECT_EQ(image.colourUnit, "MPa");
+  EXPECT_EQ(image.colourTicks, (std::vector<double>{0, 5e6, 10e6, 15e6}));
+  // The axes are drawn: dark pixels in the band under the particles where the x axis runs.
+  const auto png = probePng(image.bytes);
+  std::size_t dark = 0;
+  for (int y = png.height - 50; y < png.height; ++y)
+    for (int x = 0; x < png.width - 130; ++x) {
+      const std::uint32_t p = png.pixels[static_cast<std::size_t>(y * png.width + x)];
+      dark += (p >> 16 & 255) < 90 && (p >> 8 & 255) < 90 && (p & 255) < 90;
+    }
+  EXPECT_GT(dark, 150u) << "axis line, ticks and labels below the picture";
+  // The SVG says in words what its glyphs show: the axes with their unit, the colour ticks.
+  request.format = ImageFormat::Svg;
+  const std::string svg = renderFieldImage(file, request).bytes;
+  const std::size_t desc = svg.find("<desc id=\"picture-description\">");
+  ASSERT_NE(desc, std::string::npos);
+  const std::string text = svg.substr(desc, svg.find("</desc>", desc) - desc);
+  EXPECT_NE(text.find("x axis (µm)"), std::string::npos) << text;
+  EXPECT_NE(text.find("y axis (µm)"), std::string::npos) << text;
+  EXPECT_NE(text.find("ticks 0 Pa 5 MPa 10 MPa 15 MPa"), std::string::npos) << text;
+  EXPECT_NE(svg.find("<title>Stress xx, t = 1 ns, strain 0.001 (snapshot 1 of 0 to 1)"), std::string::npos);
+  // A thumbnail has no room for axes: a scale bar of a round length instead, a quarter of the
+  // 20 µm width at most (5 µm).
+  request.thumbnail = true;
+  request.format = ImageFormat::Png;
+  request.width = 200;
+  request.height = 150;
+  const FieldImage thumbnail = renderFieldImage(file, request);
+  EXPECT_TRUE(thumbnail.axes.empty());
+  EXPECT_DOUBLE_EQ(thumbnail.scaleBar, 5e-6);
+  const auto small = probePng(thumbnail.bytes);
+  std::size_t bar = 0;  // the bar's dark pixels at the lower left
+  for (int y = small.height - 10; y < small.height; ++y)
+    for (int x = 0; x < 60; ++x) bar += (small.pixels[static_cast<std::size_t>(y * small.width + x)] & 0xFFFFFF) < 0x202020;
+  EXPECT_GT(bar, 40u);
+  EXPECT_EQ(renderFieldImage(file, FieldImageRequest{}).scaleBar, 0.0) << "the full picture has axes instead";
+}
+
+TEST(FieldImage, TheColourRangeIsTheRunsUnlessAskedOtherwise) {
+  ScratchDir dir;
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(writeBondedRun(dir.path()));
+  FieldImageRequest request;
+  request.field = "stress_xx";
+  request.snapshot = 0;  // σ_xx up to 9.5 MPa
+  const FieldImage first = renderFieldImage(file, request);
+  request.snapshot = 1;  // up to 19 MPa
+  const FieldImage last = renderFieldImage(file, request);
+  // By default one colour is one value on every snapshot: both span the run's 0 to 19 MPa.
+  EXPECT_EQ(first.range, "run");
+  EXPECT_DOUBLE_EQ(first.min, last.min);
+  EXPECT_DOUBLE_EQ(first.max, last.max);
+  EXPECT_DOUBLE_EQ(first.max, 19e6);
+  EXPECT_EQ(first.colourTicks, last.colourTicks);
+  // Asked for, each snapshot its own range.
+  request.snapshot = 0;
+  request.range = "snapshot";
+  const FieldImage own = renderFieldImage(file, request);
+  EXPECT_EQ(own.range, "snapshot");
+  EXPECT_DOUBLE_EQ(own.max, 9.5e6);
+  // A range given is the range drawn, ticks round within it.
+  request.range.clear();
+  request.min = 2e6;
+  request.max = 12e6;
+  const FieldImage asked = renderFieldImage(file, request);
+  EXPECT_EQ(asked.range, "asked");
+  EXPECT_DOUBLE_EQ(asked.min, 2e6);
+  EXPECT_DOUBLE_EQ(asked.max, 12e6);
+  EXPECT_EQ(asked.colourTicks, (std::vector<double>{2e6, 4e6, 6e6, 8e6, 10e6, 12e6}));
+  request.min.reset();
+  request.max.reset();
+  request.range = "all";
+  EXPECT_THROW(renderFieldImage(file, request), FieldImageError);
+}
+
+TEST(FieldImage, MarksTheLoadingFromTheSpec) {
+  ScratchDir dir;
+  const std::string path = writeBondedRun(dir.path());
+  {
+    io::Hdf5File f = io::Hdf5File::openReadWrite(path);
+    f.createGroup("/spec");
+    f.setAttribute("/spec", "json", std::string(R"({"loading": {"strain_rate": 1e6}})"));
+  }
+  const io::Hdf5File file = io::Hdf5File::openReadOnly(path);
+  const FieldImage tension = renderFieldImage(file, FieldImageRequest{});
+  ASSERT_EQ(tension.loading.size(), 2u);
+  EXPECT_EQ(tension.loading[0], "held at the smallest x face");
+  EXPECT_EQ(tension.loading[1], "pulled at 1e6 /s, along +x at the largest x face");
+  FieldImageRequest bare;
+  bare.axes = false;
+  EXPECT_TRUE(renderFieldImage(file, bare).loading.empty());
+
+  // A tank's plate seen from above is loaded across the view: the water pushes it along −z.
+  const io::Hdf5File tank = [&] {
+    const std::string tankPath = writeTankRun(dir.path());
+    io::Hdf5File f = io::Hdf5File::openReadWrite(tankPath);
+    f.createGroup("/spec");
+    f.setAttribute("/spec", "json", std::string(R"({"impactor": {"mass": 245, "speed": 5}})"));
+    return io::Hdf5File::openReadOnly(tankPath);
+  }();
+  const FieldImage plate = renderFieldImage(tank, FieldImageRequest{});  // damage: the plate from above
+  ASSERT_EQ(plate.loading.size(), 1u);
+  EXPECT_EQ(plate.loading[0], "piston at 5 m/s, along −z (into the page)");
+  FieldImageRequest section;
+  section.field = "pressure";  // a vertical section through the fluid: the piston's face at the top
+  const FieldImage fluid = renderFieldImage(tank, section);
+  ASSERT_EQ(fluid.loading.size(), 1u);
+  EXPECT_EQ(fluid.loading[0], "piston at 5 m/s, along −z at the largest z face");
+}
+
+TEST(SnapshotField, AStrainOfZeroOnEverySnapshotIsNoStrain) {
+  ScratchDir dir;
+  const std::string path = writeBondedRun(dir.path(), 4);
+  {
+    const io::Hdf5File tension = io::Hdf5File::openReadOnly(path);
+    const std::vector<SnapshotRef> snapshots = listSnapshots(tension, "");
+    ASSERT_EQ(snapshots.size(), 2u);
+    EXPECT_EQ(snapshots[0].strain, 0.0) << "a tension run's first snapshot is at strain 0";
+    EXPECT_EQ(snapshots[1].strain, 1e-3);
+  }
+  {
+    io::Hdf5File f = io::Hdf5File::openReadWrite(path);
+    f.setAttribute("/snapshots/000001", "strain", 0.0);  // as impact writes every snapshot
+  }
+  const io::Hdf5File impact = io::Hdf5File::openReadOnly(path);
+  for (const SnapshotRef& s : listSnapshots(impact, "")) EXPECT_FALSE(s.strain.has_value()) << s.group;
+  FieldImageRequest request;
+  request.format = ImageFormat::Svg;
+  const std::string svg = renderFieldImage(impact, request).bytes;
+  EXPECT_EQ(svg.find("strain 0"), std::string::npos) << "the title says no strain";
 }
 
 TEST(SeriesPlot, PlotsAgainstStrainByDefaultAndRefusesMixedUnits) {

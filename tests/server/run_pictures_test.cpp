@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "server_test_support.hpp"
+#include "support/html_check.hpp"
 #include "support/png_probe.hpp"
 #include "views/render_gate.hpp"
 
@@ -68,6 +69,18 @@ TEST_F(RunPictures, TheFieldAsPngSvgPdfAndThumbnail) {
   EXPECT_EQ(svg->status, 200);
   EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
   EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  // Measurable: axes with their unit, colour ticks at round values, the loading marked (the
+  // picture's words in its <desc>; cairo draws the text itself as outlines).
+  const std::size_t desc = svg->body.find("<desc id=\"picture-description\">");
+  ASSERT_NE(desc, std::string::npos) << svg->body.substr(0, 600);
+  const std::string words = svg->body.substr(desc, svg->body.find("</desc>", desc) - desc);
+  EXPECT_NE(words.find("x axis (µm)"), std::string::npos) << words;
+  EXPECT_NE(words.find("y axis (µm)"), std::string::npos) << words;
+  EXPECT_NE(words.find("colour bar: Von Mises stress (MPa)"), std::string::npos) << words;
+  EXPECT_NE(words.find("loading: pulled at 1e7 /s, along +x at the largest x face"), std::string::npos) << words;
+  EXPECT_NE(words.find("loading: held at the smallest x face"), std::string::npos) << words;
+  std::string error;
+  EXPECT_TRUE(test::wellFormedXml(svg->body, error)) << "the words added keep the SVG well-formed: " << error;
   auto pdf = client->Get((run(1) + "/field?format=pdf").c_str());
   ASSERT_TRUE(pdf);
   EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
@@ -77,6 +90,80 @@ TEST_F(RunPictures, TheFieldAsPngSvgPdfAndThumbnail) {
   const auto small = probePng(thumbnail->body);
   EXPECT_EQ(small.width, 200);
   EXPECT_EQ(small.height, 150);
+}
+
+/// The colour range a picture was drawn with, from its X-Colour-Range header.
+std::pair<double, double> colourRange(const httplib::Result& res) {
+  const Json range = Json::parse(res->get_header_value("X-Colour-Range"));
+  return {range.at(0).get<double>(), range.at(1).get<double>()};
+}
+
+TEST_F(RunPictures, TheColourRangeIsTheRunsByDefaultAndFollowsMinAndMax) {
+  auto client = live->client();
+  auto first = client->Get((run(1) + "/field?field=von_mises&snapshot=0&thumbnail=1").c_str());
+  auto last = client->Get((run(1) + "/field?field=von_mises&snapshot=-1&thumbnail=1").c_str());
+  ASSERT_TRUE(first && last);
+  ASSERT_EQ(first->status, 200) << first->body;
+  ASSERT_EQ(last->status, 200) << last->body;
+  // One colour is one stress on every snapshot of the run: the same range on both.
+  EXPECT_EQ(first->get_header_value("X-Colour-Range-Source"), "run");
+  EXPECT_EQ(colourRange(first), colourRange(last));
+  EXPECT_GT(colourRange(last).second, 1e6) << "the run's stresses reach MPa";
+  // Each snapshot its own range when asked: the first snapshot (at rest) spans less.
+  auto own = client->Get((run(1) + "/field?field=von_mises&snapshot=0&thumbnail=1&range=snapshot").c_str());
+  ASSERT_TRUE(own);
+  ASSERT_EQ(own->status, 200) << own->body;
+  EXPECT_EQ(own->get_header_value("X-Colour-Range-Source"), "snapshot");
+  EXPECT_LT(colourRange(own).second, colourRange(first).second);
+  // A range given is the range drawn.
+  auto asked = client->Get((run(1) + "/field?field=von_mises&min=1e6&max=5e7&thumbnail=1").c_str());
+  ASSERT_TRUE(asked);
+  ASSERT_EQ(asked->status, 200) << asked->body;
+  EXPECT_EQ(asked->get_header_value("X-Colour-Range-Source"), "asked");
+  EXPECT_EQ(colourRange(asked), (std::pair<double, double>{1e6, 5e7}));
+  expectRefused(*client, run(1) + "/field?range=job", "range");
+
+  // The run page offers the range: its form, and the pictures it shows follow it.
+  auto page = client->Get((run(1) + "?f=html&field=von_mises&min=1000000&max=50000000").c_str());
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200) << page->body.substr(0, 300);
+  const std::string& html = page->body;
+  EXPECT_NE(html.find("name=\"min\""), std::string::npos);
+  EXPECT_NE(html.find("name=\"max\""), std::string::npos);
+  EXPECT_NE(html.find("value=\"1000000.0\""), std::string::npos) << "the asked minimum kept in the form";
+  EXPECT_NE(html.find("&amp;min=1000000.0&amp;max=50000000.0"), std::string::npos) << "the picture follows the form";
+  EXPECT_NE(html.find("the range asked for"), std::string::npos);
+  EXPECT_NE(html.find("Snapshots are numbered from 0"), std::string::npos);
+  expectRefused(*client, run(1) + "?f=html&min=5&max=1", "max");
+  auto plain = client->Get((run(1) + "?f=html").c_str());
+  ASSERT_TRUE(plain);
+  EXPECT_NE(plain->body.find("the field's range over every snapshot"), std::string::npos)
+      << "the default said in words";
+}
+
+// Issue 55: every form and picture page passes an HTML check (closed in order, quoted, unique ids).
+TEST_F(RunPictures, EveryPicturePageAndFormPassesTheHtmlCheck) {
+  auto client = live->client();
+  const std::string job = "/jobs/" + std::to_string(jobId);
+  std::vector<std::string> pages = {run(0) + "?f=html", run(1) + "?f=html&field=von_mises&min=1e6&max=5e7&range=snapshot",
+                                    job + "?f=html", "/jobs?f=html", "/summary?f=html&jobs=" + std::to_string(jobId),
+                                    "/?f=html", "/processes?f=html"};
+  const Json processes = test::getJson(*client, "/processes");
+  for (const auto& p : processes.value("processes", Json::array()))
+    pages.push_back("/processes/" + p.value("id", "") + "?f=html");
+  ASSERT_GT(pages.size(), 9u) << "every scenario's form";
+  for (const std::string& path : pages) {
+    auto res = client->Get(path.c_str());
+    ASSERT_TRUE(res) << path;
+    ASSERT_EQ(res->status, 200) << path << ": " << res->body.substr(0, 300);
+    EXPECT_EQ(rupture::testing::htmlProblems(res->body), "") << path;
+  }
+  // The check finds what it is for.
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p>a</div></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p id=a></p></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><p id=\"a\"></p><b id=\"a\"></b></body></html>"), "");
+  EXPECT_NE(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body>R & D</body></html>"), "");
+  EXPECT_EQ(rupture::testing::htmlProblems("<!DOCTYPE html>\n<html><body><img src=\"a\"><br>R &amp; D</body></html>"), "");
 }
 
 TEST_F(RunPictures, TheSeriesAsAPlot) {
@@ -135,11 +222,17 @@ TEST_F(RunPictures, TheRunPageAndTheJobPagesThumbnails) {
   EXPECT_NE(html.find("spec SHA-256 <code>", made), std::string::npos);
   EXPECT_NE(html.find("seeds <code>{&quot;sample.seed&quot;:", made), std::string::npos) << html.substr(made, 600);
   // Every picture the page names answers 200.
-  for (const std::string& needle : {std::string("src=\"") + run(1) + "/field?", std::string("src=\"") + run(1) + "/series?"}) {
+  for (const char* kind : {"/field?", "/series?"}) {
+    std::string needle = "src=\"";  // appended piecewise: GCC 12 misreads "..." + std::string&& (-Wrestrict)
+    needle.append(run(1)).append(kind);
     const std::size_t at = html.find(needle);
     ASSERT_NE(at, std::string::npos) << needle;
-    std::string src = html.substr(at + 5, html.find('"', at + 5) - at - 5);
-    for (std::size_t amp; (amp = src.find("&amp;")) != std::string::npos;) src.replace(amp, 5, "&");
+    std::string src;  // the attribute unescaped, copied rather than replaced in place (GCC 12's -Wrestrict)
+    for (std::size_t i = at + 5; i < html.size() && html[i] != '"';) {
+      const bool amp = html.compare(i, 5, "&amp;") == 0;
+      src += html[i];
+      i += amp ? 5 : 1;
+    }
     auto image = client->Get(src.c_str());
     ASSERT_TRUE(image) << src;
     EXPECT_EQ(image->status, 200) << src << ": " << image->body.substr(0, 300);

@@ -24,6 +24,7 @@
 #include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 #include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
+#include "rupture/quantity_text.hpp"
 
 namespace rupture {
 
@@ -159,7 +160,7 @@ PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const Bonde
       return out;
     }
   }
-  logStage(control, "preliminary run from rest at " + formatNumber(plan.params.strainRate) + " /s");
+  logStage(control, "preliminary run from rest at " + formatQuantity(plan.params.strainRate, "1/s"));
   enterPhase(control, "preliminary run");
   out.result = runPreliminary(system, geometry, plan.params, control, [&](const PreliminaryProgress& p) {
     reportProgress(control, progressDuringPreliminary(spec, system, geometry, plan.params.timeStep, timeStep, p));
@@ -234,7 +235,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     throw std::runtime_error("dynamic-tension: the sample has no bond with a finite stiffness (no stable time step)");
   const double dt = spec.run.timeStepSafety * criticalStep;
   logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
-                   " bonds, time step " + formatNumber(dt) + " s");
+                   " bonds, time step " + formatQuantity(dt, "s"));
 
   // A resumed run continues the checkpoint's copy of the file, which holds all of this already.
   TensionRecorder recorder(resultPath, checkpoints.continueFrom());
@@ -327,9 +328,9 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   });
 
   if (!pre.cancelled) {
-    logStage(control, "main run: " + toString(field) + " at " + formatNumber(spec.loading.strainRate) + " /s, V_max " +
-                     formatNumber(maxVelocity) + " m/s, ramp " + formatNumber(rampTime) + " s, stops " +
-                     formatNumber(settleTime) + " s after the separation and the last break");
+    logStage(control, "main run: " + toString(field) + " at " + formatQuantity(spec.loading.strainRate, "1/s") + ", V_max " +
+                     formatQuantity(maxVelocity, "m/s") + ", ramp " + formatQuantity(rampTime, "s") + ", stops " +
+                     formatQuantity(settleTime, "s") + " after the separation and the last break");
     if (checkpoints.resuming()) {
       checkpoints.restore();
     } else {
@@ -359,7 +360,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
         lastCheckStep = system.steps;
         if (!groupsConnected(system.bonds, system.particles.size(), geometry.xmin, geometry.xmax)) {
           observed.markSeparated(system.time, strain);
-          logStage(control, "faces separated at strain " + formatNumber(strain));
+          logStage(control, "faces separated at strain " + formatQuantity(strain, "1"));
         }
       }
       if (observed.settledAfterSeparation(system.time, settleTime)) { stopReason = "separated"; break; }
@@ -440,8 +441,8 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   summary.update(bondedRunScalars(system, dt, criticalStep, report));
   if (field == InitialVelocityField::V0 && onsetTime < rampTime)
     logStage(control, "note: the first bond broke during the V0 ramp, at " +
-                     formatNumber(summary["strain_rate_at_onset"].get<double>()) +
-                     " /s: the requested strain rate is above eq. 7's limit for this ramp time");
+                     formatQuantity(summary["strain_rate_at_onset"].get<double>(), "1/s") +
+                     ": the requested strain rate is above eq. 7's limit for this ramp time");
   summary["wall_time_s"] = seconds(wallStart);
   RunOutcome outcome =
       finishRun(recorder, summary, declaredUnits<dynamicTensionSummaryFields>(), completed, stopReason, control);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "rupture/quantity_text.hpp"
 #include "scenarios/scenario_previews.hpp"
 #include "samples/sample_builder.hpp"
 #include "bonded/bonded_spec.hpp"
@@ -105,7 +106,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     throw std::runtime_error("impact: the sample has no bond with a finite stiffness (no stable time step)");
   const double dt = spec.timeStepSafety * criticalStep;
   logStage(control, "sample: " + std::to_string(report.elements) + " elements, " + std::to_string(report.bonds) +
-                        " bonds, time step " + formatNumber(dt) + " s");
+                        " bonds, time step " + formatQuantity(dt, "s"));
 
   // Imposed velocities: a linear ramp to the region's velocity over its ramp time.
   std::vector<std::pair<std::vector<std::int32_t>, const VelocityRegion*>> driven;
@@ -235,7 +236,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     for (std::size_t c = 0; c < columns.size(); ++c) series[c].push_back(row[c]);
   };
 
-  logStage(control, "impact run to " + formatNumber(spec.endTime) + " s");
+  logStage(control, "impact run to " + formatQuantity(spec.endTime, "s"));
   std::string stopReason = "end_time";
   std::size_t nextSnapshot = 0;
   double nextOutput = 0;
