@@ -16,6 +16,7 @@ int calibrateCommand(const Args& args);
 int benchCommand(const Args& args);
 int xdmfCommand(const Args& args);
 int plotCommand(const Args& args);
+int previewCommand(const Args& args);
 int validateSuiteCommand(const Args& args);
 
 /// Exit code 2 with a message on stderr.

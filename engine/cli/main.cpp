@@ -30,6 +30,10 @@ commands:
                                           speed, pressure; broken bonds in red)
   plot RESULT.h5 --series Y[,Y...] [--x X] -o OUT.png|svg|pdf
                                           a run's time series (rupture plot --help says more)
+  preview SPEC.json -o OUT.png|svg [--force]
+                                          the discretised sample, plate or tank the run starts
+                                          from, built by the run's own builders (no time step):
+                                          its counts and sizes on stdout and in the picture
   validate SPEC.json [--max-run-steps N]  check a spec against its scenario (exit 2 if invalid),
                                           and its estimated time steps against N (default 100000000,
                                           as rupture-server's and rupture run's --max-run-steps)
@@ -98,6 +102,7 @@ int main(int argc, char** argv) {
     if (command == "bench") return benchCommand(rest);
     if (command == "xdmf") return xdmfCommand(rest);
     if (command == "plot") return plotCommand(rest);
+    if (command == "preview") return previewCommand(rest);
     if (command == "validate-suite") return validateSuiteCommand(rest);
   } catch (const std::exception& e) {
     std::cerr << "rupture " << command << ": " << e.what() << "\n";

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rupture/run.hpp"
+#include "rupture/sample_preview.hpp"
 
 namespace rupture {
 
@@ -27,6 +28,10 @@ struct Scenario {
   std::function<RunOutcome(const void* parsed, const nlohmann::json& spec, const std::string& resultPath,
                            RunControl& control)>
       run;
+  /// Builds a parsed spec's discretisation as the run starts, without stepping it (optional: a
+  /// scenario without one has no preview picture; rupture/sample_preview.hpp).
+  std::function<SamplePreview(const void* parsed, const std::atomic<bool>& cancel, const std::string& cacheDirectory)>
+      preview;
 };
 
 /// A scenario's info: `name`, the title and description of its embedded JSON Schema, and its result
@@ -51,6 +56,15 @@ Scenario scenarioOf(const std::string& name, ResultFields summary, ResultFields 
   if (estimate) s.estimate = [estimate](const void* parsed) { return estimate(*static_cast<const Spec*>(parsed)); };
   s.run = [run](const void* parsed, const nlohmann::json& spec, const std::string& resultPath, RunControl& control) {
     return run(*static_cast<const Spec*>(parsed), spec, resultPath, control);
+  };
+  return s;
+}
+
+/// `s` with its preview: `build` over the scenario's own spec type, calling the builders its run calls.
+template <class Spec>
+Scenario withPreview(Scenario s, SamplePreview (*build)(const Spec&, const std::atomic<bool>&, const std::string&)) {
+  s.preview = [build](const void* parsed, const std::atomic<bool>& cancel, const std::string& cacheDirectory) {
+    return build(*static_cast<const Spec*>(parsed), cancel, cacheDirectory);
   };
   return s;
 }

@@ -116,6 +116,7 @@ public:
 private:
   friend ParsedSpec parseSpec(const nlohmann::json& spec);
   friend RunOutcome runSpec(const ParsedSpec& spec, const std::string& resultPath, RunControl& control, int threads);
+  friend struct SpecInternals;  // the sample preview's door to the scenario (rupture/sample_preview.hpp)
   const Scenario* m_scenario = nullptr;
   std::shared_ptr<const nlohmann::json> m_json;
   std::shared_ptr<const void> m_value;  ///< the scenario's typed spec (DynamicTensionSpec, ...)

@@ -102,8 +102,11 @@ Json jobPreview(const std::string& scenario, const NewJob& job, const std::vecto
                   {"max_queued_runs", where.maxQueuedRuns},
                   {"fits_now", static_cast<long long>(queued) + static_cast<long long>(forecasts.size()) <=
                                    static_cast<long long>(where.maxQueuedRuns)}};
-  // No picture yet: the sample is counted from its spec, not built (building it is the run's first stage).
-  doc["picture"] = nullptr;
+  // The sample is counted from its spec, not built: building and drawing it costs the run's first
+  // stage, so it is done only when asked (picture=true, the form's Preview button).
+  doc["picture"] = {{"available", false},
+                    {"reason", "not asked: add picture=true to build the first run's sample, plate or tank and "
+                               "draw it"}};
   doc["run_estimates"] = std::move(runs);
   return doc;
 }

@@ -17,6 +17,7 @@ void getConformance(ServerContext&, const httplib::Request&, httplib::Response&)
 // process_handlers.cpp
 void getProcesses(ServerContext&, const httplib::Request&, httplib::Response&);
 void getProcess(ServerContext&, const httplib::Request&, httplib::Response&);
+void getProcessPreview(ServerContext&, const httplib::Request&, httplib::Response&);
 void postExecution(ServerContext&, const httplib::Request&, httplib::Response&);
 // job_handlers.cpp
 void getJobs(ServerContext&, const httplib::Request&, httplib::Response&);

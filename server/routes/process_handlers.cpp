@@ -12,6 +12,7 @@
 #include "http/json_body.hpp"
 #include "http/request_guard.hpp"
 #include "jobs/job_preview.hpp"
+#include "views/preview_picture.hpp"
 #include "jobs/replicates.hpp"
 #include "jobs/sweep.hpp"
 #include "routes/answers.hpp"
@@ -21,6 +22,7 @@
 #include "rupture/run.hpp"
 #include "studies/refinement.hpp"
 #include "views/html_views.hpp"
+#include "views/render_gate.hpp"
 #include "views/submit_form.hpp"
 
 namespace rupture::server {
@@ -262,6 +264,29 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   return job;
 }
 
+/// The DryRun document's `picture` when asked (picture=true): the first run's discretisation, drawn
+/// behind the render gate and kept for the page to fetch, or why there is none (jobs/preview_picture.hpp).
+Json firstRunPicture(ServerContext& ctx, const std::string& scenario, const Submission& submission, const NewJob& job,
+                     const std::vector<RunForecast>& forecasts) {
+  const PicturePolicy policy;
+  if (forecasts.empty() || job.runPatches.empty()) return Json{{"available", false}, {"reason", "the job has no run"}};
+  if (std::optional<Json> refused = pictureRefusal(forecasts.front().estimate, policy)) return *refused;
+  const Json spec = jobBaseSpec(scenario, submission.inputs()).patch(Json::parse(job.runPatches.front()));
+  const std::string note = forecasts.size() > 1 ? "run 0, the first of the job's " + std::to_string(forecasts.size()) +
+                                                      " runs (the others differ by their swept or replicated values)"
+                                                : "";
+  const RenderGate::Slot slot = ctx.renders->acquire();  // a build is a render's cost: bounded alike
+  PreviewPicture picture = previewPicture(spec, forecasts.front().estimate, policy, note,
+                                          (ctx.dataDir / "cache").string(), ctx.stopping);
+  Json doc = std::move(picture.doc);
+  doc["run_index"] = 0;
+  doc["runs"] = forecasts.size();
+  if (doc.value("available", false))
+    doc["href"] = "/processes/" + scenario + "/previews/" +
+                  ctx.previews->put(scenario, std::move(picture.png), doc.value("media_type", "image/png"));
+  return doc;
+}
+
 }  // namespace
 
 namespace handlers {
@@ -352,6 +377,12 @@ namespace {
 void submitJob(ServerContext& ctx, const Request& req, Response& res) {
   requireToken(ctx, req);
   const bool dryRun = choiceParam(req, "dry_run", {"true", "false"}).value_or("false") == "true";
+  const bool picture = choiceParam(req, "picture", {"true", "false"}).value_or("false") == "true";
+  if (picture && !dryRun) {
+    throw ApiError(400, problem::kInvalidParameter, "Invalid parameter",
+                   "picture=true draws the preview's sample: it goes with dry_run=true (a submission is not drawn)",
+                   "picture", Json{{"in", "query"}, {"value", "true"}, {"allowed", Json::array({"false"})}});
+  }
   if (ctx.stopping) {
     throw ApiError(503, problem::kShuttingDown, "Service Unavailable",
                    "the server is stopping; submit again once it is back");
@@ -364,7 +395,9 @@ void submitJob(ServerContext& ctx, const Request& req, Response& res) {
     const NewJob job = planJob(ctx, scenario, submission, &forecasts);
     const PreviewContext where{ctx.scheduler->threadsPerRun(), ctx.scheduler->workers(), ctx.maxRunMemory,
                                std::max(0, ctx.store->queueDepth()), ctx.config.maxQueuedRuns};
-    return sendJson(res, jobPreview(scenario, job, forecasts, where));
+    Json doc = jobPreview(scenario, job, forecasts, where);
+    if (picture) doc["picture"] = firstRunPicture(ctx, scenario, submission, job, forecasts);
+    return sendJson(res, doc);
   }
 
   // Idempotency-Key: a retry of a POST whose answer was lost gets the job the first one made.

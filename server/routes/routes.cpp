@@ -51,6 +51,7 @@ const std::vector<Route>& routeTable() {
       {"GET", "/processes", getProcesses},
       {"GET", "/processes/" + kId, getProcess},
       {"POST", "/processes/" + kId + "/execution", postExecution},
+      {"GET", "/processes/" + kId + "/previews/([0-9a-f]{32})", getProcessPreview},
       {"GET", "/jobs", getJobs},
       {"GET", "/jobs/" + kId, getJob},
       {"DELETE", "/jobs/" + kId, deleteJob},

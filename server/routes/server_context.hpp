@@ -9,6 +9,7 @@
 #include "common/config.hpp"
 #include "execution/executor.hpp"
 #include "jobs/job_store.hpp"
+#include "jobs/preview_store.hpp"
 
 namespace rupture::server {
 
@@ -23,6 +24,8 @@ struct ServerContext {
   std::atomic<bool> stopping{false};
   double maxRunMemory = 0;  ///< B one run may need (config.maxRunMemory or this machine's share; inf with Slurm)
   std::shared_ptr<RenderGate> renders;  ///< bounds the PNG renders running and waiting
+  /// The dry runs' preview pictures, fetched by the form (GET /processes/{id}/previews/{name}).
+  std::shared_ptr<PreviewStore> previews = std::make_shared<PreviewStore>();
   std::chrono::steady_clock::time_point startedAt = std::chrono::steady_clock::now();
 };
 

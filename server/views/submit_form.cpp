@@ -177,10 +177,17 @@ function duration(s){if(s===null||s===undefined)return 'not estimated';if(s<1)re
  if(s<120)return Math.round(s)+' s';if(s<7200)return (s/60).toPrecision(2)+' min';if(s<172800)return (s/3600).toPrecision(2)+' h';
  return (s/86400).toPrecision(2)+' days';}
 function count(n){return n===null||n===undefined?'not estimated':Number(n).toLocaleString('en');}
-const preview=document.getElementById('preview');
-async function showPreview(){let body;try{body=build();}catch(x){preview.textContent=x.message;return;}
- preview.textContent='estimating...';let r,d={};
- try{r=await fetch(form.dataset.action+'?dry_run=true',{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
+const preview=document.getElementById('preview');const picture=document.getElementById('preview-picture');
+const caption=document.getElementById('preview-caption');let pictured=null;
+function showPicture(p,asked){if(!asked){caption.textContent=pictured===null?'Press Preview to draw the sample.':
+  (pictured===JSON.stringify(build())?caption.textContent:'The picture is of the form as it was when Preview was pressed; press Preview to draw it again.');return;}
+ if(p&&p.available){picture.src=p.href;picture.hidden=false;picture.alt=(p.caption||[]).join('; ');
+  caption.textContent=(p.note?p.note+'. ':'')+(p.caption||[]).join('; ')+' (built in '+duration(p.build_s)+
+   (p.sample_from_cache?', the sample read from the cache':'')+')';}
+ else{picture.hidden=true;picture.removeAttribute('src');caption.textContent='No picture: '+(p?p.reason:'not drawn');}}
+async function showPreview(withPicture){let body;try{body=build();}catch(x){preview.textContent=x.message;return;}
+ preview.textContent=withPicture?'building the sample...':'estimating...';let r,d={};
+ try{r=await fetch(form.dataset.action+'?dry_run=true'+(withPicture?'&picture=true':''),{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
  catch(x){preview.textContent='no answer from the server: '+x;return;}
  mark(d);if(r.status!==200){preview.textContent=(d.detail||('HTTP '+r.status))+(d.field?' (field: '+d.field+')':'');return;}
  const e=d.elements||{},rows=[['Runs',d.runs+(d.replicates>1?' ('+d.sweep_points+' points x '+d.replicates+' replicates)':'')],
@@ -190,14 +197,17 @@ async function showPreview(){let body;try{body=build();}catch(x){preview.textCon
   ['Estimated time',d.estimated_wall_s===null?'not estimated (no cost model for this scenario)':
    duration(d.estimated_wall_s)+' for the job'+(d.runs>1?', '+duration(d.estimated_run_s)+' for its longest run':'')+
    ' (a rough estimate: '+(d.cost_model?d.cost_model.uncertainty:'')+')'],
-  ['Queue',d.queue.fits_now?'room for it now':'full: the job would be refused until runs finish'],
-  ['Picture','none yet: the sample is counted from its spec, not built']];
+  ['Queue',d.queue.fits_now?'room for it now':'full: the job would be refused until runs finish']];
+ if(withPicture)rows.push(['Picture',d.picture&&d.picture.available?count(d.picture.elements)+' '+d.picture.elements_name+
+  (d.picture.plate_nodes?' and '+count(d.picture.plate_nodes)+' plate nodes':'')+' built, as the run builds them':
+  'not drawn: '+(d.picture?d.picture.reason:'')]);
  preview.replaceChildren();const t=document.createElement('table');t.id='preview-table';
  for(const [k,v] of rows){const tr=t.insertRow();tr.insertCell().textContent=k;tr.insertCell().textContent=v;}
- preview.appendChild(t);}
-document.getElementById('preview-button').addEventListener('click',showPreview);
-let pending;form.addEventListener('change',()=>{clearTimeout(pending);pending=setTimeout(showPreview,600);});
-showPreview();
+ preview.appendChild(t);if(withPicture)pictured=JSON.stringify(body);showPicture(d.picture,withPicture);}
+document.getElementById('preview-button').addEventListener('click',()=>{clearTimeout(pending);showPreview(true);});
+// A field change re-estimates at once but draws nothing: a sample costs a run's first stage to build.
+let pending;form.addEventListener('change',()=>{clearTimeout(pending);pending=setTimeout(()=>showPreview(false),600);});
+showPreview(true);
 form.addEventListener('submit',async e=>{e.preventDefault();out.textContent='';
  let body;try{body=build();}catch(x){out.textContent=x.message;return;}
  let r,d={};try{r=await fetch(form.dataset.action,{method:'POST',headers:headers(),body:JSON.stringify(body)});d=await r.json();}
@@ -385,9 +395,13 @@ HtmlPage processHtml(const Json& process, const Json& start, const Json& request
        "autocomplete=\"off\" size=\"24\"> <span class=\"hint\">(only if the server has one; kept for this "
        "browser session)</span></p>"
        "<h3>Preview</h3><p class=\"hint\">What the job would be, checked as a submission is but not queued: its runs, "
-       "elements, memory and an estimated time (<code>POST .../execution?dry_run=true</code>). It is shown as the form "
-       "opens and updates as you change a field.</p><p><button type=\"button\" id=\"preview-button\">Preview</button></p>"
+       "elements, memory and an estimated time (<code>POST .../execution?dry_run=true</code>), updated as you change a "
+       "field; and a picture of the first run's sample, plate or tank, built by the run's own builder "
+       "(<code>&amp;picture=true</code>), drawn as the form opens and when you press Preview.</p>"
+       "<p><button type=\"button\" id=\"preview-button\">Preview</button></p>"
        "<div id=\"preview\" role=\"status\"></div>"
+       "<figure id=\"preview-figure\"><img id=\"preview-picture\" hidden alt=\"the discretised sample\">"
+       "<figcaption id=\"preview-caption\" class=\"hint\"></figcaption></figure>"
        "<p><button id=\"submit\">Submit</button> <span class=\"error\" id=\"form-error\" "
        "role=\"alert\"></span></p></form>\n";
   std::string rows;

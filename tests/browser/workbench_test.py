@@ -12,8 +12,8 @@
 4. Submits a slow job through the form and cancels it with the job page's button; resumes it with
    the page's Resume button (it runs again) and cancels it again.
 5. Compares two jobs from the job list: the comparison page has both jobs' rows.
-6. Opens the sweep's "Submit a variant" form: its preview (a dry run) shows the run count and an
-   estimated time; submitted unchanged, it makes the sweep's runs again, spec for spec.
+6. Opens the sweep's "Submit a variant" form: its preview (a dry run) shows the run count, an
+   estimated time and the picture of the first run's sample; submitted unchanged, it makes the sweep's runs again, spec for spec.
 7. Opens every scenario's form and submits it unchanged (on a second server whose runs wait for
    disk space, so nothing runs): each lands on its new job's page.
 """
@@ -271,6 +271,14 @@ def main():
             preview = wait_until("the preview", lambda: browser.js(
                 "(document.getElementById('preview-table') || {}).textContent || ''"), 30)
             assert "Runs2" in preview and "Estimated time" in preview and "not estimated" not in preview, preview
+            # ... and draws the first run's sample, built as the run builds it: a 900 x 600 picture
+            # from the server (the page's policy admits no other) whose caption counts its elements.
+            height = wait_until("the preview picture", lambda: browser.js(
+                "(p => p.complete && !p.hidden && p.naturalWidth === 900 ? p.naturalHeight : 0)"
+                "(document.getElementById('preview-picture'))"), 60)
+            assert height == 600, height
+            caption = browser.js("document.getElementById('preview-caption').textContent")
+            assert " elements, " in caption and "first of the job's 2 runs" in caption, caption
             browser.js("document.getElementById('submit').click(), true")
             path = wait_until("the variant's page", lambda: (lambda p: p if p.startswith("/jobs/") else None)(
                 browser.js("location.pathname")), 60)

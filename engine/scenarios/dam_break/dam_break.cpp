@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "scenarios/scenario_previews.hpp"
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/dam_break/dam_break_lattice.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
@@ -100,8 +101,8 @@ RunOutcome runDamBreak(const DamBreakSpec& spec, const nlohmann::json& json, con
 }  // namespace
 
 Scenario damBreakScenario() {
-  return scenarioOf<DamBreakSpec>("dam-break", damBreakSummaryFields(), damBreakSeriesFields(), parseDamBreakSpec,
-                                  io::estimateFluidSpec<DamBreakSpec>, runDamBreak);
+  return withPreview(scenarioOf<DamBreakSpec>("dam-break", damBreakSummaryFields(), damBreakSeriesFields(), parseDamBreakSpec,
+                                  io::estimateFluidSpec<DamBreakSpec>, runDamBreak), previewDamBreak);
 }
 
 }  // namespace rupture

@@ -1,3 +1,4 @@
+#include "scenarios/scenario_previews.hpp"
 #include "scenarios/dynamic_tension/dynamic_tension.hpp"
 #include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
 
@@ -450,9 +451,9 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 }
 
 Scenario dynamicTensionScenario() {
-  return scenarioOf<DynamicTensionSpec>("dynamic-tension", dynamicTensionSummaryFields(), dynamicTensionSeriesFields(),
+  return withPreview(scenarioOf<DynamicTensionSpec>("dynamic-tension", dynamicTensionSummaryFields(), dynamicTensionSeriesFields(),
                                         parseDynamicTensionSpec, estimateDynamicTension,
-                                        runDynamicTension);
+                                        runDynamicTension), previewDynamicTension);
 }
 
 }  // namespace rupture

@@ -1,3 +1,4 @@
+#include "scenarios/scenario_previews.hpp"
 #include "scenarios/elastic_properties/elastic_properties.hpp"
 
 #include <algorithm>
@@ -230,9 +231,9 @@ RunEstimate estimateElasticProperties(const ElasticPropertiesSpec& spec) {
 }  // namespace
 
 Scenario elasticPropertiesScenario() {
-  return scenarioOf<ElasticPropertiesSpec>(kScenarioName, elasticPropertiesSummaryFields(), {},
+  return withPreview(scenarioOf<ElasticPropertiesSpec>(kScenarioName, elasticPropertiesSummaryFields(), {},
                                            parseElasticPropertiesSpec, estimateElasticProperties,
-                                           runElasticProperties);
+                                           runElasticProperties), previewElasticProperties);
 }
 
 }  // namespace rupture

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rupture/quantity_text.hpp"
+#include "scenarios/scenario_previews.hpp"
 #include "samples/sample_builder.hpp"
 #include "bonded/bonded_spec.hpp"
 #include "io/interleave.hpp"
@@ -342,8 +343,8 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
 }
 
 Scenario impactScenario() {
-  return scenarioOf<ImpactSpec>("impact", impactSummaryFields(), impactSeriesFields(), parseImpactSpec,
-                                estimateImpact, runImpact);
+  return withPreview(scenarioOf<ImpactSpec>("impact", impactSummaryFields(), impactSeriesFields(), parseImpactSpec,
+                                estimateImpact, runImpact), previewImpact);
 }
 
 }  // namespace rupture

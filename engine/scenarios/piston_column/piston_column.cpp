@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "scenarios/scenario_previews.hpp"
 #include "fsi/piston_drive.hpp"
 #include "sph/fluid_recorder.hpp"
 #include "scenarios/fluid/fluid_results.hpp"
@@ -143,8 +144,8 @@ RunOutcome runPistonColumn(const PistonColumnSpec& spec, const nlohmann::json& j
 }  // namespace
 
 Scenario pistonColumnScenario() {
-  return scenarioOf<PistonColumnSpec>("piston-column", pistonColumnSummaryFields(), pistonColumnSeriesFields(),
-                                      parsePistonColumnSpec, io::estimateFluidSpec<PistonColumnSpec>, runPistonColumn);
+  return withPreview(scenarioOf<PistonColumnSpec>("piston-column", pistonColumnSummaryFields(), pistonColumnSeriesFields(),
+                                      parsePistonColumnSpec, io::estimateFluidSpec<PistonColumnSpec>, runPistonColumn), previewPistonColumn);
 }
 
 }  // namespace rupture

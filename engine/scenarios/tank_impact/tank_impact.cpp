@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 
+#include "scenarios/scenario_previews.hpp"
 #include "fsi/fluid_shell_coupling.hpp"
 #include "fsi/piston_drive.hpp"
 #include "sph/fluid_recorder.hpp"
@@ -92,15 +93,7 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
   // Water, cylinder and piston.
   sph::SphSystem s;
   s.model = io::fluidModel(spec.fluid, spec.resolution, 3, spec.soundSpeed, spec.gravity);
-  TankLatticeParams lattice;
-  lattice.spacing = dx;
-  lattice.radius = 0.5 * spec.innerDiameter;
-  lattice.height = spec.waterHeight;
-  lattice.bottom = 0.5 * t;
-  lattice.wallLayers = spec.resolution.wallLayers;
-  lattice.pistonMass = spec.impactor.mass;
-  lattice.pistonSpeed = spec.impactor.speed;
-  lattice.gravity = spec.gravity;
+  const TankLatticeParams lattice = tankLatticeParams(spec);
   // The plate is built inside the cancellable set-up too: at fine spacings it holds a million nodes.
   std::optional<SphShell> plateBuilt;
   std::optional<fsi::PistonDrive> drive;  // the carriage and piston as two bodies (not `rigid`)
@@ -336,8 +329,8 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
 }  // namespace
 
 Scenario tankImpactScenario() {
-  return scenarioOf<TankImpactSpec>("tank-impact", tankImpactSummaryFields(), tankImpactSeriesFields(),
-                                    parseTankImpactSpec, io::estimateFluidSpec<TankImpactSpec>, runTankImpact);
+  return withPreview(scenarioOf<TankImpactSpec>("tank-impact", tankImpactSummaryFields(), tankImpactSeriesFields(),
+                                    parseTankImpactSpec, io::estimateFluidSpec<TankImpactSpec>, runTankImpact), previewTankImpact);
 }
 
 }  // namespace rupture

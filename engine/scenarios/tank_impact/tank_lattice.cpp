@@ -6,6 +6,19 @@
 
 namespace rupture {
 
+TankLatticeParams tankLatticeParams(const TankImpactSpec& spec) {
+  TankLatticeParams lattice;
+  lattice.spacing = spec.resolution.spacing;
+  lattice.radius = 0.5 * spec.innerDiameter;
+  lattice.height = spec.waterHeight;
+  lattice.bottom = 0.5 * spec.plate.shell.thickness;
+  lattice.wallLayers = spec.resolution.wallLayers;
+  lattice.pistonMass = spec.impactor.mass;
+  lattice.pistonSpeed = spec.impactor.speed;
+  lattice.gravity = spec.gravity;
+  return lattice;
+}
+
 TankLattice buildTankLattice(sph::SphSystem& s, const TankLatticeParams& q) {
   const sph::EquationOfState& eos = s.model.eos;
   TankLattice g;

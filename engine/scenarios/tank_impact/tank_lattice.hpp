@@ -8,6 +8,7 @@
 // The pattern of buildPistonColumn, with the rigid bottom replaced by the plate.
 #include <cstdint>
 
+#include "scenarios/tank_impact/tank_impact_spec.hpp"
 #include "sph/sph_system.hpp"
 
 namespace rupture {
@@ -36,6 +37,10 @@ struct TankLattice {
   double R() const { return nR * dx; }
   double H() const { return nH * dx; }
 };
+
+/// The lattice of a spec: the fluid spacing, the bore, the water from the plate's upper face, the
+/// carriage's mass and speed (the run and its preview both lay this one).
+TankLatticeParams tankLatticeParams(const TankImpactSpec& spec);
 
 /// Fills s.particles and s.bodies (s.model must be set). The piston's mass per unit area M/(π R²)
 /// is kept on the lattice's section. Call s.initialise() next.
