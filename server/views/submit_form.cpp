@@ -173,9 +173,7 @@ function mark(d){for(const el of form.querySelectorAll('.bad'))el.classList.remo
  if(d.field){const el=form.querySelector('[data-path="'+CSS.escape(d.field)+'"]');if(el){el.classList.add('bad');el.focus();}}}
 function bytes(b){if(b===null||b===undefined)return 'not estimated';const u=['B','KiB','MiB','GiB','TiB'];let k=0;
  while(b>=1024&&k<u.length-1){b/=1024;k++;}return (k?b.toPrecision(3):b)+' '+u[k];}
-function duration(s){if(s===null||s===undefined)return 'not estimated';if(s<1)return 'under 1 s';
- if(s<120)return Math.round(s)+' s';if(s<7200)return (s/60).toPrecision(2)+' min';if(s<172800)return (s/3600).toPrecision(2)+' h';
- return (s/86400).toPrecision(2)+' days';}
+function duration(s){if(s===null||s===undefined)return 'not estimated';return fq(s,'s');}
 function count(n){return n===null||n===undefined?'not estimated':Number(n).toLocaleString('en');}
 const preview=document.getElementById('preview');const picture=document.getElementById('preview-picture');
 const caption=document.getElementById('preview-caption');let pictured=null;
@@ -408,7 +406,8 @@ HtmlPage processHtml(const Json& process, const Json& start, const Json& request
   inputRows(schema, "", rows);
   c += "<details><summary>The inputs as a table</summary><table><tr><th>Field (* required)</th><th>Type</th>"
        "<th>Unit</th><th>Description</th></tr>" + rows + "</table></details>";
-  return page(id + ": " + process.value("title", ""), c, kSubmitScript);
+  // The preview's times written as every other number a person reads (numberScript's fq).
+  return page(id + ": " + process.value("title", ""), c, numberScript() + kSubmitScript);
 }
 
 }  // namespace rupture::server
