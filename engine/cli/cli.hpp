@@ -27,4 +27,9 @@ bool parseIntOption(const std::string& name, const std::string& text, long long 
                     long long& out);
 bool parseDoubleOption(const std::string& name, const std::string& text, double& out);
 
+/// Reads the arguments of a command on one file, "INPUT [-o|--output OUT] [--force]" (xdmf,
+/// preview); returns 0, or 2 after printing `usage` prefixed with the command's name.
+int readFileArguments(const Args& args, const std::string& command, const std::string& usage, std::string& input,
+                      std::string& output, bool& force);
+
 }  // namespace rupture::cli

@@ -23,20 +23,7 @@ constexpr const char* kUsage = "usage: rupture preview SPEC.json -o OUT.png|svg 
 int previewCommand(const Args& args) {
   std::string input, output;
   bool force = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--force") {
-      force = true;
-    } else if (args[i] == "-o" || args[i] == "--output") {
-      if (i + 1 >= args.size()) return usageError("preview: -o needs a file name");
-      output = args[++i];
-    } else if (!args[i].empty() && args[i][0] == '-') {
-      return usageError("preview: unknown option '" + args[i] + "'; " + kUsage);
-    } else if (input.empty()) {
-      input = args[i];
-    } else {
-      return usageError(std::string("preview: ") + kUsage);
-    }
-  }
+  if (int code = readFileArguments(args, "preview", kUsage, input, output, force)) return code;
   if (input.empty() || output.empty()) return usageError(std::string("preview: ") + kUsage);
   const std::string extension = fs::path(output).extension().string();
   if (extension != ".png" && extension != ".svg")

@@ -19,20 +19,7 @@ constexpr const char* kUsage = "usage: rupture xdmf RESULT.h5 [-o OUT.xdmf2] [--
 int xdmfCommand(const Args& args) {
   std::string input, output;
   bool force = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--force") {
-      force = true;
-    } else if (args[i] == "-o" || args[i] == "--output") {
-      if (i + 1 >= args.size()) return usageError("xdmf: -o needs a file name");
-      output = args[++i];
-    } else if (!args[i].empty() && args[i][0] == '-') {
-      return usageError("xdmf: unknown option '" + args[i] + "'; " + kUsage);
-    } else if (input.empty()) {
-      input = args[i];
-    } else {
-      return usageError(std::string("xdmf: ") + kUsage);
-    }
-  }
+  if (int code = readFileArguments(args, "xdmf", kUsage, input, output, force)) return code;
   if (input.empty()) return usageError(std::string("xdmf: ") + kUsage);
   std::error_code ec;
   if (!fs::is_regular_file(input, ec)) {
