@@ -441,9 +441,7 @@ FieldImage renderFieldImage(const io::Hdf5File& file, const FieldImageRequest& r
     if (request.thumbnail && !drawn.empty()) {
       // A scale bar instead of axes: the longest round length (1, 2 or 5 × 10^k) within a quarter
       // of the drawn width, at the lower left on a white ground.
-      const double most = 0.25 * (uhi - ulo) * (1 + 1e-9);  // a quarter that is itself round counts
-      const double decade = std::pow(10.0, std::floor(std::log10(most)));
-      const double length = most >= 5 * decade ? 5 * decade : most >= 2 * decade ? 2 * decade : decade;
+      const double length = scaleBarLength(uhi - ulo);
       const std::string text = formatQuantity(length, "m");
       cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
       cairo_set_font_size(cr, 9);

@@ -22,4 +22,11 @@ RoundTicks roundTicks(double lo, double hi, int intervals) {
   return out;
 }
 
+double scaleBarLength(double span) {
+  if (!(span > 0) || !std::isfinite(span)) return 0;
+  const double most = 0.25 * span * (1 + 1e-9);
+  const double decade = std::pow(10.0, std::floor(std::log10(most)));
+  return most >= 5 * decade ? 5 * decade : most >= 2 * decade ? 2 * decade : decade;
+}
+
 }  // namespace rupture::render

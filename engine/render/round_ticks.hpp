@@ -14,4 +14,8 @@ struct RoundTicks {
 /// is written 0 (not 1e-17 from the sum of steps).
 RoundTicks roundTicks(double lo, double hi, int intervals = 5);
 
+/// The longest round length (1, 2 or 5 × 10^k) within a quarter of `span` (a quarter that is itself
+/// round counts): a scale bar's (thumbnails, the sample preview). 0 for a span that is not > 0.
+double scaleBarLength(double span);
+
 }  // namespace rupture::render

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "render/colour_map.hpp"
+#include "render/round_ticks.hpp"
 #include "rupture/quantity_text.hpp"
 
 namespace rupture::render {
@@ -109,14 +110,6 @@ std::size_t drawPanel(cairo_t* cr, const PreviewPanel& panel, const Frame& frame
 }
 
 }  // namespace
-
-double scaleBarLength(double span) {
-  if (!(span > 0) || !std::isfinite(span)) return 0;
-  const double target = span / 4, decade = std::pow(10.0, std::floor(std::log10(target)));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * decade <= target) return m * decade;
-  return decade;
-}
 
 SamplePicture renderSamplePicture(const SamplePreview& preview, const SamplePictureRequest& request,
                                   const StopCheck& stop) {

@@ -29,7 +29,4 @@ struct SamplePicture {
 SamplePicture renderSamplePicture(const SamplePreview& preview, const SamplePictureRequest& request,
                                   const StopCheck& stop = {});
 
-/// A round length (1, 2 or 5 x 10^k) of about `span` / 4, for a scale bar.
-double scaleBarLength(double span);
-
 }  // namespace rupture::render

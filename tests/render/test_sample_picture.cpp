@@ -3,6 +3,7 @@
 // scale bar's round lengths, and a stop check that ends the drawing.
 #include <gtest/gtest.h>
 
+#include "render/round_ticks.hpp"
 #include "render/sample_picture.hpp"
 #include "support/png_probe.hpp"
 
