@@ -37,8 +37,8 @@ namespace detail {
 
 /// The first pass of a chunk: for each of its `m` slots, the partner's packed record (x, y, z,
 /// previous s_min) and, in the compact form (kCompact), its kind's record (rest length, stiffness,
-/// threshold), each copied whole (32 bytes: one load, one store) into the chunk buffers, plus the
-/// partner's radius when the law reads it. Scalar on purpose: vectorised, GCC makes these reads
+/// threshold, 1/rest length), each copied whole (32 bytes: one load, one store) into the chunk
+/// buffers, plus the partner's radius when the law reads it. Scalar on purpose: vectorised, GCC makes these reads
 /// 512-bit gathers, which on Zen 5 cost more than the scalar loads; and whole-record copies
 /// because this pass is bound by its stores (the arithmetic pass unpacks the records in vectors).
 template <bool kRadii, bool kCompact>
@@ -56,7 +56,7 @@ template <bool kRadii, bool kCompact>
     rec[4 * t] = xk + 1.0; rec[4 * t + 1] = yk; rec[4 * t + 2] = zk; rec[4 * t + 3] = 0.0;
     rj[t] = 0.0;
     if constexpr (kCompact) {
-      kindRec[4 * t] = 1.0; kindRec[4 * t + 1] = 0.0; kindRec[4 * t + 2] = 0.0; kindRec[4 * t + 3] = 0.0;
+      kindRec[4 * t] = 1.0; kindRec[4 * t + 1] = 0.0; kindRec[4 * t + 2] = 0.0; kindRec[4 * t + 3] = 1.0;
     }
   }
 }
@@ -74,12 +74,13 @@ constexpr bool readsRadii() {
 /// declared in the loop body would become a per-lane array that GCC does not vectorise.
 template <class Law, class Criterion>
 [[gnu::always_inline]] inline void evaluateSlot(const Law& law, const Criterion& crit, double dx, double dy, double dz,
-                                                double restLength, double radiusI, double radiusJ, double stiffness,
-                                                double& fjx, double& fjy, double& fjz, double& measure,
-                                                double& effective) {
+                                                double restLength, double invRestLength, double radiusI,
+                                                double radiusJ, double stiffness, double& fjx, double& fjy,
+                                                double& fjz, double& measure, double& effective) {
   BondGeometry g{};
   g.dx = dx; g.dy = dy; g.dz = dz;
   g.restLength = restLength;
+  g.invRestLength = invRestLength;
   g.radiusI = radiusI; g.radiusJ = radiusJ;
   g.stiffness = stiffness;
   const BondResponse r = law.response(g);
@@ -172,20 +173,24 @@ void evaluateCentralBonds(const Law& law, const Criterion& criterion, ParticleSt
           // A whole number of vectors, no scalar remainder: the lanes past m read no slot data and
           // keep nothing.
           const bool inside = t < m;
-          // The chunk's rest length, stiffness and threshold: the kind records (compact form) or
-          // the slot streams (full form).
-          double restLength, stiffness, threshold;
+          // The chunk's rest length, its reciprocal, stiffness and threshold: the kind records
+          // (compact form: 1/L0 computed once per kind, no division per slot) or the slot streams
+          // (full form: 1/L0 divided here, the same correctly rounded number as the kind table's and
+          // the generic loop's 1.0 / L0; a fourth per-slot stream would cost more than it saves).
+          double restLength, invRestLength, stiffness, threshold;
           if constexpr (kCompact) {
-            restLength = kindb[4 * t]; stiffness = kindb[4 * t + 1]; threshold = inside ? kindb[4 * t + 2] : kBroken;
+            restLength = kindb[4 * t]; invRestLength = kindb[4 * t + 3]; stiffness = kindb[4 * t + 1];
+            threshold = inside ? kindb[4 * t + 2] : kBroken;
           } else {
             restLength = inside ? L0[c + t] : 1.0;
+            invRestLength = 1.0 / restLength;
             stiffness = inside ? kb[c + t] : 0.0;
             threshold = inside ? limit[c + t] : kBroken;
           }
           double fjx, fjy, fjz, measure, effective;
           detail::evaluateSlot(lawCopy, crit, recb[4 * t] - xk, recb[4 * t + 1] - yk, recb[4 * t + 2] - zk,
-                               restLength, kRadii ? rk : 0.0, kRadii ? rjb[t] : 0.0, stiffness, fjx, fjy, fjz,
-                               measure, effective);
+                               restLength, invRestLength, kRadii ? rk : 0.0, kRadii ? rjb[t] : 0.0, stiffness,
+                               fjx, fjy, fjz, measure, effective);
           if constexpr (kMinStretch) effective += crit.alpha * std::max(sk, recb[4 * t + 3]);
           const bool keep = effective < threshold;
           chunkBreaks |= static_cast<std::int64_t>(!keep) & static_cast<std::int64_t>(threshold != kBroken);
