@@ -13,6 +13,9 @@ namespace rupture {
 struct BondGeometry {
   double dx, dy, dz;           ///< x_j − x_i, current (m)
   double restLength;           ///< L0 (m)
+  double invRestLength;        ///< 1/L0 (1/m): every caller fills it as 1.0 / restLength (a correctly rounded
+                               ///< division, so every path has the same bits); the central loop's compact
+                               ///< form reads it from its kind table instead of dividing per slot
   double n0x, n0y, n0z;        ///< reference unit direction i -> j
   double radiusI, radiusJ;     ///< element radii (m)
   double stiffness;            ///< BondStore::stiffness: central laws' k (N/m), the beam law's factor on E_μ (1)

@@ -24,6 +24,7 @@ template <class Law>
   BondGeometry g{};
   g.dx = p.x[j] - p.x[i]; g.dy = p.y[j] - p.y[i]; g.dz = p.z[j] - p.z[i];
   g.restLength = bonds.restLength[b];
+  g.invRestLength = 1.0 / g.restLength;
   g.n0x = bonds.n0x[b]; g.n0y = bonds.n0y[b]; g.n0z = bonds.n0z[b];
   g.radiusI = p.radius[i]; g.radiusJ = p.radius[j];
   g.stiffness = bonds.stiffness[b];
@@ -76,6 +77,7 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
     BondGeometry g{};
     g.dx = x[j] - x[i]; g.dy = y[j] - y[i];
     g.restLength = L0[b];
+    g.invRestLength = 1.0 / g.restLength;
     g.n0x = n0x[b]; g.n0y = n0y[b];
     g.radiusI = rad[i]; g.radiusJ = rad[j];
     g.stiffness = kb[b];

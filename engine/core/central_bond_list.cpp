@@ -34,7 +34,7 @@ struct TripleHash {
 // Each bond's kind index, or an empty vector when there are more than kMaxKinds kinds. Bit
 // patterns, not values, identify a kind, so the table gives back exactly the stored doubles.
 std::vector<std::uint16_t> bondKinds(const BondStore& bonds, std::vector<CentralBondList::Kind>& kinds) {
-  kinds.assign(1, CentralBondList::Kind{1.0, 0.0, kBroken, 0.0});
+  kinds.assign(1, CentralBondList::Kind{1.0, 0.0, kBroken, 1.0});
   std::unordered_map<Triple, std::uint16_t, TripleHash> index;
   std::vector<std::uint16_t> kindOf(bonds.size());
   for (std::size_t b = 0; b < bonds.size(); ++b) {
@@ -48,7 +48,7 @@ std::vector<std::uint16_t> bondKinds(const BondStore& bonds, std::vector<Central
     auto [it, added] = index.try_emplace(key, static_cast<std::uint16_t>(kinds.size()));
     if (added) {
       if (kinds.size() == CentralBondList::kMaxKinds) return {};
-      kinds.push_back({bonds.restLength[b], bonds.stiffness[b], limit, 0.0});
+      kinds.push_back({bonds.restLength[b], bonds.stiffness[b], limit, 1.0 / bonds.restLength[b]});
     }
     kindOf[b] = it->second;
   }

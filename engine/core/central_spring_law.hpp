@@ -25,7 +25,7 @@ struct CentralSpringLaw {
     r.fjy = -force * g.dy * invL;
     r.fjz = -force * g.dz * invL;
     r.energy = energy;
-    r.stretch = extension / g.restLength;
+    r.stretch = extension * g.invRestLength;  // a multiplication: the divider bounds the central loop
     r.normalForce = force;
     r.tensileNormalEnergy = extension > 0 ? energy : 0.0;
     return r;

@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/parallel.hpp"
 #include "samples/sample_builder.hpp"
@@ -17,7 +19,7 @@
 namespace rupture {
 namespace {
 
-BondedSystem tornBlock(const std::string& criterion) {
+BondedSystem tornBlock(const std::string& criterion, double horizonFactor = 3.015) {
   SampleSpec s;
   s.dimension = 3;
   s.lattice = "simple-cubic";
@@ -28,7 +30,7 @@ BondedSystem tornBlock(const std::string& criterion) {
   m.model = "pmb";
   m.density = 2200;
   m.pmb.youngModulus = 22e9;
-  m.pmb.horizonFactor = 3.015;
+  m.pmb.horizonFactor = horizonFactor;
   m.pmb.criterion = criterion;
   if (criterion == "critical_stretch") {
     m.pmb.criticalStretch = 5e-4;
@@ -90,6 +92,29 @@ TEST_P(CentralLoop, BreaksTheSameBondsAsTheGenericLoopAndIsThreadCountIndependen
   EXPECT_GT(forceScale, 0.0);
   EXPECT_LE(forceError, 1e-6 * forceScale);
   EXPECT_LE(measureError, 1e-6 * measureScale);
+}
+
+// A horizon of 4.5 spacings: up to 372 partners a particle, so the loop takes a particle's slots
+// in several chunks (128 each) and carries its force sums from one chunk to the next (the sums of
+// a chunk are taken during the next chunk's read pass, which may be the next particle's).
+TEST(CentralLoopChunks, ParticlesWithMoreSlotsThanAChunkGiveTheGenericLoopsBitsToo) {
+  BondedSystem start = tornBlock("critical_stretch", 4.5);
+  std::vector<std::size_t> partners(start.particles.size(), 0);
+  for (std::size_t b = 0; b < start.bonds.size(); ++b) {
+    ++partners[start.bonds.i[b]];
+    ++partners[start.bonds.j[b]];
+  }
+  const std::size_t most = *std::max_element(partners.begin(), partners.end());
+  ASSERT_GT(most, 256u);  // three chunks or more
+  const BondedSystem generic = run(start, false, 1), one = run(start, true, 1), two = run(start, true, 2);
+  const BondedSystem full = run(start, true, 2, false);
+  EXPECT_GT(generic.bonds.size() - generic.bonds.intactCount(), 100u);
+  EXPECT_EQ(generic.bonds.intact, one.bonds.intact);
+  EXPECT_EQ(generic.particles.x, one.particles.x);
+  EXPECT_EQ(generic.particles.vx, one.particles.vx);
+  EXPECT_EQ(one.particles.vx, two.particles.vx);
+  EXPECT_EQ(generic.particles.vx, full.particles.vx);
+  EXPECT_EQ(generic.bonds.intact, full.bonds.intact);
 }
 
 INSTANTIATE_TEST_SUITE_P(PmbCriteria, CentralLoop, ::testing::Values("critical_stretch", "critical_energy"));
