@@ -69,10 +69,10 @@ LOOPS = {
         "particle": 64 + 36 + 32 + 24,
         # per slot (engine/core/central_spring_law.hpp, energy dead): dx 3 add, |d| 3 mul 2 add,
         # extension 1 add, force 1 mul, F 6 mul, the stretch extension × (1/L0) 1 mul (1/L0 from
-        # the kind table since branch w2-divisions; a division before), α max(s_min) 1 mul 1 add,
+        # the kind table since 50af05c; a division before), α max(s_min) 1 mul 1 add,
         # the sum 3 add: 12 mul + 10 add, twice per bond.
         "flops": 2 * 22,
-        "divisions": 2 * 1,  # 1/|d| (the stretch's extension / L0 was the second until w2-divisions)
+        "divisions": 2 * 1,  # 1/|d| (the stretch's extension / L0 was the second until 50af05c)
         "roots": 2 * 1,
         "per": "bond",
     },
