@@ -1,6 +1,6 @@
 // The tank-impact plate alone: is its time to fracture converged in the plate's node spacing?
 //
-// The plate of a tank-impact spec (default examples/tank-impact-TF14A5.json: the 1 mm spot face
+// The plate of a tank-impact spec (default examples/tank-impact-TF14A5-coarse.json: the 1 mm spot face
 // with its 14 mm hole in the 25 mm bottom, held at Ø 140 mm) is built exactly as the scenario
 // builds it (plateGeometry, buildPlate), without the water: a uniform pressure step p is put on
 // the spot face (r < D/2, where the water wets it), as a dead load along −z, and the shell runs
@@ -127,7 +127,7 @@ Trial runTrial(nlohmann::json specJson, double spacing, double pressure, double 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string specPath = std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5.json";
+  std::string specPath = std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5-coarse.json";
   std::string spacingsText = "0.002,0.0014,0.001";
   std::string overrides;
   double pressure = 1.0e7, endTime = 2.0e-3, afterFracture = 0.1;

@@ -33,7 +33,7 @@ RunOutcome runInTemporaryFile(const nlohmann::json& spec, RunControl& control, i
 
 nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options) {
   const std::string path =
-      options.spec.empty() ? std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-FXA5.json" : options.spec;
+      options.spec.empty() ? std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-FXA5-coarse.json" : options.spec;
   nlohmann::json spec = readSpec(path, "TANK");
   // A long end time and max_steps: the run stops after `steps` fluid steps.
   // It stops at `steps` with a checkpoint, as a run stopped to be continued: the whole cost of one.
@@ -68,9 +68,8 @@ nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options) {
 }
 
 nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
-  nlohmann::json spec = readSpec(std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5-step.json", "TANK-SEED");
-  spec["resolution"]["spacing"] = 0.002;              // the seed's fluid, about 2 mm (§4.2)
-  spec["plate"]["bottom"]["step_spacing"] = 0.0005;  // the seed's 0.5 mm where it tears (§5.3.1)
+  // The example is the seed's inputs: fluid 2 mm (§4.2), 0.5 mm at the step where it tears (§5.3.1).
+  nlohmann::json spec = readSpec(std::string(RUPTURE_SOURCE_DIR) + "/examples/tank-impact-TF14A5.json", "TANK-SEED");
   spec["run"]["end_time"] = options.endTime;
   spec["run"].erase("snapshot_times");
   if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;

@@ -1,5 +1,5 @@
 #pragma once
-// Benchmark TANK: the tank-impact scenario on the FXA5 example (examples/tank-impact-FXA5.json, the
+// Benchmark TANK: the tank-impact scenario on the coarse FXA5 example (examples/tank-impact-FXA5-coarse.json, the
 // seed's test 15: 2 mm plate with an X pre-crack, 245 kg at 5 m/s), run for a given number of fluid
 // steps; the fluid's particle-steps per second and the shell's node-steps per second are reported
 // separately (bench/README.md).
@@ -12,15 +12,15 @@ namespace rupture::bench {
 struct TankImpactOptions {
   int threads = 1;
   int steps = 200;   ///< fluid steps (the shell makes its sub-cycles inside them)
-  std::string spec;  ///< the spec file (default: the FXA5 example of the source tree)
+  std::string spec;  ///< the spec file (default: the coarse FXA5 example of the source tree)
 };
 
 /// Runs it and returns one JSON object: workload, fluid and plate counts, steps, shell steps,
 /// seconds of fluid, shell and contact, fluid_particle_steps_per_s, shell_node_steps_per_s.
 nlohmann::json runTankImpactBenchmark(const TankImpactOptions& options);
 
-/// TANK-SEED: the seed's TF14A5 at the seed's inputs (examples/tank-impact-TF14A5-step.json with the
-/// fluid at 2 mm and the plate's band at the step at 0.5 mm, Caleyron et al. 2013 §4.2, §5.3.1),
+/// TANK-SEED: the seed's TF14A5 at the seed's inputs (examples/tank-impact-TF14A5.json: the fluid at
+/// 2 mm and the plate's band at the step at 0.5 mm, Caleyron et al. 2013 §4.2, §5.3.1),
 /// run whole to `endTime` (the seed's window: 2.5 ms), the shell single-rate or subcycled.
 struct TankSeedOptions {
   int threads = 1;

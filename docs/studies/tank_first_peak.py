@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The study of docs/tank-impact.md#what-sets-the-first-peak: seed 002's tests E14A5, E14A2 and
-E20A5 (and, for the plate's spacing, FUA5, TF14A5 and FXA5) run from their example files with one
+E20A5 (and, for the plate's spacing, FUA5, TF14A5 and FXA5) run from their coarse example files (tank-impact-*-coarse.json, fluid 4 mm) with one
 thing changed at a time (impactor model, piston length, contact stiffness, the plate's clamp, fluid
 and plate resolution, gauge position, contact method), and the table of the first pressure peak, the largest
 jet speed, the piston face's largest speed, the tongue, the fracture and the deflection.
@@ -72,7 +72,7 @@ def merge(base, change):
 
 
 def run_one(rupture, test, change, workdir):
-    with open(os.path.join(ROOT, "examples", f"tank-impact-{test}.json")) as f:
+    with open(os.path.join(ROOT, "examples", f"tank-impact-{test}-coarse.json")) as f:
         spec = merge(json.load(f), change)
     spec_path = os.path.join(workdir, "spec.json")
     with open(spec_path, "w") as f:
