@@ -12,10 +12,12 @@
 //
 // Usage: plate_fracture_study [--spec FILE] [--spacings 0.002,0.0014,0.001] [--pressure Pa]
 //                             [--end-time s] [--after-fracture s] [--set JSON] [--threads N]
-//                             [--interval-steps N]
+//                             [--interval-steps N] [--spectrum N]
 // --interval-steps N advances the plate by intervals of N of its stable steps (as a fluid step
 // would, SphShell::advanceInterval; with --set '{"plate": {"subcycling": true}}' multi-rate)
 // instead of one stable step at a time.
+// --spectrum N prints the plate's largest frequencies per group of terms, bound and measured with N
+// power iterations (SphShell::maxFrequency), instead of running it.
 // A run stops at --end-time or --after-fracture (default 0.1 s: never) after its first fracture.
 // One JSON line per spacing on stdout; docs/studies/plate_fracture.py makes the table of them
 // (docs/studies/plate-fracture.md).
@@ -69,6 +71,50 @@ std::vector<double> parseList(const std::string& text) {
   std::string item;
   while (std::getline(in, item, ',')) values.push_back(std::atof(item.c_str()));
   return values;
+}
+
+/// --spectrum N: the plate's terms grouped by the bound's classes (g = ⌊log2(h_j / h_min)⌋, as the
+/// spectral step estimate groups them), each group's largest frequency by the bound and as measured
+/// with N power iterations over the terms of the group and the coarser ones (SphShell::maxFrequency);
+/// one JSON line per group, for docs/shell-and-damage.md's table.
+void printSpectrum(nlohmann::json specJson, double spacing, int spectrumIterations) {
+  specJson["plate"]["spacing"] = spacing;
+  const rupture::TankImpactSpec spec = rupture::parseTankImpactSpec(specJson);
+  const rupture::PlateGeometry geometry = rupture::plateGeometry(spec.plate);
+  rupture::SphShell plate = rupture::buildPlate(spec.plate, geometry);
+  // The terms grouped by the bound's classes (g = ⌊log2(h_j / h_min)⌋, as the spectral estimate
+  // groups them): each group's largest frequency by the bound and as measured, over the terms of
+  // the group and the coarser ones (SphShell::maxFrequency).
+  const std::size_t n = plate.size();
+  const double C = spec.plate.shell.courantFactor;
+  std::vector<int> pointGroup(n), nodeGroup(n);
+  auto groupOf = [&](double h) {
+    int g = 0;
+    while (g < rupture::kMaxStepClass && std::ldexp(plate.stableTimeStep(), g + 1) <= h) ++g;
+    return g;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    pointGroup[i] = groupOf(plate.pointStableStep(i));
+    nodeGroup[i] = groupOf(plate.nodeStableStep(i));
+  }
+  for (int g = 0; g <= rupture::kMaxStepClass; ++g) {
+    std::vector<std::uint8_t> pointTerm(n), nodeTerm(n);
+    std::size_t points = 0;
+    double finest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      pointTerm[i] = pointGroup[i] >= g;
+      nodeTerm[i] = nodeGroup[i] >= g;
+      if (pointGroup[i] == g) ++points;
+      if (pointTerm[i]) finest = std::min(finest, plate.pointStableStep(i));
+    }
+    if (points == 0) continue;
+    const double measured = plate.maxFrequency(pointTerm, nodeTerm, spectrumIterations);
+    const double bound = 2.0 * C / finest;
+    const nlohmann::json line = {{"spacing", geometry.nodes.spacing}, {"group", g}, {"points", points},
+                                 {"bound_frequency", bound}, {"measured_frequency", measured},
+                                 {"bound_over_measured", bound / measured}, {"critical_step", 2.0 / measured}};
+    std::printf("%s\n", line.dump().c_str());
+  }
 }
 
 Trial runTrial(nlohmann::json specJson, double spacing, double pressure, double endTime, double afterFracture,
@@ -131,7 +177,7 @@ int main(int argc, char** argv) {
   std::string spacingsText = "0.002,0.0014,0.001";
   std::string overrides;
   double pressure = 1.0e7, endTime = 2.0e-3, afterFracture = 0.1;
-  int intervalSteps = 0;
+  int intervalSteps = 0, spectrumIterations = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const std::string value = argv[i + 1];
@@ -143,6 +189,7 @@ int main(int argc, char** argv) {
     else if (key == "--after-fracture") afterFracture = std::atof(value.c_str());
     else if (key == "--threads") omp_set_num_threads(std::atoi(value.c_str()));
     else if (key == "--interval-steps") intervalSteps = std::atoi(value.c_str());
+    else if (key == "--spectrum") spectrumIterations = std::atoi(value.c_str());
     else { std::fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
   }
   if (argc % 2 == 0) { std::fprintf(stderr, "every option takes a value\n"); return 2; }
@@ -162,6 +209,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (spectrumIterations > 0) {
+    for (double spacing : spacings) printSpectrum(specJson, spacing, std::min(spectrumIterations, 1000));
+    return 0;
+  }
   std::vector<Trial> trials;
   for (double spacing : spacings) {
     try {

@@ -73,6 +73,7 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   spec["run"]["end_time"] = options.endTime;
   spec["run"].erase("snapshot_times");
   if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;
+  if (!options.stepEstimate.empty()) spec["plate"]["step_estimate"] = options.stepEstimate;
   const bool subcycling = parseTankImpactSpec(spec).plate.shell.subcycling;  // the option as the run reads it
   RunControl control;
   const auto start = std::chrono::steady_clock::now();
@@ -85,6 +86,7 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   return {{"workload", "TANK-SEED (tank-impact TF14A5 at the seed's inputs)"},
           {"threads", options.threads},
           {"subcycling", subcycling},
+          {"step_estimate", spec["plate"].value("step_estimate", "bound")},
           {"end_time_s", options.endTime},
           {"sph_particles", particles},
           {"plate_nodes", nodes},
@@ -101,7 +103,9 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
           {"shell_profile_s",
            {{"gradients", s["shell_gradients_time_s"]}, {"layers", s["shell_layers_time_s"]},
             {"forces", s["shell_forces_time_s"]}, {"integration", s["shell_integration_time_s"]},
-            {"fracture", s["shell_fracture_time_s"]}}},
+            {"fracture", s["shell_fracture_time_s"]}, {"spectrum", s["shell_spectrum_time_s"]}}},
+          {"shell_spectrum_measurements", s["shell_spectrum_measurements"]},
+          {"shell_max_frequency_rad_s", s["shell_max_frequency"]},
           {"fluid_particle_steps_per_s", particles * steps / fluidSeconds},
           {"shell_node_updates_per_s", nodes * fineSteps / shellSeconds},
           {"shell_point_evaluations_per_s", s["shell_point_evaluations"].get<double>() / shellSeconds},

@@ -26,6 +26,7 @@ struct TankSeedOptions {
   int threads = 1;
   double endTime = 2.5e-3;  ///< s
   int subcycling = -1;      ///< 1 on, 0 off, -1 the spec's default
+  std::string stepEstimate;  ///< "bound" or "spectral"; empty: the spec's default
 };
 
 /// Runs it and returns one JSON object: the wall time and its split, the fluid's particle-steps

@@ -60,7 +60,8 @@ int benchThreadsAndSteps(const Args& args, nlohmann::json (*run)(const Options&)
   return 0;
 }
 
-/// rupture bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]: the seed's TF14A5
+/// rupture bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]
+/// [--step-estimate bound|spectral]: the seed's TF14A5
 /// at the seed's inputs, run whole (bench/README.md).
 int benchTankSeed(const Args& args) {
   bench::TankSeedOptions options;
@@ -79,8 +80,13 @@ int benchTankSeed(const Args& args) {
       if (value != "on" && value != "off")
         return usageError("bench TANK-SEED: --subcycling = '" + value + "'; allowed: on, off");
       options.subcycling = value == "on" ? 1 : 0;
+    } else if (args[k] == "--step-estimate") {
+      if (value != "bound" && value != "spectral")
+        return usageError("bench TANK-SEED: --step-estimate = '" + value + "'; allowed: bound, spectral");
+      options.stepEstimate = value;
     } else {
-      return usageError("bench TANK-SEED: unknown option '" + args[k] + "'; allowed: --threads, --end-time, --subcycling");
+      return usageError("bench TANK-SEED: unknown option '" + args[k] +
+                        "'; allowed: --threads, --end-time, --subcycling, --step-estimate");
     }
     ++k;
   }

@@ -56,7 +56,7 @@ commands:
   bench W3 [--threads N] [--steps N]
   bench TANK [--threads N] [--steps N] [--spec FILE]
                                           tank-impact FXA5 (or FILE), fluid and shell timed apart
-  bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off]
+  bench TANK-SEED [--threads N] [--end-time s] [--subcycling on|off] [--step-estimate bound|spectral]
                                           the seed's TF14A5 at the seed's inputs, run whole
   bench STREAM [--threads N] [--megabytes M]
                                           memory bandwidth (copy, scale, add, triad over three

@@ -37,6 +37,12 @@ struct ShellParameters {
   double stepRotaryInertia = 1.0;
   double dampingRate = 0.0;              ///< c (1/s): mass-proportional damping, 0 for dynamics
   double courantFactor = 0.8;            ///< fraction of the estimated critical step, (0, 1]
+  /// How the critical step is estimated: Bound, from a wave number 2.5/Δ and the thickness ratio
+  /// (SphShell's constructor); Spectral, from the largest frequency of the discrete operator
+  /// itself, measured by power iteration for each group of terms (shell/shell_spectrum.cpp) and
+  /// measured again as fractures change it.
+  enum class StepEstimate { Bound, Spectral };
+  StepEstimate stepEstimate = StepEstimate::Bound;
   /// true: SphShell::advanceInterval steps each node's terms at its own power-of-two multiple of
   /// the finest step (multi-rate, shell/step_classes.hpp); false: every node at the finest step.
   bool subcycling = false;

@@ -207,9 +207,12 @@ SphShell::SphShell(const ShellNodes& nodes, const ShellParameters& params) : m_p
   const double omegaStepRotation = std::sqrt(stepRotation2);
   m_stableStep = m_params.courantFactor * 2.0 / std::max({omegaTranslation, omegaRotation, omegaStepRotation});
   computeOwnSteps();
+  m_boundPointStep = m_pointStep;
+  m_boundStableStep = m_stableStep;
   m_pointStrain.assign(n, {});
   m_newlyFractured.assign(n, 0);
   m_classes.assignSingleRate(n);
+  if (m_params.stepEstimate == ShellParameters::StepEstimate::Spectral) measureOwnSteps();
 }
 
 void SphShell::computePairHourglass() {
@@ -436,7 +439,8 @@ void SphShell::computeForces(double dt, int firing) {
   const std::size_t layers = m_rule.xi.size();
   const ElasticPlasticMaterial& mat = m_params.material;
   const double shearModulus = m_params.shearCorrection * mat.shearModulus();  // κ_s G
-  const bool plastic = m_params.plasticity, damaging = m_params.damage && m_params.plasticity;
+  // maxFrequency's probe: the elastic layers (its stiffness bounds a yielding one's), no damage.
+  const bool plastic = m_params.plasticity && !m_elasticProbe, damaging = m_params.damage && plastic;
   const bool shearYield = plastic && m_params.transverseShearYield;
   const std::uint32_t* pointOrder = m_classes.pointOrder.data();
   const std::size_t points = m_classes.pointsUpTo[static_cast<std::size_t>(firing)];
@@ -545,7 +549,7 @@ void SphShell::computeForces(double dt, int firing) {
           M[c] += w * z * f * sig[c];
         }
       }
-      if (broken >= m_layersToFracture) m_newlyFractured[i] = 1;
+      if (broken >= m_layersToFracture && !m_elasticProbe) m_newlyFractured[i] = 1;
       Mout = M;
       const double om = m_area[i] * weight;
       // Elastic shear: κ_s G t γ times the layers' mean (1 − D), Σ w_k (1 − D_k) / t.
@@ -676,9 +680,28 @@ void SphShell::step(double dt) {
 
 long SphShell::advanceInterval(double dt) {
   const std::size_t n = m_position.size();
+  // The spectral estimate is measured again once the cuts have rebuilt the gradients of enough
+  // nodes: a node that lost links can have a larger corrected gradient, hence a faster mode.
+  if (m_params.stepEstimate == ShellParameters::StepEstimate::Spectral &&
+      m_rebuiltSinceMeasure >= std::max<std::size_t>(1, n / kSpectrumRemeasureFraction))
+    measureOwnSteps();
   SubcyclingPlan plan;
+  // The multi-rate scheme's own steps: under the measured estimate, at most kMultiRateCourantFactor
+  // of each class's limit (shell/step_classes.hpp: the coarser classes' impulses); the bound's
+  // are far enough below the limit as they are.
+  const double multiRate = m_params.stepEstimate == ShellParameters::StepEstimate::Spectral
+                               ? std::min(1.0, kMultiRateCourantFactor / m_params.courantFactor)
+                               : 1.0;
+  std::vector<double> multiRatePointStep, multiRateNodeStep;
+  if (m_params.subcycling && multiRate < 1.0) {
+    multiRatePointStep = m_pointStep, multiRateNodeStep = m_ownStep;
+    for (double& h : multiRatePointStep) h *= multiRate;
+    for (double& h : multiRateNodeStep) h *= multiRate;
+  }
+  const auto& pointStep = multiRate < 1.0 ? multiRatePointStep : m_pointStep;
+  const auto& nodeStep = multiRate < 1.0 ? multiRateNodeStep : m_ownStep;
   if (m_params.subcycling) {
-    plan = planSubcycling(m_pointStep, m_stableStep, dt);
+    plan = planSubcycling(pointStep, m_stableStep, dt, multiRate * m_stableStep);
   } else {
     plan.fineSteps = std::max(1L, static_cast<long>(std::ceil(dt / m_stableStep * (1.0 - 1e-12))));
     plan.fineStep = dt / static_cast<double>(plan.fineSteps);
@@ -686,7 +709,7 @@ long SphShell::advanceInterval(double dt) {
   if (plan.coarsest == 0) {
     if (!m_classes.singleRate()) m_classes.assignSingleRate(n);
   } else {
-    m_classes.assign(m_ownStep, m_pointStep, plan, m_offset, m_neighbour);
+    m_classes.assign(nodeStep, pointStep, plan, m_offset, m_neighbour);
   }
   for (long k = 0; k < plan.fineSteps; ++k) fineStep(plan.fineStep, firingClass(k, plan.coarsest));
   return plan.fineSteps;
@@ -878,6 +901,7 @@ void SphShell::rebuildAfterCuts() {
   // Nodes left without a first-order gradient become fragments: their links go too.
   for (bool changed = true; changed;) {
     buildCorrections();
+    m_rebuiltSinceMeasure += m_position.size();
     changed = !cutFragmentLinks().empty();
   }
 }
@@ -889,6 +913,7 @@ void SphShell::rebuildAfterCuts(std::vector<std::size_t> touched) {
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     buildCorrections(touched);
+    m_rebuiltSinceMeasure += touched.size();
     touched = cutFragmentLinks();
   }
 }
@@ -1004,6 +1029,10 @@ void SphShell::exchangeState(StateArchive& archive) {
   archive.array("kernel", m_kernel);
   archive.value("point_evaluations", m_pointEvaluations);
   archive.record("timings", m_timings);
+  archive.array("point_step", m_pointStep), archive.array("node_step", m_ownStep);
+  archive.array("group_frequency", m_groupFrequency);
+  archive.value("rebuilt_since_measure", m_rebuiltSinceMeasure);
+  archive.value("spectrum_measurements", m_spectrumMeasurements);
   computePairHourglass();  // derived from the arrays just read (or written)
   m_maxPairs = 0;
   for (std::size_t i = 0; i + 1 < m_offset.size(); ++i) m_maxPairs = std::max(m_maxPairs, m_offset[i + 1] - m_offset[i]);

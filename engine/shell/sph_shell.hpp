@@ -44,6 +44,12 @@ namespace rupture {
 
 using ShellVec3 = std::array<double, 3>;
 
+/// The spectral step estimate (ShellParameters::StepEstimate::Spectral): power iterations per
+/// measurement of a group's largest frequency, and the share of the nodes (1/this) whose
+/// gradients a fracture must have rebuilt before advanceInterval measures again.
+inline constexpr int kSpectrumIterations = 30;
+inline constexpr std::size_t kSpectrumRemeasureFraction = 64;
+
 class SphShell {
 public:
   SphShell(const ShellNodes& nodes, const ShellParameters& params);
@@ -82,6 +88,19 @@ public:
   /// stableTimeStep()⌉ equal steps. Multi-rate: K fine steps, each stress point and hourglass pair
   /// evaluated every 2^c of them by its class (shell/step_classes.hpp). Returns K.
   long advanceInterval(double dt);
+  /// The largest angular frequency (rad/s) of the shell linearised about its current state, with
+  /// the elastic stiffness of its layers (an upper bound for one that yields or softens), from
+  /// the force terms of the stress points with `pointTerm[j]` set and the hourglass pairs with a
+  /// node that has `nodeTerm[i]` set: power iteration on M⁻¹K over the free nodes' five degrees
+  /// of freedom (translation, director rotation), K applied by differences of the internal forces
+  /// (shell/shell_spectrum.cpp). The state is left as it was.
+  double maxFrequency(const std::vector<std::uint8_t>& pointTerm, const std::vector<std::uint8_t>& nodeTerm,
+                      int iterations);
+  /// The largest frequency (rad/s) of each group of terms the spectral step estimate measured
+  /// (ShellParameters::StepEstimate::Spectral; finest group first, see measureOwnSteps), and how
+  /// many times it has measured them; empty and 0 under the bound.
+  const std::vector<double>& measuredFrequencies() const { return m_groupFrequency; }
+  std::int64_t spectrumMeasurements() const { return m_spectrumMeasurements; }
   /// The classes of the last interval (all 0 after step() or a single-rate interval).
   const ShellStepClasses& stepClasses() const { return m_classes; }
   /// Stress-point evaluations so far (each point once per firing of its class): with
@@ -91,7 +110,8 @@ public:
   /// gradients and strains, the through-thickness layers (return mapping, damage, resultants),
   /// the forces (stress divergence, transverse shear, hourglass, pressure), the integrator, and
   /// fracture (cutting links and rebuilding the corrected gradients).
-  struct Timings { double gradients = 0, layers = 0, forces = 0, integration = 0, fracture = 0; };
+  /// spectrum: the spectral step estimate's measurements (maxFrequency).
+  struct Timings { double gradients = 0, layers = 0, forces = 0, integration = 0, fracture = 0, spectrum = 0; };
   const Timings& timings() const { return m_timings; }
   /// `steps` steps of size dt; polls `cancel` every step (throws RunCancelled).
   void advance(int steps, double dt, const Cancellation& cancel);
@@ -166,6 +186,7 @@ private:
   void computeForces(double dt, int firing);
   void fineStep(double dt, int firing);
   void computeOwnSteps();
+  void measureOwnSteps();
   /// A_α and G_α of node i at the current positions and directors (the identity and zero for a
   /// node without a gradient).
   void currentGradients(std::size_t i, std::array<double, 6>& A, std::array<double, 6>& G) const;
@@ -205,6 +226,14 @@ private:
   ShellStepClasses m_classes;
   std::uint64_t m_pointEvaluations = 0;
   Timings m_timings;
+  bool m_elasticProbe = false;  ///< computeForces for maxFrequency: elastic layers, no state changes
+  // The spectral step estimate: the bound's own steps (which group the terms), the frequency
+  // measured for each group, and the nodes whose gradients were rebuilt since it was measured.
+  std::vector<double> m_boundPointStep;
+  double m_boundStableStep = 0.0;
+  std::vector<double> m_groupFrequency;
+  std::size_t m_rebuiltSinceMeasure = 0;
+  std::int64_t m_spectrumMeasurements = 0;
 
   // Per node and layer (node-major, m_rule.xi.size() layers).
   std::vector<std::array<double, 3>> m_plasticStrainTensor;

@@ -27,15 +27,18 @@ void sortByClass(const std::vector<std::uint8_t>& cls, std::vector<std::uint32_t
 
 }  // namespace
 
-SubcyclingPlan planSubcycling(const std::vector<double>& pointStep, double stableStep, double interval) {
+SubcyclingPlan planSubcycling(const std::vector<double>& pointStep, double stableStep, double interval,
+                              double multiRateStep) {
   SubcyclingPlan best;
-  const long single = std::max(1L, static_cast<long>(std::ceil(interval / stableStep * (1.0 - 1e-12))));
+  auto steps = [&](double h) { return std::max(1L, static_cast<long>(std::ceil(interval / h * (1.0 - 1e-12)))); };
+  const long single = steps(stableStep);
+  const long finest = multiRateStep > 0.0 ? steps(multiRateStep) : single;
   best.fineSteps = single;
   best.fineStep = interval / static_cast<double>(single);
   double bestCost = static_cast<double>(single) * static_cast<double>(pointStep.size());
-  for (int C = 1; C <= kMaxStepClass && (1L << C) <= single; ++C) {
+  for (int C = 1; C <= kMaxStepClass && (1L << C) <= finest; ++C) {
     const long block = 1L << C;
-    const long K = (single + block - 1) / block * block;
+    const long K = (finest + block - 1) / block * block;
     const double fine = interval / static_cast<double>(K);
     double cost = 0.0;
     for (double h : pointStep) cost += std::ldexp(static_cast<double>(K), -classOf(h, fine, C));

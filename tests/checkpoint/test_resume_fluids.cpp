@@ -110,6 +110,11 @@ TEST(ResumeFluids, TankImpactWithPlateContactAndCracks) {
   rupture::testing::ScratchDir dir;
   const nlohmann::json summary = expectResumedRunMatches(spec, dir.path());
   EXPECT_GT(summary.value("shell_steps", std::int64_t{0}), 0);
+  // The measured step estimate: its steps and frequencies are part of the state.
+  spec["plate"]["step_estimate"] = "spectral";
+  rupture::testing::ScratchDir spectralDir;
+  const nlohmann::json spectral = expectResumedRunMatches(spec, spectralDir.path());
+  EXPECT_GT(spectral.value("shell_spectrum_measurements", std::int64_t{0}), 0);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
                           "shell_points_per_class", "shell_point_evaluations", "wall_seconds", "fluid_seconds",
                           "shell_seconds", "contact_seconds", "shell_profile_s", "fluid_particle_steps_per_s",
                           "shell_node_updates_per_s", "shell_point_evaluations_per_s", "time_to_fracture_s",
-                          "first_pressure_peak_pa", "host"})
+                          "first_pressure_peak_pa", "step_estimate", "shell_spectrum_measurements",
+                          "shell_max_frequency_rad_s", "host"})
     EXPECT_TRUE(out.contains(key)) << key;
   // The seed's plate: 0.5 mm rings at the step, 2 mm elsewhere (docs/tank-impact.md: 13,034 nodes).
   EXPECT_EQ(out["plate_nodes"], 13034);
@@ -41,11 +42,25 @@ TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
   EXPECT_EQ(offOut["shell_coarsest_class"], 0);
   EXPECT_EQ(offOut["shell_point_evaluations"].get<double>(),
             offOut["plate_nodes"].get<double>() * offOut["shell_fine_steps"].get<double>());
+  EXPECT_EQ(offOut["step_estimate"], "bound");
+  EXPECT_EQ(offOut["shell_spectrum_measurements"], 0);
+  EXPECT_TRUE(offOut["shell_max_frequency_rad_s"].is_null());
+
+  // The measured spectrum: fewer, longer steps (5.8 times the bound's frequency on this plate).
+  const auto measured = runCli("bench TANK-SEED --end-time 1e-6 --subcycling off --step-estimate spectral --threads 1");
+  ASSERT_EQ(measured.exitCode, 0) << measured.err;
+  const auto spectral = nlohmann::json::parse(measured.out);
+  EXPECT_EQ(spectral["step_estimate"], "spectral");
+  EXPECT_GE(spectral["shell_spectrum_measurements"].get<int>(), 1);
+  EXPECT_GT(spectral["shell_max_frequency_rad_s"].get<double>(), 0.0);
+  EXPECT_GE(spectral["shell_profile_s"]["spectrum"].get<double>(), 0.0);
+  EXPECT_LT(3.0 * spectral["shell_fine_steps"].get<double>(), offOut["shell_fine_steps"].get<double>());
 }
 
 TEST(CliBenchTankSeed, BadOptionsExitTwoNamingThem) {
   for (const auto& [args, name] : {std::pair{"--end-time 0", "--end-time"}, std::pair{"--end-time 1", "--end-time"},
                                    std::pair{"--subcycling maybe", "--subcycling"}, std::pair{"--threads 0", "--threads"},
+                                   std::pair{"--step-estimate exact", "--step-estimate"},
                                    std::pair{"--steps 3", "--steps"}}) {
     const auto r = runCli(std::string("bench TANK-SEED ") + args);
     EXPECT_EQ(r.exitCode, 2) << args;

@@ -60,6 +60,12 @@ TEST(CliTankImpact, BadFieldExitsTwoNamingIt) {
   const auto r = runCli("run " + writeSpec(spec, "cli-tank-bad.json") + " -o /dev/null --threads 1");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("contact.method"), std::string::npos) << r.err;
+  nlohmann::json estimate = tinyTank();
+  estimate["plate"]["step_estimate"] = "exact";
+  const auto e = runCli("run " + writeSpec(estimate, "cli-tank-bad-estimate.json") + " -o /dev/null --threads 1");
+  EXPECT_EQ(e.exitCode, 2);
+  EXPECT_NE(e.err.find("plate.step_estimate"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("spectral"), std::string::npos) << "names what is allowed: " << e.err;
 }
 
 }  // namespace

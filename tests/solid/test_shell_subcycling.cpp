@@ -1,6 +1,8 @@
 // Multi-rate stepping of the SPH shell (shell/step_classes.hpp): a plate refined about a thickness
 // step, whose finest nodes set the single-rate step, against the single-rate scheme; the
-// conservation laws through the class interfaces; bitwise the same on one and two threads.
+// conservation laws through the class interfaces; bitwise the same on one and two threads. The
+// spectral step estimate (shell/shell_spectrum.cpp): its frequency is the central difference's
+// stability limit, and its longer steps give the bound's results.
 #include <gtest/gtest.h>
 
 #include <omp.h>
@@ -34,11 +36,14 @@ ShellNodes steppedRefinedPlate(bool clamped = true) {
   return nodes;
 }
 
-ShellParameters elasticPlate(bool subcycling) {
+using StepEstimate = ShellParameters::StepEstimate;
+
+ShellParameters elasticPlate(bool subcycling, StepEstimate estimate = StepEstimate::Bound) {
   ShellParameters p;
   p.thickness = kThin;
   p.plasticity = false;
   p.subcycling = subcycling;
+  p.stepEstimate = estimate;
   return p;
 }
 
@@ -57,10 +62,11 @@ struct PulseHistory {
 
 /// A half-sine pressure pulse of amplitude p over the spot face (r < kSpotRadius), dead loads held
 /// constant over each interval (as the fluid's impulses are), then free vibration.
-PulseHistory pressurePulse(bool subcycling, double duration, double total) {
+PulseHistory pressurePulse(bool subcycling, double duration, double total, StepEstimate estimate = StepEstimate::Bound) {
   const ShellNodes nodes = steppedRefinedPlate();
-  SphShell shell(nodes, elasticPlate(subcycling));
-  const double dt = interval(shell), pressure = 2.0e5;
+  SphShell shell(nodes, elasticPlate(subcycling, estimate));
+  // The same intervals whatever the estimate: the bound's 32 single-rate steps.
+  const double dt = interval(SphShell(nodes, elasticPlate(false))), pressure = 2.0e5;
   PulseHistory out;
   out.nodes = shell.size();
   const int intervals = static_cast<int>(total / dt);
@@ -82,9 +88,14 @@ PulseHistory pressurePulse(bool subcycling, double duration, double total) {
       for (int a = 0; a < 3; ++a) out.work += force[i][a] * (shell.positions()[i][a] - before[i][a]);
     out.centre.push_back(shell.deflection(0));
   }
-  out.kinetic = shell.kineticEnergy();
-  out.strain = shell.strainEnergy();
+  // The energies at the end: the strain energy of x_{n+1} and the kinetic energy at the same time,
+  // the mean of the leapfrog's staggered velocities v_{n+1/2} and v_{n+3/2} (one more fine step,
+  // free of load: the pulse is over), whose error is second order in the step, not first.
   out.evaluations = shell.pointEvaluations();
+  out.strain = shell.strainEnergy();
+  const double kineticBefore = shell.kineticEnergy();
+  shell.step(dt / static_cast<double>(out.fineSteps / intervals));
+  out.kinetic = 0.5 * (kineticBefore + shell.kineticEnergy());
   return out;
 }
 
@@ -154,6 +165,97 @@ TEST(ShellSubcycling, PressurePulseFollowsTheSingleRateAndKeepsTheEnergy) {
   EXPECT_LT(multi.evaluations, single.evaluations);
 }
 
+TEST(ShellSubcycling, SpectralEstimateFollowsTheSingleRateAndKeepsTheEnergy) {
+  // The same pulse with the steps from the measured spectrum (several times the bound's), single
+  // rate and subcycled, against the bound's single rate.
+  const double duration = 0.075e-3, total = 0.15e-3;
+  const PulseHistory reference = pressurePulse(false, duration, total);
+  for (bool subcycling : {false, true}) {
+    const PulseHistory spectral = pressurePulse(subcycling, duration, total, StepEstimate::Spectral);
+    ASSERT_EQ(reference.centre.size(), spectral.centre.size());
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t k = 0; k < reference.centre.size(); ++k) {
+      largest = std::max(largest, std::fabs(reference.centre[k]));
+      difference = std::max(difference, std::fabs(spectral.centre[k] - reference.centre[k]));
+    }
+    EXPECT_LT(difference / largest, 0.01) << (subcycling ? "subcycled" : "single rate") << ": the centre's deflection history";
+    const double balance = spectral.kinetic + spectral.strain - spectral.work;
+    EXPECT_LT(std::fabs(balance) / spectral.work, 0.005) << (subcycling ? "subcycled" : "single rate") << ": energy balance";
+    EXPECT_LT(2 * spectral.fineSteps, reference.fineSteps) << "the measured step is at least twice the bound's";
+  }
+}
+
+/// Kinetic energy after `steps` single-rate steps of dt from small random velocities (every mode
+/// excited), relative to the start's; the plate elastic, free of load.
+double energyGrowth(const ShellNodes& nodes, double dt, int steps) {
+  SphShell shell(nodes, elasticPlate(false));
+  std::uint64_t state = 88172645463325252ULL;
+  auto next = [&]() {  // xorshift: a fixed, portable sequence
+    state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+    return static_cast<double>(state % 2000001) / 1.0e6 - 1.0;
+  };
+  for (std::size_t i = 0; i < shell.size(); ++i)
+    if (!shell.clamped(i)) shell.setNodeState(i, shell.positions()[i], {0.0, 0.0, 1.0}, {1e-3 * next(), 1e-3 * next(), 1e-3 * next()});
+  const double before = shell.kineticEnergy();
+  for (int k = 0; k < steps; ++k) shell.step(dt);
+  return shell.kineticEnergy() / before;
+}
+
+TEST(ShellSpectrum, MeasuredFrequencyIsTheCentralDifferencesStabilityLimit) {
+  // ω_max dt ≤ 2: the central difference is stable just below 2/ω_max and blows up just above,
+  // if ω_max is the operator's largest frequency. The bound is above it.
+  const ShellNodes nodes = steppedRefinedPlate();
+  SphShell shell(nodes, elasticPlate(false));
+  const std::vector<std::uint8_t> all(shell.size(), 1);
+  const double omega = shell.maxFrequency(all, all, 100);
+  const double bound = 2.0 * ShellParameters{}.courantFactor / shell.stableTimeStep();
+  EXPECT_LT(omega, bound) << "the bound bounds";
+  EXPECT_GT(omega, 0.1 * bound);
+  const double stable = energyGrowth(nodes, 0.97 * 2.0 / omega, 2000);
+  const double unstable = energyGrowth(nodes, 1.05 * 2.0 / omega, 2000);
+  EXPECT_LT(stable, 10.0) << "at 0.97 of 2/ω_max";
+  EXPECT_TRUE(!std::isfinite(unstable) || unstable > 1e6) << "at 1.05 of 2/ω_max: " << unstable;
+  // Fewer iterations fall short of the top of the spectrum, never above it.
+  EXPECT_LE(shell.maxFrequency(all, all, 30), omega * (1.0 + 1e-9));
+  EXPECT_GT(shell.maxFrequency(all, all, 30), 0.99 * omega);
+}
+
+TEST(ShellSpectrum, MeasuringLeavesTheStateAsItWas) {
+  const ShellNodes nodes = steppedRefinedPlate();
+  ShellParameters p = elasticPlate(true);
+  p.plasticity = true;
+  p.damage = true;
+  SphShell a(nodes, p), b(nodes, p);
+  a.setPressure(4.0e6), b.setPressure(4.0e6);
+  const double dt = interval(a);
+  for (int k = 0; k < 3; ++k) a.advanceInterval(dt), b.advanceInterval(dt);
+  const std::vector<std::uint8_t> all(a.size(), 1);
+  EXPECT_GT(a.maxFrequency(all, all, 10), 0.0);
+  for (int k = 0; k < 3; ++k) a.advanceInterval(dt), b.advanceInterval(dt);
+  EXPECT_EQ(a.pointEvaluations(), b.pointEvaluations());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(a.positions()[i][c], b.positions()[i][c]) << "node " << i;
+      ASSERT_EQ(a.normals()[i][c], b.normals()[i][c]) << "node " << i;
+    }
+}
+
+TEST(ShellSpectrum, GroupsKeepTheBoundsOrderAndTheFinestSetsTheStep) {
+  const ShellNodes nodes = steppedRefinedPlate();
+  SphShell bound(nodes, elasticPlate(true)), spectral(nodes, elasticPlate(true, StepEstimate::Spectral));
+  ASSERT_EQ(spectral.spectrumMeasurements(), 1);
+  const auto& w = spectral.measuredFrequencies();
+  ASSERT_GE(w.size(), 2u);
+  for (std::size_t g = 1; g < w.size(); ++g) EXPECT_LE(w[g], w[g - 1]) << "a coarser group is no stiffer";
+  EXPECT_DOUBLE_EQ(spectral.stableTimeStep(), ShellParameters{}.courantFactor * 2.0 / w.front());
+  EXPECT_GT(spectral.stableTimeStep(), 2.0 * bound.stableTimeStep());
+  for (std::size_t i = 0; i < spectral.size(); ++i) {
+    if (spectral.clamped(i)) continue;
+    EXPECT_GE(spectral.pointStableStep(i), spectral.stableTimeStep());
+    EXPECT_LE(spectral.nodeStableStep(i), spectral.pointStableStep(i)) << "a node's step is its finest term's";
+  }
+}
+
 struct Momentum {
   std::array<double, 3> linear{}, angular{};
   double scale = 0.0;  ///< Σ m |v| (linear) and Σ m |x| |v| (angular), for relative errors
@@ -217,19 +319,22 @@ TEST(ShellSubcycling, ResultIsIndependentOfTheThreadCount) {
   ShellParameters p = elasticPlate(true);
   p.plasticity = true;
   p.damage = true;
-  auto run = [&](int threads) {
-    omp_set_num_threads(threads);
-    SphShell shell(nodes, p);
-    shell.setPressure(4.0e6);
-    const double dt = interval(shell);
-    for (int k = 0; k < 10; ++k) shell.advanceInterval(dt);
-    return shell.positions();
-  };
-  const int previous = omp_get_max_threads();
-  const auto one = run(1), two = run(2);
-  omp_set_num_threads(previous);
-  for (std::size_t i = 0; i < one.size(); ++i)
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(one[i][c], two[i][c]) << "node " << i;
+  for (StepEstimate estimate : {StepEstimate::Bound, StepEstimate::Spectral}) {
+    p.stepEstimate = estimate;
+    auto run = [&](int threads) {
+      omp_set_num_threads(threads);
+      SphShell shell(nodes, p);
+      shell.setPressure(4.0e6);
+      const double dt = interval(shell);
+      for (int k = 0; k < 10; ++k) shell.advanceInterval(dt);
+      return shell.positions();
+    };
+    const int previous = omp_get_max_threads();
+    const auto one = run(1), two = run(2);
+    omp_set_num_threads(previous);
+    for (std::size_t i = 0; i < one.size(); ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(one[i][c], two[i][c]) << "node " << i;
+  }
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ inline const std::set<std::string>& howARunRan() {
   static const std::set<std::string> names = {"wall_time_s",   "from_cache",       "sample_from_cache",
                                               "fluid_time_s",  "shell_time_s",     "contact_time_s",
                                               "shell_gradients_time_s", "shell_layers_time_s", "shell_forces_time_s",
-                                              "shell_integration_time_s", "shell_fracture_time_s",
+                                              "shell_integration_time_s", "shell_fracture_time_s", "shell_spectrum_time_s",
                                               "checkpoint_resumes", "resumed_from_steps",
                                               "started_utc",   "finished_utc"};
   return names;

@@ -308,6 +308,10 @@ RunOutcome runTankImpact(const TankImpactSpec& spec, const nlohmann::json& json,
       {"shell_forces_time_s", plate.timings().forces},
       {"shell_integration_time_s", plate.timings().integration},
       {"shell_fracture_time_s", plate.timings().fracture},
+      {"shell_spectrum_time_s", plate.timings().spectrum},
+      {"shell_spectrum_measurements", plate.spectrumMeasurements()},
+      {"shell_max_frequency", nullUnless(!plate.measuredFrequencies().empty(),
+                                         plate.measuredFrequencies().empty() ? 0.0 : plate.measuredFrequencies().front())},
       {"contact_method", contactMethodName(spec.contact.method)}};
   // The seed's measurements on this specimen, beside ours (null where the seed gives none).
   const SeedSpecimen* seed = spec.specimen.empty() ? nullptr : findSeedSpecimen(spec.specimen);

@@ -122,6 +122,9 @@ PlateSpec parsePlate(const SpecReader& root, double innerDiameter, double fluidS
   p.shell.hourglassCoefficient = node->number("hourglass_coefficient", Range::closed(0.0, 1.0), "1", p.shell.hourglassCoefficient);
   p.shell.courantFactor = node->number("courant_factor", {0.0, 1.0, true, false}, "1", p.shell.courantFactor);
   p.shell.subcycling = node->boolean("subcycling", p.shell.subcycling);
+  p.shell.stepEstimate = node->choice("step_estimate", {"bound", "spectral"}, "bound") == "spectral"
+                             ? ShellParameters::StepEstimate::Spectral
+                             : ShellParameters::StepEstimate::Bound;
   p.precrack = parsePrecrack(*node);
   p.bottom->clampDiameter = kClampDiameterRatio * p.diameter;
   p.bottom->stepSpacing = p.spacing;
@@ -324,6 +327,7 @@ nlohmann::json toJson(const TankImpactSpec& s) {
                 {"hourglass_coefficient", sh.hourglassCoefficient},
                 {"courant_factor", sh.courantFactor},
                 {"subcycling", sh.subcycling},
+                {"step_estimate", sh.stepEstimate == ShellParameters::StepEstimate::Spectral ? "spectral" : "bound"},
                 {"precrack", precrack}};
   j["plate"]["clamp"] = p.bottom ? "bottom" : "rim";
   if (p.bottom) j["plate"]["bottom"] = {{"thickness", p.bottom->thickness}, {"clamp_diameter", p.bottom->clampDiameter},
