@@ -176,9 +176,11 @@ void SphShell::measureOwnSteps() {
   // Groups: the bound's classes about its single-rate step, g = ⌊log2(h_j / h_min)⌋ (at most
   // 2^kMaxStepClass apart, as the classes): the bound orders the terms by stiffness well, it is
   // its scale that is far off (5.8 times on the seed's TF14A5 plate, docs/shell-and-damage.md).
+  // The single rate needs only the largest frequency of them all: one group, the whole operator
+  // (a measurement of 13,034 points per iteration on that plate instead of 30,800 over its four).
   auto groupOf = [&](double h) {
     int g = 0;
-    while (g < kMaxStepClass && std::ldexp(m_boundStableStep, g + 1) <= h) ++g;
+    while (m_params.subcycling && g < kMaxStepClass && std::ldexp(m_boundStableStep, g + 1) <= h) ++g;
     return g;
   };
   std::vector<int> pointGroup(n), nodeGroup(n, kMaxStepClass);

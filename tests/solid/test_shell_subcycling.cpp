@@ -254,6 +254,11 @@ TEST(ShellSpectrum, GroupsKeepTheBoundsOrderAndTheFinestSetsTheStep) {
     EXPECT_GE(spectral.pointStableStep(i), spectral.stableTimeStep());
     EXPECT_LE(spectral.nodeStableStep(i), spectral.pointStableStep(i)) << "a node's step is its finest term's";
   }
+  // The single rate measures the whole operator alone: the finest group's frequency and step.
+  SphShell single(nodes, elasticPlate(false, StepEstimate::Spectral));
+  ASSERT_EQ(single.measuredFrequencies().size(), 1u);
+  EXPECT_EQ(single.measuredFrequencies().front(), w.front());
+  EXPECT_EQ(single.stableTimeStep(), spectral.stableTimeStep());
 }
 
 struct Momentum {
