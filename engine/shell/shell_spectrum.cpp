@@ -5,30 +5,24 @@
 // the thin node's mass. Both are bounds, not the operator's spectrum: the kernel's support spans
 // 2.6 Δ, so the gradients filter the shortest waves, and a thin node beside a thick stress point
 // sits where that point's kernel gradient is weak. The central difference is stable when
-// ω_max dt ≤ 2 with ω_max the largest frequency of the linearised system M⁻¹K, which is what the
-// global estimate of explicit FE codes measures (power iteration on the assembled operator, as
-// Abaqus/Explicit's global time-step estimator does; Belytschko, Liu & Moran, Nonlinear Finite
-// Elements, 2000, §6.3.4); here K is applied by differences of the internal forces about the
-// current state, with the layers elastic (the tangent of a layer that yields or softens is
-// smaller, so its frequencies are not higher).
+// ω_max dt ≤ 2 with ω_max the largest frequency of the linearised system M⁻¹K (Belytschko, Liu &
+// Moran, Nonlinear Finite Elements, 2000, ch. 6). It is measured here by power iteration, K applied
+// by differences of the internal forces about the current state, with the layers elastic (the
+// tangent of a layer that yields or softens is smaller, so its frequencies are not higher).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
 #include "shell/sph_shell.hpp"
+#include "shell/shell_vector.hpp"
 
 namespace rupture {
 namespace {
-
-ShellVec3 crossProduct(const ShellVec3& a, const ShellVec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dotProduct(const ShellVec3& a, const ShellVec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /// A vector of the shell's free degrees of freedom: a translation u_i (m) and a director rotation
 /// θ_i (rad, perpendicular to n_i) per node.
@@ -77,7 +71,7 @@ double SphShell::maxFrequency(const std::vector<std::uint8_t>& pointTerm, const 
       m_position[i] = position[i];
       m_normal[i] = normal[i];
       if (!v) continue;
-      const ShellVec3 turn = crossProduct(v->theta[i], normal[i]);
+      const ShellVec3 turn = cross(v->theta[i], normal[i]);
       double len = 0.0;
       for (int a = 0; a < 3; ++a) {
         m_position[i][a] += eps * v->u[i][a];
@@ -97,8 +91,8 @@ double SphShell::maxFrequency(const std::vector<std::uint8_t>& pointTerm, const 
     for (std::size_t i = 0; i < n; ++i) {
       if (m_clamped[i]) continue;
       out.u[i] = m_force[i];
-      ShellVec3 torque = crossProduct(m_normal[i], m_directorForce[i]);
-      const double along = dotProduct(torque, normal[i]);
+      ShellVec3 torque = cross(m_normal[i], m_directorForce[i]);
+      const double along = dot(torque, normal[i]);
       for (int a = 0; a < 3; ++a) torque[a] -= along * normal[i][a];
       out.theta[i] = torque;
     }
@@ -106,7 +100,7 @@ double SphShell::maxFrequency(const std::vector<std::uint8_t>& pointTerm, const 
   auto massNorm = [&](const Motion& v) {
     double sum = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      if (!m_clamped[i]) sum += m_mass[i] * dotProduct(v.u[i], v.u[i]) + m_inertia[i] * dotProduct(v.theta[i], v.theta[i]);
+      if (!m_clamped[i]) sum += m_mass[i] * dot(v.u[i], v.u[i]) + m_inertia[i] * dot(v.theta[i], v.theta[i]);
     return std::sqrt(sum);
   };
 
@@ -122,7 +116,7 @@ double SphShell::maxFrequency(const std::vector<std::uint8_t>& pointTerm, const 
     if (m_clamped[i]) continue;
     for (int a = 0; a < 3; ++a) v.u[i][a] = uniform(random) / std::sqrt(m_mass[i]);
     ShellVec3 r = {uniform(random), uniform(random), uniform(random)};
-    const double along = dotProduct(r, normal[i]);
+    const double along = dot(r, normal[i]);
     for (int a = 0; a < 3; ++a) v.theta[i][a] = (r[a] - along * normal[i][a]) / std::sqrt(m_inertia[i]);
   }
   const double spacing = *std::min_element(m_nodeSpacing.begin(), m_nodeSpacing.end());
@@ -133,8 +127,8 @@ double SphShell::maxFrequency(const std::vector<std::uint8_t>& pointTerm, const 
     double largest = 0.0, turn = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       for (int a = 0; a < 3; ++a) v.u[i][a] /= norm, v.theta[i][a] /= norm;
-      largest = std::max(largest, std::sqrt(dotProduct(v.u[i], v.u[i])));
-      turn = std::max(turn, std::sqrt(dotProduct(v.theta[i], v.theta[i])));
+      largest = std::max(largest, std::sqrt(dot(v.u[i], v.u[i])));
+      turn = std::max(turn, std::sqrt(dot(v.theta[i], v.theta[i])));
     }
     // A perturbation of 1e-7 of the finest spacing (and 1e-7 rad): linear to round-off, well above it.
     const double eps = 1e-7 * std::min(largest > 0.0 ? spacing / largest : 1e300, turn > 0.0 ? 1.0 / turn : 1e300);

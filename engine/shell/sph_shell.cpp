@@ -7,15 +7,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "shell/shell_vector.hpp"
 #include "shell/wendland_kernel.hpp"
 
 namespace rupture {
 namespace {
 
-inline ShellVec3 cross(const ShellVec3& a, const ShellVec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double dot(const ShellVec3& a, const ShellVec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline ShellVec3 column(const std::array<double, 6>& m, int alpha) {
   return {m[3 * alpha], m[3 * alpha + 1], m[3 * alpha + 2]};
 }

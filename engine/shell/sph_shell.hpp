@@ -37,12 +37,12 @@
 #include "shell/shell_nodes.hpp"
 #include "shell/shell_parameters.hpp"
 #include "shell/step_classes.hpp"
+#include "shell/shell_vector.hpp"
 #include "shell/through_thickness.hpp"
 #include "rupture/state_archive.hpp"
 
 namespace rupture {
 
-using ShellVec3 = std::array<double, 3>;
 
 /// The spectral step estimate (ShellParameters::StepEstimate::Spectral): power iterations per
 /// measurement of a group's largest frequency, and the share of the nodes (1/this) whose

@@ -58,6 +58,7 @@ struct PulseHistory {
   std::uint64_t evaluations = 0, expectedEvaluations = 0;
   std::size_t nodes = 0;
   long fineSteps = 0;
+  int coarsest = 0;  ///< the coarsest class of the last interval (0: it ran single-rate)
 };
 
 /// A half-sine pressure pulse of amplitude p over the spot face (r < kSpotRadius), dead loads held
@@ -81,6 +82,7 @@ PulseHistory pressurePulse(bool subcycling, double duration, double total, StepE
     const long fine = shell.advanceInterval(dt);
     out.fineSteps += fine;
     const ShellStepClasses& classes = shell.stepClasses();
+    out.coarsest = classes.coarsest;
     for (int c = 0; c <= classes.coarsest; ++c)
       out.expectedEvaluations += (classes.pointsUpTo[c] - (c > 0 ? classes.pointsUpTo[c - 1] : 0)) * static_cast<std::uint64_t>(fine >> c);
     // A force constant over the interval does the work F·Δx exactly.
@@ -182,7 +184,39 @@ TEST(ShellSubcycling, SpectralEstimateFollowsTheSingleRateAndKeepsTheEnergy) {
     const double balance = spectral.kinetic + spectral.strain - spectral.work;
     EXPECT_LT(std::fabs(balance) / spectral.work, 0.005) << (subcycling ? "subcycled" : "single rate") << ": energy balance";
     EXPECT_LT(2 * spectral.fineSteps, reference.fineSteps) << "the measured step is at least twice the bound's";
+    // On this plate the groups' measured frequencies lie within 8 % of each other (5.22, 4.99 and
+    // 4.85 × 10⁶ rad/s): the single rate's 7 fine steps an interval cost less than any multi-rate
+    // plan at kMultiRateCourantFactor of the limit, and the planner takes it. The multi-rate plans
+    // on measured steps: StepClasses.MultiRateStepSetsTheSubcycledPlansFineStep.
+    EXPECT_EQ(spectral.coarsest, 0) << (subcycling ? "subcycled" : "single rate");
   }
+}
+
+TEST(StepClasses, MultiRateStepSetsTheSubcycledPlansFineStep) {
+  // 100 stiff points (own step 1) and 900 soft ones (8) over an interval of 16: the single rate
+  // takes 16 steps of 1 (16,000 evaluations); subcycled, 16 fine steps with the soft points at
+  // class 3 (3,400).
+  std::vector<double> steps(1000, 8.0);
+  std::fill(steps.begin(), steps.begin() + 100, 1.0);
+  const SubcyclingPlan bound = planSubcycling(steps, 1.0, 16.0);
+  EXPECT_EQ(bound.fineSteps, 16);
+  EXPECT_EQ(bound.coarsest, 3);
+  // The same points at half their steps for the multi-rate scheme (the measured estimate's
+  // kMultiRateCourantFactor), the single rate still at 1: the subcycled plans take K from the
+  // finest multi-rate step, 32 fine steps of 0.5, and no class steps beyond its points' own.
+  std::vector<double> half = steps;
+  for (double& h : half) h *= 0.5;
+  const SubcyclingPlan measured = planSubcycling(half, 1.0, 16.0, 0.5);
+  EXPECT_EQ(measured.fineSteps, 32);
+  EXPECT_DOUBLE_EQ(measured.fineStep, 0.5);
+  EXPECT_EQ(measured.coarsest, 3);
+  EXPECT_LE(std::ldexp(measured.fineStep, measured.coarsest), 4.0);
+  // Where the soft points are barely softer, no subcycled plan at half the steps beats the
+  // single rate at the full one: 16 steps, class 0.
+  std::vector<double> close(1000, 0.5 * 1.1);
+  const SubcyclingPlan single = planSubcycling(close, 1.0, 16.0, 0.5);
+  EXPECT_EQ(single.fineSteps, 16);
+  EXPECT_EQ(single.coarsest, 0);
 }
 
 /// Kinetic energy after `steps` single-rate steps of dt from small random velocities (every mode
