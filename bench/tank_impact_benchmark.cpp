@@ -74,7 +74,9 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   spec["run"].erase("snapshot_times");
   if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;
   if (!options.stepEstimate.empty()) spec["plate"]["step_estimate"] = options.stepEstimate;
-  const bool subcycling = parseTankImpactSpec(spec).plate.shell.subcycling;  // the option as the run reads it
+  const ShellParameters& shell = parseTankImpactSpec(spec).plate.shell;  // the options as the run reads them
+  const bool subcycling = shell.subcycling;
+  const bool spectral = shell.stepEstimate == ShellParameters::StepEstimate::Spectral;
   RunControl control;
   const auto start = std::chrono::steady_clock::now();
   const RunOutcome outcome = runInTemporaryFile(spec, control, options.threads);
@@ -86,7 +88,7 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   return {{"workload", "TANK-SEED (tank-impact TF14A5 at the seed's inputs)"},
           {"threads", options.threads},
           {"subcycling", subcycling},
-          {"step_estimate", spec["plate"].value("step_estimate", "bound")},
+          {"step_estimate", spectral ? "spectral" : "bound"},
           {"end_time_s", options.endTime},
           {"sph_particles", particles},
           {"plate_nodes", nodes},

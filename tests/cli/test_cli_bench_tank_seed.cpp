@@ -13,7 +13,7 @@ namespace {
 using rupture::testing::runCli;
 
 TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
-  const auto r = runCli("bench TANK-SEED --end-time 1e-6 --subcycling on --threads 1");
+  const auto r = runCli("bench TANK-SEED --end-time 1e-6 --subcycling on --step-estimate bound --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto out = nlohmann::json::parse(r.out);
   for (const char* key : {"workload", "threads", "subcycling", "end_time_s", "sph_particles", "plate_nodes", "fluid_steps",
@@ -35,7 +35,7 @@ TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
     EXPECT_GE(out["shell_profile_s"][part].get<double>(), 0.0) << part;
 
   // Off: the single rate, every point at every step, and said so.
-  const auto single = runCli("bench TANK-SEED --end-time 1e-6 --subcycling off --threads 1");
+  const auto single = runCli("bench TANK-SEED --end-time 1e-6 --subcycling off --step-estimate bound --threads 1");
   ASSERT_EQ(single.exitCode, 0) << single.err;
   const auto offOut = nlohmann::json::parse(single.out);
   EXPECT_EQ(offOut["subcycling"], false);
@@ -46,11 +46,13 @@ TEST(CliBenchTankSeed, PrintsOneJsonLineWithTheDocumentedKeys) {
   EXPECT_EQ(offOut["shell_spectrum_measurements"], 0);
   EXPECT_TRUE(offOut["shell_max_frequency_rad_s"].is_null());
 
-  // The measured spectrum: fewer, longer steps (5.8 times the bound's frequency on this plate).
-  const auto measured = runCli("bench TANK-SEED --end-time 1e-6 --subcycling off --step-estimate spectral --threads 1");
+  // The defaults: the measured spectrum at the single rate, fewer and longer steps (5.8 times the
+  // bound's frequency on this plate).
+  const auto measured = runCli("bench TANK-SEED --end-time 1e-6 --threads 1");
   ASSERT_EQ(measured.exitCode, 0) << measured.err;
   const auto spectral = nlohmann::json::parse(measured.out);
   EXPECT_EQ(spectral["step_estimate"], "spectral");
+  EXPECT_EQ(spectral["subcycling"], false);
   EXPECT_GE(spectral["shell_spectrum_measurements"].get<int>(), 1);
   EXPECT_GT(spectral["shell_max_frequency_rad_s"].get<double>(), 0.0);
   EXPECT_GE(spectral["shell_profile_s"]["spectrum"].get<double>(), 0.0);

@@ -177,6 +177,7 @@ TEST(TankImpactScenario, SpectralStepEstimateKeepsTheSingleRatesPeakAndFracture)
   bound["run"]["end_time"] = 2.1e-3;
   bound["run"].erase("snapshot_times");
   bound["plate"]["subcycling"] = false;
+  bound["plate"]["step_estimate"] = "bound";
   nlohmann::json spectral = bound;
   spectral["plate"]["step_estimate"] = "spectral";
   const nlohmann::json a = summaryOfRun("FXA5-bound", bound), b = summaryOfRun("FXA5-spectral", spectral);

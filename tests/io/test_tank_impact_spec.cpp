@@ -54,6 +54,9 @@ TEST(TankImpactSpec, DefaultsAreTheSeedsTest) {
   EXPECT_EQ(s.plate.shell.thicknessPoints, 5);
   EXPECT_DOUBLE_EQ(s.plate.shell.fractureLayerFraction, 1.0);  // every layer, "fully damaged" (§5.3.1)
   EXPECT_DOUBLE_EQ(s.plate.shell.stepRotaryInertia, 1.0);      // the least that keeps the step's time step
+  // The shell's step from its measured spectrum, at the single rate (the faster with it).
+  EXPECT_EQ(s.plate.shell.stepEstimate, ShellParameters::StepEstimate::Spectral);
+  EXPECT_FALSE(s.plate.shell.subcycling);
   EXPECT_DOUBLE_EQ(s.plate.spacing, 0.004);  // the fluid spacing
   EXPECT_EQ(s.plate.precrack.shape, PrecrackShape::None);
   EXPECT_DOUBLE_EQ(s.gauge[0], 0.035);
