@@ -74,9 +74,7 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   spec["run"].erase("snapshot_times");
   if (options.subcycling >= 0) spec["plate"]["subcycling"] = options.subcycling == 1;
   if (!options.stepEstimate.empty()) spec["plate"]["step_estimate"] = options.stepEstimate;
-  const ShellParameters& shell = parseTankImpactSpec(spec).plate.shell;  // the options as the run reads them
-  const bool subcycling = shell.subcycling;
-  const bool spectral = shell.stepEstimate == ShellParameters::StepEstimate::Spectral;
+  const ShellParameters shell = parseTankImpactSpec(spec).plate.shell;  // the options as the run reads them
   RunControl control;
   const auto start = std::chrono::steady_clock::now();
   const RunOutcome outcome = runInTemporaryFile(spec, control, options.threads);
@@ -87,8 +85,8 @@ nlohmann::json runTankSeedBenchmark(const TankSeedOptions& options) {
   const double shellSeconds = s["shell_time_s"].get<double>(), fluidSeconds = s["fluid_time_s"].get<double>();
   return {{"workload", "TANK-SEED (tank-impact TF14A5 at the seed's inputs)"},
           {"threads", options.threads},
-          {"subcycling", subcycling},
-          {"step_estimate", spectral ? "spectral" : "bound"},
+          {"subcycling", shell.subcycling},
+          {"step_estimate", stepEstimateName(shell.stepEstimate)},
           {"end_time_s", options.endTime},
           {"sph_particles", particles},
           {"plate_nodes", nodes},

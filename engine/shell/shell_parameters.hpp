@@ -56,6 +56,11 @@ inline int layersToFracture(double fraction, int layers) {
   return std::clamp(count, 1, layers);
 }
 
+/// The spec's name of an estimate ("bound", "spectral": tank-impact's plate.step_estimate).
+inline const char* stepEstimateName(ShellParameters::StepEstimate e) {
+  return e == ShellParameters::StepEstimate::Spectral ? "spectral" : "bound";
+}
+
 /// Throws SpecError naming `<prefix>.<field>`.
 void validateShellParameters(const ShellParameters& p, const std::string& prefix);
 

@@ -43,7 +43,6 @@
 
 namespace rupture {
 
-
 /// The spectral step estimate (ShellParameters::StepEstimate::Spectral): power iterations per
 /// measurement of a group's largest frequency, and the share of the nodes (1/this) whose
 /// gradients a fracture must have rebuilt before advanceInterval measures again.
