@@ -60,6 +60,7 @@ struct Trial {
   double deflectionAtFirst = std::numeric_limits<double>::quiet_NaN();  ///< at (D + d)/4, m
   double deflectionAtEnd = std::numeric_limits<double>::quiet_NaN();
   double seconds = 0.0;
+  rupture::SphShell::Timings profile;  ///< the shell's wall time per pass
   std::uint64_t stateHash = 0;  ///< shellStateHash at the end
   /// Per ring of the spot face at the end: radius (m), largest damage and plastic strain (1).
   std::vector<std::array<double, 3>> rings;
@@ -154,6 +155,7 @@ Trial runTrial(nlohmann::json specJson, double spacing, double pressure, double 
     }
   }
   trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  trial.profile = plate.timings();
   trial.fracturedAtEnd = plate.fracturedCount() - before;
   trial.deflectionAtEnd = rupture::deflectionAtRadius(plate, geometry, gaugeRadius);
   trial.stateHash = rupture::bench::shellStateHash(plate);
@@ -229,7 +231,10 @@ int main(int argc, char** argv) {
         {"fractured_at_end", t.fracturedAtEnd},
         {"deflection_at_first_fracture", std::isnan(t.deflectionAtFirst) ? nlohmann::json(nullptr) : nlohmann::json(t.deflectionAtFirst)},
         {"deflection_at_end", t.deflectionAtEnd},
-        {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds}, {"state_hash", t.stateHash}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
+        {"rings_radius_damage_plastic_strain", t.rings}, {"seconds", t.seconds},
+        {"profile_s", {{"gradients", t.profile.gradients}, {"layers", t.profile.layers}, {"forces", t.profile.forces},
+                       {"integration", t.profile.integration}, {"fracture", t.profile.fracture}, {"spectrum", t.profile.spectrum}}},
+        {"state_hash", t.stateHash}, {"threads", omp_get_max_threads()}, {"host", rupture::bench::hostProcessor()}};
     std::printf("%s\n", line.dump().c_str());
     std::fflush(stdout);
   }
