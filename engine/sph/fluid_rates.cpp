@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/parallel.hpp"
 #include "sph/simd_lanes.hpp"
@@ -97,7 +98,7 @@ template <bool Diffuse, bool UniformMass>
   maxMu = smu;
 }
 
-#ifdef RUPTURE_SPH_AVX512
+#ifdef RUPTURE_SPH_AVX2
 /// How far ahead in the neighbour list the vector loop prefetches (entries).
 constexpr int kPrefetch = 16;
 static_assert(kPrefetch + 8 <= NeighbourList::kListPadding, "the loop reads up to kPrefetch + 8 entries past a list");
@@ -137,7 +138,7 @@ template <class L, bool Diffuse, bool UniformMass>
       const int s = n0 + part * kWidth;
       if (part > 0 && s >= end) break;
       const int m = std::min(kWidth, end - s);
-      const __mmask8 valid = firstLanes(m);
+      const typename L::Mask valid = L::firstLanes(m);
       // Lanes past the end read the next list's entries (or the padding): valid particles, their F
       // masked to 0 and their scatter skipped.
       const std::int32_t* jj = list + s;
@@ -152,7 +153,7 @@ template <class L, bool Diffuse, bool UniformMass>
       const typename L::Columns b = L::columns(pk, jj);
       const Vec dx = L::sub(ax, b.x), dy = L::sub(ay, b.y), dz = L::sub(az, b.z);
       const Vec r2 = L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx)));
-      const __mmask8 inside = L::less(valid, r2, support2);  // skin pairs: none
+      const typename L::Mask inside = L::less(valid, r2, support2);  // skin pairs: none
       const Vec r2Safe = L::max(r2, tiny);  // two particles at one point: a finite F (and x_ab = 0), not NaN
       const auto [rr, inverseR] = rootAndInverse<L>(r2Safe);
       const Vec near = L::fmsub(threeKF, rr, fourHKF), tt = L::sub(twoH, rr);  // the two pieces (PairConstants)
@@ -210,7 +211,7 @@ struct WallSums {
   CubicSplineKernel kernel;
   double gx, gy, gz;
 
-#ifdef RUPTURE_SPH_AVX512
+#ifdef RUPTURE_SPH_AVX2
   /// L::kWidth neighbours at a time from their records (L::columns), in blocks of 8 as the pair
   /// loop (the same sums at either width); lanes past the end read the next list's entries or the
   /// padding (valid particles) and are masked out.
@@ -230,7 +231,7 @@ struct WallSums {
       for (int part = 0; part < kParts; ++part) {
         const int s = n0 + part * kWidth;
         if (part > 0 && s >= count) break;
-        const __mmask8 valid = firstLanes(std::min(kWidth, count - s));
+        const typename L::Mask valid = L::firstLanes(std::min(kWidth, count - s));
         // As the pair loop: the records kPrefetch entries ahead, which may be the next wall's (the
         // walls' lists lie back to back too).
         for (int l = 0; l < kWidth; ++l) __builtin_prefetch(&pk[list[s + kPrefetch + l]], 0, 3);
@@ -238,13 +239,13 @@ struct WallSums {
         const Vec dx = L::sub(vxw, f.x), dy = L::sub(vyw, f.y), dz = L::sub(vzw, f.z);
         const Vec r2 = L::max(L::fmadd(dz, dz, L::fmadd(dy, dy, L::mul(dx, dx))), tiny);
         const Vec q = L::mul(rootAndInverse<L>(r2).root, invH);
-        const __mmask8 inside = L::less(valid, q, two);
+        const typename L::Mask inside = L::less(valid, q, two);
         // w = 1 − 1.5 q² + 0.75 q³ (q < 1), 0.25 (2 − q)³ (1 <= q < 2).
         const Vec q2 = L::mul(q, q);
         const Vec nearW = L::fmadd(q2, L::fmsub(L::set1(0.75), q, L::set1(1.5)), one);
         const Vec t = L::sub(two, q);
         const Vec farW = L::mul(L::mul(L::set1(0.25), t), L::mul(t, t));
-        const __mmask8 isNear = L::less(0xFF, q, one);
+        const typename L::Mask isNear = L::less(L::all(), q, one);
         const Vec W = L::maskzMul(inside, aD, L::blend(isNear, farW, nearW));
         const Vec rho = inverse<L>(f.inverseRho);
         const Vec pressure = L::mul(L::mul(f.pressureOverRho2, rho), rho);
@@ -258,10 +259,10 @@ struct WallSums {
     sumPW = L::reduceAdd(sPW);
     sumRhoRW = L::reduceAdd(sRR);
   }
-#else
-  template <class L>
-  void sums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count, const Packed* __restrict pk,
-            double& sumW, double& sumPW, double& sumRhoRW) const {
+#endif
+  /// The portable sums (std::sqrt and division), one neighbour at a time.
+  void portableSums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
+                    const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
     sumW = sumPW = sumRhoRW = 0;
     for (int m = 0; m < count; ++m) {
       const Packed& f = pk[list[m]];
@@ -273,22 +274,26 @@ struct WallSums {
       sumRhoRW += rho * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
     }
   }
-#endif
 };
 
-#ifndef RUPTURE_SPH_AVX512
-struct PortableLanes {};  // the portable loops (pairsOf): no choice of width
-#endif
+/// The lane type of the portable loops (pairsOf, WallSums::portableSums): every build has them.
+struct PortableLanes {};
 
-/// f.operator()<L>() with the lane type of `width` (4 or 8; 0: this processor's preferred width,
-/// simd_lanes.hpp).
+/// f.operator()<L>() with the lane type of `width` (kPortableLanes, 4 or 8; 0: this processor's,
+/// simd_lanes.hpp): Lanes4 or Lanes8 with AVX-512, Lanes4Avx2 for 4 or 8 with AVX2 and FMA only,
+/// PortableLanes for kPortableLanes or where the build has neither.
 template <class F>
 void withLanes(int width, F&& f) {
-#ifdef RUPTURE_SPH_AVX512
-  if ((width == 0 ? preferredLaneWidth() : width) == 4) f.template operator()<Lanes4>();
-  else f.template operator()<Lanes8>();
+  const int w = width == 0 ? preferredLaneWidth() : width;
+#if defined(RUPTURE_SPH_AVX512)
+  if (w == 4) f.template operator()<Lanes4>();
+  else if (w == 8) f.template operator()<Lanes8>();
+  else f.template operator()<PortableLanes>();
+#elif defined(RUPTURE_SPH_AVX2)
+  if (w == 4 || w == 8) f.template operator()<Lanes4Avx2>();
+  else f.template operator()<PortableLanes>();
 #else
-  (void)width;
+  (void)w;
   f.template operator()<PortableLanes>();
 #endif
 }
@@ -366,7 +371,12 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       const NeighbourList::WetBoundary& wall = wet[q];
       Packed& record = packed[wall.particle];  // position and velocity from 1.
       double sumW = 0, sumPW = 0, sumRhoRW = 0;
-      wallSums.template sums<L>(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
+#ifdef RUPTURE_SPH_AVX2
+      if constexpr (!std::is_same_v<L, PortableLanes>)
+        wallSums.template sums<L>(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
+      else
+#endif
+        wallSums.portableSums(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
       // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
       const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
       if (pw == 0.0) continue;  // the dry record of 1.
@@ -407,19 +417,22 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
         const std::int32_t* nb = list.neighbours(i);
         const int nf = list.fluidCount(i), total = list.count(i);
         double own[4] = {0, 0, 0, 0};
-#ifdef RUPTURE_SPH_AVX512
+#ifdef RUPTURE_SPH_AVX2
         // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks.
+        if constexpr (!std::is_same_v<L, PortableLanes>) {
         if (diffuse) {
           pairsOfLanes<L, true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
           pairsOfLanes<L, false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
         } else {
           pairsOfLanes<L, false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
         }
-#else
+        } else
+#endif
+        {
         if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
         pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
-#endif
+        }
         double* ai = acc + 4 * (i - ch.lo);
         for (int a = 0; a < 4; ++a) ai[a] += own[a];
       }

@@ -41,8 +41,10 @@ struct RateWorkspace {
   ScratchVector<Packed> packed;
   ScratchVector<double> sums;  ///< per chunk, 4 per touched particle: ax, ay, az, dρ/dt
   std::vector<double> spanForces;  ///< the bodies' forces summed over each span of the last pass
-  /// The vector width of the pair loops, 4 or 8 doubles; 0: this processor's (simd_lanes.hpp).
-  /// Both give bitwise the same rates; only the speed differs. Ignored without AVX-512.
+  /// The vector width of the pair loops, 4 or 8 doubles, or kPortableLanes (1) for the portable
+  /// loops; 0: this processor's (simd_lanes.hpp). With AVX-512, 4 and 8 give bitwise the same
+  /// rates; with AVX2 only, both run the 4-wide AVX2 lanes. The portable loops agree with either
+  /// to round-off.
   int laneWidth = 0;
   /// Polled between blocks of the first pass, before the pair loop and before each of its chunks
   /// (a pass over millions of particles takes over a second): when set, the rest is skipped and

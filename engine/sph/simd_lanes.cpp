@@ -27,6 +27,7 @@ bool isAmdFamily19h() {
 int detectLaneWidth() {
   if (const char* forced = std::getenv("RUPTURE_SPH_LANES")) {
     const std::string_view v(forced);
+    if (v == "1") return kPortableLanes;
     if (v == "4") return 4;
     if (v == "8") return 8;
   }

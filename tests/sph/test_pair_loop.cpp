@@ -134,8 +134,9 @@ double maxAbs(const std::vector<double>& v) {
 
 TEST(SphPairLoop, HalfListsAndChunkSumsMatchTheDirectSumOverAllPairs) {
   const FluidModel model = testModel();
-  // Both vector widths of the AVX-512 loops (simd_lanes.hpp); the portable loop where there is none.
-  for (int laneWidth : {4, 8})
+  // The portable loop and both vector widths (simd_lanes.hpp): Lanes4 and Lanes8 with AVX-512, the
+  // AVX2 lanes for both without it, the portable loop again where the build has neither.
+  for (int laneWidth : {kPortableLanes, 4, 8})
   for (bool equalMasses : {true, false}) {
     FluidParticles p = jitteredBlock(equalMasses, equalMasses ? 11 : 12);
     NeighbourList list;
@@ -177,7 +178,7 @@ TEST(SphPairLoop, RatesAreBitwiseIdenticalForFourAndEightLanes) {
   // added in one order (simd_lanes.hpp): the width is a matter of speed only. Every variant of the
   // loop: equal and unequal masses, with and without density diffusion, walls included.
 #ifndef RUPTURE_SPH_AVX512
-  GTEST_SKIP() << "built without AVX-512: one portable loop, no width to choose";
+  GTEST_SKIP() << "built without AVX-512: one loop (the AVX2 lanes or the portable one) runs both widths";
 #endif
   for (bool equalMasses : {true, false})
     for (DiffusionModel diffusion : {DiffusionModel::Fourtakas, DiffusionModel::Off}) {
