@@ -50,25 +50,38 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Eight doubles in one vector (GCC's vector extension): the kernels below issue 512-bit operations
-// as written, whatever the auto-vectoriser would have made of a plain loop.
-typedef double Vec8 __attribute__((vector_size(64)));
+// The widest vector of doubles the host's instructions take (GCC's vector extension): 8 with
+// AVX-512, 4 with AVX. The kernels below issue operations of that width as written, whatever the
+// auto-vectoriser would have made of a plain loop. (8 doubles on an AVX2 host would be two
+// registers an operand: the 8 chains and their constants no longer fit the 16 registers, and the
+// spills, not the FMA pipes, would be timed: 4 GFLOP/s where the pipes give about 50.)
+#if defined(__AVX512F__)
+constexpr int kVectorLanes = 8;
+#elif defined(__AVX__)
+constexpr int kVectorLanes = 4;
+#else
+constexpr int kVectorLanes = 2;
+#endif
+typedef double Vec __attribute__((vector_size(8 * kVectorLanes)));
 
-[[gnu::always_inline]] inline Vec8 squareRoot(Vec8 a) {
-#ifdef __AVX512F__
+[[gnu::always_inline]] inline Vec squareRoot(Vec a) {
+#if defined(__AVX512F__)
   // The masked form with every lane set: the plain one's undefined source trips GCC 12's
   // -Wmaybe-uninitialized.
   const __m512d v = reinterpret_cast<__m512d>(a);
-  return reinterpret_cast<Vec8>(_mm512_mask_sqrt_pd(v, 0xFF, v));
+  return reinterpret_cast<Vec>(_mm512_mask_sqrt_pd(v, 0xFF, v));
+#elif defined(__AVX__)
+  return reinterpret_cast<Vec>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(a)));
 #else
-  for (int l = 0; l < 8; ++l) a[l] = std::sqrt(a[l]);  // what a host without AVX-512 has
+  for (int l = 0; l < kVectorLanes; ++l) a[l] = std::sqrt(a[l]);
   return a;
 #endif
 }
 
 /// Arithmetic throughput of one thread, per second: multiply-adds (a = a·m + c, 2 flops, which GCC
 /// contracts into one FMA), divisions (a = c/a) and square roots (a = √a) over 8 independent
-/// vectors, enough to cover each instruction's latency, so throughput and not latency is timed.
+/// vectors of kVectorLanes doubles, enough to cover each instruction's latency, so throughput and
+/// not latency is timed.
 /// Best of 5 runs of some 10-40 ms each. Returns {flops, divisions, roots} per second.
 std::array<double, 3> arithmeticRates() {
   constexpr int kChains = 8;
@@ -77,11 +90,12 @@ std::array<double, 3> arithmeticRates() {
   for (int kernel = 0; kernel < 3; ++kernel) {
     const long rounds = kernel == 0 ? 4000000 : 200000;
     for (int run = 0; run < 5; ++run) {
-      const Vec8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-      Vec8 a[kChains];
-      for (int c = 0; c < kChains; ++c) a[c] = 1.0 + 0.01 * (lane + 8.0 * c);
+      Vec lane{};
+      for (int l = 0; l < kVectorLanes; ++l) lane[l] = l;
+      Vec a[kChains];
+      for (int c = 0; c < kChains; ++c) a[c] = 1.0 + 0.01 * (lane + static_cast<double>(kVectorLanes) * c);
       // m < 1 and c small: a·m + c converges to c/(1 − m), no overflow, no subnormals.
-      const Vec8 m = Vec8{} + 0.999999, add = Vec8{} + 1e-6, num = Vec8{} + 2.0;
+      const Vec m = Vec{} + 0.999999, add = Vec{} + 1e-6, num = Vec{} + 2.0;
       const double t0 = now();
       for (long r = 0; r < rounds; ++r) {
         for (int c = 0; c < kChains; ++c) {
@@ -93,9 +107,9 @@ std::array<double, 3> arithmeticRates() {
       const double seconds = now() - t0;
       double s = 0.0;
       for (int c = 0; c < kChains; ++c)
-        for (int l = 0; l < 8; ++l) s += a[c][l];
+        for (int l = 0; l < kVectorLanes; ++l) s += a[c][l];
       sink = sink + s;
-      const double operations = static_cast<double>(rounds) * kChains * 8 * (kernel == 0 ? 2 : 1);
+      const double operations = static_cast<double>(rounds) * kChains * kVectorLanes * (kernel == 0 ? 2 : 1);
       best[kernel] = std::max(best[kernel], operations / seconds);
     }
   }
