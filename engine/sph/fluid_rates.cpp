@@ -204,6 +204,9 @@ template <class L, bool Diffuse, bool UniformMass>
 }
 #endif
 
+/// The lane type of the portable loops (pairsOf, WallSums::portableSums): every build has them.
+struct PortableLanes {};
+
 /// The Shepard sums of a boundary particle at (xw, yw, zw) over its fluid neighbours (Adami et al.
 /// 2012, eq. 27): Σ W, Σ p_f W and Σ ρ_f (g·x_wf) W, read from the fluid's records (ρ_f = 1/(1/ρ)_f,
 /// p_f = (p/ρ²)_f ρ_f²). Neighbours in the skin (r >= 2h) add nothing.
@@ -216,8 +219,9 @@ struct WallSums {
   /// loop (the same sums at either width); lanes past the end read the next list's entries or the
   /// padding (valid particles) and are masked out.
   template <class L>
-  [[gnu::always_inline]] void sums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
-                                   const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
+  [[gnu::always_inline]] void laneSums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
+                                       const Packed* __restrict pk, double& sumW, double& sumPW,
+                                       double& sumRhoRW) const {
     using Vec = typename L::Vec;
     constexpr int kWidth = L::kWidth, kParts = 8 / kWidth;
     const Vec vxw = L::set1(xw), vyw = L::set1(yw), vzw = L::set1(zw);
@@ -274,10 +278,48 @@ struct WallSums {
       sumRhoRW += rho * (gx * dx + gy * dy + gz * dz) * W;  // (g − a_w)·Σ ρ_f x_wf W, a_w neglected
     }
   }
+
+  /// The sums in the lanes L (laneSums), or the portable ones for PortableLanes.
+  template <class L>
+  [[gnu::always_inline]] void sums(double xw, double yw, double zw, const std::int32_t* __restrict list, int count,
+                                   const Packed* __restrict pk, double& sumW, double& sumPW, double& sumRhoRW) const {
+#ifdef RUPTURE_SPH_AVX2
+    if constexpr (!std::is_same_v<L, PortableLanes>) {
+      laneSums<L>(xw, yw, zw, list, count, pk, sumW, sumPW, sumRhoRW);
+    } else
+#endif
+    {
+      portableSums(xw, yw, zw, list, count, pk, sumW, sumPW, sumRhoRW);
+    }
+  }
 };
 
-/// The lane type of the portable loops (pairsOf, WallSums::portableSums): every build has them.
-struct PortableLanes {};
+/// The pairs of fluid particle i (its list nb: nf fluid neighbours, then the walls, total in all),
+/// in the lanes L, or by pairsOf for PortableLanes. With density diffusion the fluid and the wall
+/// neighbours run apart (the δ-SPH term is the fluid's); without it, in the lanes, in one run:
+/// fewer partial blocks.
+template <class L, bool Uniform>
+[[gnu::always_inline]] inline void pairsOfParticle(bool diffuse, std::size_t i, const std::int32_t* __restrict nb, int nf,
+                                                   int total, const Packed* __restrict pk, const double* __restrict rho,
+                                                   const double* __restrict mass, double* __restrict acc,
+                                                   std::size_t lo, const PairConstants& k, double own[4],
+                                                   double& maxMu) {
+#ifdef RUPTURE_SPH_AVX2
+  if constexpr (!std::is_same_v<L, PortableLanes>) {
+    if (diffuse) {
+      pairsOfLanes<L, true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, lo, k, own, maxMu);
+      pairsOfLanes<L, false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, lo, k, own, maxMu);
+    } else {
+      pairsOfLanes<L, false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, lo, k, own, maxMu);
+    }
+  } else
+#endif
+  {
+    if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, lo, k, own, maxMu);
+    else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, lo, k, own, maxMu);
+    pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, lo, k, own, maxMu);
+  }
+}
 
 /// f.operator()<L>() with the lane type of `width` (kPortableLanes, 4 or 8; 0: this processor's,
 /// simd_lanes.hpp): Lanes4 or Lanes8 with AVX-512, Lanes4Avx2 for 4 or 8 with AVX2 and FMA only,
@@ -371,12 +413,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
       const NeighbourList::WetBoundary& wall = wet[q];
       Packed& record = packed[wall.particle];  // position and velocity from 1.
       double sumW = 0, sumPW = 0, sumRhoRW = 0;
-#ifdef RUPTURE_SPH_AVX2
-      if constexpr (!std::is_same_v<L, PortableLanes>)
-        wallSums.template sums<L>(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
-      else
-#endif
-        wallSums.portableSums(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
+      wallSums.template sums<L>(record.x, record.y, record.z, wall.neighbours, wall.count, packed, sumW, sumPW, sumRhoRW);
       // A wall holds no tension: fluid leaving it must not be pulled back (as DualSPHysics' ρ_w >= ρ0).
       const double pw = sumW > 0 ? std::max(0.0, (sumPW + sumRhoRW) / sumW) : 0.0;
       if (pw == 0.0) continue;  // the dry record of 1.
@@ -417,22 +454,7 @@ RateExtremes computeRates(FluidParticles& p, const NeighbourList& list, const Fl
         const std::int32_t* nb = list.neighbours(i);
         const int nf = list.fluidCount(i), total = list.count(i);
         double own[4] = {0, 0, 0, 0};
-#ifdef RUPTURE_SPH_AVX2
-        // Without diffusion, fluid and wall neighbours in one run: fewer partial blocks.
-        if constexpr (!std::is_same_v<L, PortableLanes>) {
-        if (diffuse) {
-          pairsOfLanes<L, true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
-          pairsOfLanes<L, false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
-        } else {
-          pairsOfLanes<L, false, Uniform>(i, nb, 0, total, pk, rho, mass, acc, ch.lo, k, own, mu);
-        }
-        } else
-#endif
-        {
-        if (diffuse) pairsOf<true, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
-        else pairsOf<false, Uniform>(i, nb, 0, nf, pk, rho, mass, acc, ch.lo, k, own, mu);
-        pairsOf<false, Uniform>(i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
-        }
+        pairsOfParticle<L, Uniform>(diffuse, i, nb, nf, total, pk, rho, mass, acc, ch.lo, k, own, mu);
         double* ai = acc + 4 * (i - ch.lo);
         for (int a = 0; a < 4; ++a) ai[a] += own[a];
       }
