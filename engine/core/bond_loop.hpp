@@ -69,7 +69,9 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
   const Criterion crit = criterion;
   const SillingDamping damper = damping;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
-  std::size_t broken = 0;
+  // Counted in a double (exact to 2^53): AVX2 has no conversion of doubles to 64-bit integers, and
+  // one kept this loop scalar on hosts without AVX-512.
+  double broken = 0;
 
 #pragma omp parallel for simd schedule(static) reduction(+ : broken) firstprivate(lawCopy, crit) if (worthParallel(bonds.size()))
   for (std::ptrdiff_t b = 0; b < n; ++b) {
@@ -116,10 +118,10 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
       left = effective < f1[b] * t ? left : k1[b];
       left = effective < f2[b] * t ? left : k2[b];
       now = std::min(was, left);
-      broken += static_cast<std::size_t>(now < was);
+      broken += static_cast<double>(now < was);
     } else {
       now = was * static_cast<double>(effective < limit[b]);
-      broken += static_cast<std::size_t>(was - now);
+      broken += was - now;
     }
     intact[b] = now;
     measured[b] = m;
@@ -133,7 +135,7 @@ std::size_t evaluateBonds(const Law& law, const Criterion& criterion, const Part
       }
     }
   }
-  return broken;
+  return static_cast<std::size_t>(broken);
 }
 
 /// Sets each particle's force (and, with kTorques, torque) to the sum of its bonds' loads

@@ -125,7 +125,11 @@ struct BeamResponse {
   const double hx = bjx - bix, hy = bjy - biy, hz = bjz - biz;
   const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
   const double relativeMoment2 = 0.25 * (hx * hx + hy * hy + hz * hz);
-  const double bendingMoment = std::sqrt(p.bendingFromRelativeRotation ? relativeMoment2 : endMoment2);
+  // The choice as weights 0 and 1, not a select on the flag: a select on a flag that is the same for
+  // every bond kept GCC from vectorising the bond loop without AVX-512 (measured: the 256-bit build
+  // ran it scalar). w·x + (1 − w)·y is x or y exactly while both are finite.
+  const double relative = p.bendingFromRelativeRotation ? 1.0 : 0.0;
+  const double bendingMoment = std::sqrt(relative * relativeMoment2 + (1.0 - relative) * endMoment2);
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   const double shearStress = std::fabs(twistMoment) * sec.radius / sec.polarMoment;
   r.equivalentStress = rankineEquivalentStress(normalStress, shearStress);
@@ -219,7 +223,8 @@ struct PlanarBeamState {
   const double hz = r.tjz - r.tiz;
   const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
   const double relativeMoment2 = 0.25 * (hz * hz);
-  const double bendingMoment = std::sqrt(p.bendingFromRelativeRotation ? relativeMoment2 : endMoment2);
+  const double relative = p.bendingFromRelativeRotation ? 1.0 : 0.0;  // as in beamResponse
+  const double bendingMoment = std::sqrt(relative * relativeMoment2 + (1.0 - relative) * endMoment2);
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   r.equivalentStress = normalStress > 0 ? normalStress : 0.0;  // Rankine without shear
   return r;
