@@ -22,6 +22,6 @@ else
 fi
 cd build
 # The per-test limit guards against a hung test; it is not a timing: the longest test (SeedTable2's
-# five samples, about 6 CPU-minutes on a quiet host) ran past 900 s beside the tank tests, and alone
-# it took 25 minutes (1493 s, passed), on a slow one.
+# five samples) took 545 s beside the others on a Zen 3 host (1,493 s alone on a slow host before
+# the beam loop was vectorised without AVX-512).
 ctest --output-on-failure --timeout 3600 -j"$(nproc)"
