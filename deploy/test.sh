@@ -22,6 +22,6 @@ else
 fi
 cd build
 # The per-test limit guards against a hung test; it is not a timing: the longest test (SeedTable2's
-# five samples) took 545 s beside the others on a Zen 3 host (1,493 s alone on a slow host before
-# the beam loop was vectorised without AVX-512).
+# five samples) took 545 s beside the others on a Zen 3 host on 2026-12-07, and 1,493 s alone on a
+# slow host earlier.
 ctest --output-on-failure --timeout 3600 -j"$(nproc)"

@@ -50,6 +50,20 @@ struct BeamSection {
   }
 };
 
+/// The bending moment of σ_Nmax in eq. (1) from the squared end moments and the squared relative
+/// moment ½ |M_j − M_i|: the larger end moment, or with BeamParameters::bendingFromRelativeRotation
+/// the relative one (the chord's rotation cancels, only the disks' relative rotation bends the beam).
+/// The square is selected, then one root taken: two roots and a select between them made the W1
+/// bond loop 2.5 times slower (measured). The flag enters as weights 0 and 1, not as a select: a
+/// select on a flag that is the same for every bond kept GCC from vectorising the bond loop without
+/// AVX-512 (bench/README.md, W1). w·x + (1 − w)·y is x or y exactly while both are finite.
+[[gnu::always_inline]] inline double beamBendingMoment(const BeamParameters& p, double momentI2, double momentJ2,
+                                                       double relativeMoment2) {
+  const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
+  const double relative = p.bendingFromRelativeRotation ? 1.0 : 0.0;
+  return std::sqrt(relative * relativeMoment2 + (1.0 - relative) * endMoment2);
+}
+
 /// Everything one evaluation of the law produces.
 struct BeamResponse {
   double fjx, fjy, fjz;  ///< force on j (N)
@@ -119,17 +133,8 @@ struct BeamResponse {
                biz = r.tiz - twistMoment * nz;
   const double momentI2 = bix * bix + biy * biy + biz * biz;
   const double momentJ2 = bjx * bjx + bjy * bjy + bjz * bjz;
-  // The larger end moment, or ½ |M_j − M_i| = (E I / L0) |φ_j − φ_i|: the chord's rotation cancels,
-  // only the disks' relative rotation bends the beam. Select the square, then take one root: two
-  // roots and a select between them made the W1 bond loop 2.5 times slower (measured).
-  const double hx = bjx - bix, hy = bjy - biy, hz = bjz - biz;
-  const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
-  const double relativeMoment2 = 0.25 * (hx * hx + hy * hy + hz * hz);
-  // The choice as weights 0 and 1, not a select on the flag: a select on a flag that is the same for
-  // every bond kept GCC from vectorising the bond loop without AVX-512 (measured: the 256-bit build
-  // ran it scalar). w·x + (1 − w)·y is x or y exactly while both are finite.
-  const double relative = p.bendingFromRelativeRotation ? 1.0 : 0.0;
-  const double bendingMoment = std::sqrt(relative * relativeMoment2 + (1.0 - relative) * endMoment2);
+  const double hx = bjx - bix, hy = bjy - biy, hz = bjz - biz;  // ½ |M_j − M_i| = (E I / L0) |φ_j − φ_i|
+  const double bendingMoment = beamBendingMoment(p, momentI2, momentJ2, 0.25 * (hx * hx + hy * hy + hz * hz));
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   const double shearStress = std::fabs(twistMoment) * sec.radius / sec.polarMoment;
   r.equivalentStress = rankineEquivalentStress(normalStress, shearStress);
@@ -221,10 +226,7 @@ struct PlanarBeamState {
 
   const double momentI2 = r.tiz * r.tiz, momentJ2 = r.tjz * r.tjz;
   const double hz = r.tjz - r.tiz;
-  const double endMoment2 = momentI2 > momentJ2 ? momentI2 : momentJ2;
-  const double relativeMoment2 = 0.25 * (hz * hz);
-  const double relative = p.bendingFromRelativeRotation ? 1.0 : 0.0;  // as in beamResponse
-  const double bendingMoment = std::sqrt(relative * relativeMoment2 + (1.0 - relative) * endMoment2);
+  const double bendingMoment = beamBendingMoment(p, momentI2, momentJ2, 0.25 * (hz * hz));
   const double normalStress = axialForce / sec.area + bendingMoment * sec.radius / sec.secondMoment;
   r.equivalentStress = normalStress > 0 ? normalStress : 0.0;  // Rankine without shear
   return r;
