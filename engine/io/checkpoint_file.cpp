@@ -17,7 +17,7 @@ namespace rupture::io {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr const char* kGroup = "/checkpoint";
+constexpr const char* kCheckpointGroup = "/checkpoint";
 constexpr const char* kStateGroup = "/checkpoint/state";
 
 /// Flushes a file (or a directory's entries) to the disk: a checkpoint renamed into place must
@@ -62,18 +62,18 @@ std::uintmax_t writeCheckpoint(ResultFile& partial, const std::string& path, con
   try {
     partial.copyTo(temporary);
     Hdf5File copy = Hdf5File::openReadWrite(temporary);
-    copy.remove(kGroup);
-    copy.createGroup(kGroup);
-    copy.setAttribute(kGroup, "format", kCheckpointFormat);
-    copy.setAttribute(kGroup, "rupture_version", header.version);
-    copy.setAttribute(kGroup, "scenario", header.scenario);
-    copy.setAttribute(kGroup, "spec", header.spec.dump());
-    copy.setAttribute(kGroup, "step", header.step);
-    copy.setAttribute(kGroup, "time", header.time);
-    copy.setAttribute(kGroup, "threads", header.threads);
-    copy.setAttribute(kGroup, "resumes", header.resumes);
-    copy.setAttribute(kGroup, "wall_time_s", header.wallTime);
-    copy.setAttribute(kGroup, "written", utcNow());
+    copy.remove(kCheckpointGroup);
+    copy.createGroup(kCheckpointGroup);
+    copy.setAttribute(kCheckpointGroup, "format", kCheckpointFormat);
+    copy.setAttribute(kCheckpointGroup, "rupture_version", header.version);
+    copy.setAttribute(kCheckpointGroup, "scenario", header.scenario);
+    copy.setAttribute(kCheckpointGroup, "spec", header.spec.dump());
+    copy.setAttribute(kCheckpointGroup, "step", header.step);
+    copy.setAttribute(kCheckpointGroup, "time", header.time);
+    copy.setAttribute(kCheckpointGroup, "threads", header.threads);
+    copy.setAttribute(kCheckpointGroup, "resumes", header.resumes);
+    copy.setAttribute(kCheckpointGroup, "wall_time_s", header.wallTime);
+    copy.setAttribute(kCheckpointGroup, "written", utcNow());
     Hdf5StateArchive archive(copy, kStateGroup, Hdf5StateArchive::Mode::Save);
     save(archive);
     copy.close();
@@ -96,20 +96,20 @@ CheckpointHeader readCheckpointHeader(const std::string& path) {
   CheckpointHeader h;
   try {
     Hdf5File file = Hdf5File::openReadOnly(path);
-    if (!file.exists(kGroup)) throw CheckpointError("the file " + path + " is not a checkpoint (no /checkpoint)");
-    const std::int64_t format = file.readAttributeInt(kGroup, "format");
+    if (!file.exists(kCheckpointGroup)) throw CheckpointError("the file " + path + " is not a checkpoint (no /checkpoint)");
+    const std::int64_t format = file.readAttributeInt(kCheckpointGroup, "format");
     if (format != kCheckpointFormat)
       throw CheckpointError("the checkpoint " + path + " has format " + std::to_string(format) + "; this build reads " +
                             std::to_string(kCheckpointFormat));
-    h.version = file.readAttributeString(kGroup, "rupture_version");
-    h.scenario = file.readAttributeString(kGroup, "scenario");
-    h.spec = nlohmann::json::parse(file.readAttributeString(kGroup, "spec"));
-    h.step = file.readAttributeInt(kGroup, "step");
-    h.time = file.readAttributeDouble(kGroup, "time");
-    h.threads = file.readAttributeInt(kGroup, "threads");
-    h.resumes = file.readAttributeInt(kGroup, "resumes");
-    h.wallTime = file.readAttributeDouble(kGroup, "wall_time_s");
-    h.written = file.readAttributeString(kGroup, "written");
+    h.version = file.readAttributeString(kCheckpointGroup, "rupture_version");
+    h.scenario = file.readAttributeString(kCheckpointGroup, "scenario");
+    h.spec = nlohmann::json::parse(file.readAttributeString(kCheckpointGroup, "spec"));
+    h.step = file.readAttributeInt(kCheckpointGroup, "step");
+    h.time = file.readAttributeDouble(kCheckpointGroup, "time");
+    h.threads = file.readAttributeInt(kCheckpointGroup, "threads");
+    h.resumes = file.readAttributeInt(kCheckpointGroup, "resumes");
+    h.wallTime = file.readAttributeDouble(kCheckpointGroup, "wall_time_s");
+    h.written = file.readAttributeString(kCheckpointGroup, "written");
     if (!file.exists(kStateGroup)) throw CheckpointError("the checkpoint " + path + " holds no state");
   } catch (const CheckpointError&) {
     throw;
@@ -145,7 +145,7 @@ void loadCheckpointState(ResultFile& partial, const std::function<void(StateArch
 }
 
 void endCheckpointLoading(ResultFile& partial) {
-  if (partial.file().exists(kGroup)) partial.file().remove(kGroup);
+  if (partial.file().exists(kCheckpointGroup)) partial.file().remove(kCheckpointGroup);
 }
 
 }  // namespace rupture::io

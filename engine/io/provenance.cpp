@@ -16,7 +16,7 @@
 namespace rupture::io {
 
 namespace {
-constexpr const char* kGroup = "/provenance";
+constexpr const char* kProvenanceGroup = "/provenance";
 }  // namespace
 
 const BuildInfo& buildInfo() {
@@ -78,23 +78,23 @@ nlohmann::json specSeeds(const nlohmann::json& resolved) {
 }
 
 void writeStartProvenance(Hdf5File& file) {
-  file.createGroup(kGroup);
+  file.createGroup(kProvenanceGroup);
   const nlohmann::json start = startProvenance(omp_get_max_threads());  // held: items() does not hold it
   for (const auto& [name, value] : start.items()) {
-    if (value.is_number_integer()) file.setAttribute(kGroup, name, value.get<std::int64_t>());
-    else file.setAttribute(kGroup, name, value.get<std::string>());
+    if (value.is_number_integer()) file.setAttribute(kProvenanceGroup, name, value.get<std::int64_t>());
+    else file.setAttribute(kProvenanceGroup, name, value.get<std::string>());
   }
 }
 
 void writeSpecProvenance(Hdf5File& file, const nlohmann::json& resolved) {
-  if (!file.exists(kGroup)) file.createGroup(kGroup);
-  file.setAttribute(kGroup, "spec_sha256", sha256Hex(resolved.dump()));
-  file.setAttribute(kGroup, "seeds", specSeeds(resolved).dump());
+  if (!file.exists(kProvenanceGroup)) file.createGroup(kProvenanceGroup);
+  file.setAttribute(kProvenanceGroup, "spec_sha256", sha256Hex(resolved.dump()));
+  file.setAttribute(kProvenanceGroup, "seeds", specSeeds(resolved).dump());
 }
 
 void writeFinishProvenance(Hdf5File& file) {
-  if (!file.exists(kGroup)) file.createGroup(kGroup);
-  file.setAttribute(kGroup, "finished_utc", utcNow());
+  if (!file.exists(kProvenanceGroup)) file.createGroup(kProvenanceGroup);
+  file.setAttribute(kProvenanceGroup, "finished_utc", utcNow());
 }
 
 }  // namespace rupture::io

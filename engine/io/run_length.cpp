@@ -7,7 +7,7 @@ namespace rupture::io {
 
 namespace {
 /// Three significant digits: the loops' figures are estimates.
-std::string formatNumber(double v) {
+std::string threeDigits(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", v);
   return text;
@@ -31,10 +31,10 @@ void addRunLength(RunEstimate& e, const std::vector<RunLoop>& loops, const std::
       most = steps;
       e.stepsField = loop.field;
     }
-    basis += (basis.empty() ? "" : "; ") + loop.what + " " + formatNumber(loop.duration) + " s over " +
-             formatNumber(loop.timeStep) + " s steps" +
-             (natural > loop.maxSteps ? " (" + formatNumber(natural) + ", capped by run.max_steps " +
-                                            formatNumber(loop.maxSteps) + ")"
+    basis += (basis.empty() ? "" : "; ") + loop.what + " " + threeDigits(loop.duration) + " s over " +
+             threeDigits(loop.timeStep) + " s steps" +
+             (natural > loop.maxSteps ? " (" + threeDigits(natural) + ", capped by run.max_steps " +
+                                            threeDigits(loop.maxSteps) + ")"
                                       : "");
   }
   e.stepsBasis = basis + "; " + stepRule;

@@ -49,6 +49,11 @@ inline std::string writeSpec(const nlohmann::json& spec, const std::string& name
   return path.string();
 }
 
+/// The small example (examples/dynamic-tension-small.json) as shipped.
+inline nlohmann::json smallExampleSpec() {
+  return nlohmann::json::parse(readWhole(std::filesystem::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+}
+
 /// The small example (examples/dynamic-tension-small.json) pulled fast, at 1e7 /s from the VL
 /// field: a run of a few seconds, for the tests that need a real run file.
 inline nlohmann::json quickSmallSpec() {

@@ -11,7 +11,7 @@ using rupture::testing::writeSpec;
 
 namespace {
 
-nlohmann::json smallSpec() {
+nlohmann::json calibrationSpec() {
   return {{"dimension", 2},
           {"sample", {{"size", {0.15e-6, 0.15e-6}}, {"element_radius", 3.3e-9}, {"seed", 5}}},
           {"material",
@@ -21,7 +21,7 @@ nlohmann::json smallSpec() {
 }
 
 TEST(CliCalibrate, MeasuresYoungModulusAndPoissonRatio) {
-  const auto r = runCli("calibrate " + writeSpec(smallSpec(), "good.json"));
+  const auto r = runCli("calibrate " + writeSpec(calibrationSpec(), "good.json"));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto out = nlohmann::json::parse(r.out);
   EXPECT_GT(out.at("young_modulus").get<double>(), 1e10);
@@ -36,7 +36,7 @@ TEST(CliCalibrate, MeasuresYoungModulusAndPoissonRatio) {
 }
 
 TEST(CliCalibrate, WithoutTargetsAlsoPrintsStrengthAndOnset) {
-  const auto r = runCli("calibrate " + writeSpec(smallSpec(), "strength.json"));
+  const auto r = runCli("calibrate " + writeSpec(calibrationSpec(), "strength.json"));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto out = nlohmann::json::parse(r.out);
   const double strength = out.at("tensile_strength").get<double>();
@@ -54,7 +54,7 @@ TEST(CliCalibrate, WithoutTargetsAlsoPrintsStrengthAndOnset) {
 TEST(CliCalibrate, TensileStrengthRoundTrip) {
   const std::pair<int, double> cases[] = {{3, 60e6}, {8, 150e6}};
   for (const auto& [seed, target] : cases) {
-    nlohmann::json spec = smallSpec();
+    nlohmann::json spec = calibrationSpec();
     spec["sample"]["size"] = {0.1e-6, 0.1e-6};
     spec["sample"]["seed"] = seed;
     const auto fit = runCli("calibrate " + writeSpec(spec, "fit" + std::to_string(seed) + ".json") +
@@ -77,7 +77,7 @@ TEST(CliCalibrate, TensileStrengthRoundTrip) {
 // fitted ones too, not the beams the spec started from. The sample has a notch along the tension:
 // the pairs across it overlap as packed and touch from the start, so the contact law matters.
 TEST(CliCalibrate, FullFitReportsWhatTheFittedSpecGives) {
-  nlohmann::json spec = smallSpec();
+  nlohmann::json spec = calibrationSpec();
   spec["sample"]["size"] = {0.1e-6, 0.1e-6};
   spec["sample"]["notches"] = {{{"start", {0.0, 0.05e-6}}, {"end", {0.05e-6, 0.05e-6}}}};
   const auto fit = runCli("calibrate " + writeSpec(spec, "fullfit.json") +
@@ -100,7 +100,7 @@ TEST(CliCalibrate, FullFitReportsWhatTheFittedSpecGives) {
 }
 
 TEST(CliCalibrate, BadStrengthTargetExitsTwoNamingTheOption) {
-  const std::string spec = writeSpec(smallSpec(), "badtarget.json");
+  const std::string spec = writeSpec(calibrationSpec(), "badtarget.json");
   for (const char* value : {"-5e6", "0", "abc", "inf"}) {
     const auto r = runCli("calibrate " + spec + " --target-tensile-strength " + value);
     EXPECT_EQ(r.exitCode, 2) << value;
@@ -120,7 +120,7 @@ class CliBadSpec : public ::testing::TestWithParam<BadSpec> {};
 
 TEST_P(CliBadSpec, ExitsTwoNamingTheField) {
   const BadSpec& bad = GetParam();
-  nlohmann::json spec = smallSpec();
+  nlohmann::json spec = calibrationSpec();
   if (bad.value.is_null()) {
     const auto parent = bad.pointer.parent_pointer();
     spec[parent].erase(bad.pointer.back());

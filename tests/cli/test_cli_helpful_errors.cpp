@@ -9,16 +9,12 @@
 namespace {
 
 namespace fs = std::filesystem;
-using rupture::testing::readWhole;
 using rupture::testing::runCli;
+using rupture::testing::smallExampleSpec;
 using rupture::testing::writeSpec;
 
-nlohmann::json smallSpec() {
-  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
-}
-
 TEST(CliHelpfulErrors, MisspelledRequiredKeyIsNamedWithTheNearestOne) {
-  nlohmann::json spec = smallSpec();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"]["strain_rte"] = spec["loading"]["strain_rate"];
   spec["loading"].erase("strain_rate");
   const std::string file = writeSpec(spec, "typo.json");
@@ -33,7 +29,7 @@ TEST(CliHelpfulErrors, MisspelledRequiredKeyIsNamedWithTheNearestOne) {
 }
 
 TEST(CliHelpfulErrors, TyposAtEveryLevelAndNoGuessForStrangers) {
-  nlohmann::json spec = smallSpec();
+  nlohmann::json spec = smallExampleSpec();
   spec["sample"]["porosty"] = 0.1;
   spec["sample"].erase("porosity");
   auto r = runCli("validate " + writeSpec(spec, "typo2.json"));
@@ -41,7 +37,7 @@ TEST(CliHelpfulErrors, TyposAtEveryLevelAndNoGuessForStrangers) {
   EXPECT_NE(r.err.find("'sample.porosty'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("did you mean 'porosity'?"), std::string::npos) << r.err;
 
-  spec = smallSpec();
+  spec = smallExampleSpec();
   spec["colour"] = "blue";  // nothing close: no guess, but the keys that are allowed
   r = runCli("validate " + writeSpec(spec, "stranger.json"));
   EXPECT_EQ(r.exitCode, 2);
@@ -51,7 +47,7 @@ TEST(CliHelpfulErrors, TyposAtEveryLevelAndNoGuessForStrangers) {
 }
 
 TEST(CliHelpfulErrors, MissingOutputDirectoryFailsBeforeAnyWork) {
-  const std::string file = writeSpec(smallSpec(), "ok.json");
+  const std::string file = writeSpec(smallExampleSpec(), "ok.json");
   const auto r = runCli("run " + file + " -o /nonexistent-dir/run.h5");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find("'/nonexistent-dir' does not exist"), std::string::npos) << r.err;

@@ -75,10 +75,6 @@ double quantity(const std::string& text) {
 
 double percentOf(const Fields& f) { return std::stod(f.at("progress")); }
 
-nlohmann::json smallSpec() {
-  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
-}
-
 struct RunOutput {
   CliResult cli;
   nlohmann::json summary;
@@ -155,7 +151,7 @@ TEST(CliStatusLines, ARunThatStopsAtSeparationNeverReportsMoreThanItsStepsAndNoZ
   // The small example as issue 55 ran the seed's study: the VL field at 1e6 /s. It separates well
   // before run.max_strain and goes on until its fragments stop breaking (the old progress showed
   // 99 % and ETA 0 s from the separation on, over two thirds of the steps).
-  nlohmann::json spec = smallSpec();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"]["initial_velocity"] = "VL";
   const RunOutput run = runOffATerminal(spec, "status-separation", "0.05");
   ASSERT_EQ(run.cli.exitCode, 0) << run.cli.err;

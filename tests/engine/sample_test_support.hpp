@@ -19,9 +19,9 @@ inline SampleSpec porousSpec(int dimension, std::uint64_t seed) {
   return s;
 }
 
-inline MaterialSpec ceramic() {
+inline MaterialSpec ceramic(double density = 6060) {
   MaterialSpec m;
-  m.density = 6060;
+  m.density = density;
   m.beam = {2865e9, 0.3, 0.3, 4e9};
   m.contact.youngModulus = 2865e9;
   return m;

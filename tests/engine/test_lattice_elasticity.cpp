@@ -19,7 +19,7 @@
 namespace rupture {
 namespace {
 
-constexpr double kSpacing = 1e-3, kE = 70e9;
+constexpr double kLatticeSpacing = 1e-3, kLatticeYoung = 70e9;
 
 struct ElasticCase {
   std::string lattice, model;
@@ -37,19 +37,19 @@ std::string caseName(const ::testing::TestParamInfo<ElasticCase>& info) {
 SampleSpec latticeSample(const std::string& lattice) {
   SampleSpec s;
   s.lattice = lattice;
-  s.spacing = kSpacing;
+  s.spacing = kLatticeSpacing;
   if (lattice == "triangular" || lattice == "square") {
     s.dimension = 2;
-    s.thickness = kSpacing;
-    const double row = lattice == "triangular" ? 0.5 * std::sqrt(3.0) * kSpacing : kSpacing;
-    s.size = {30 * kSpacing, 24 * row, 0};
+    s.thickness = kLatticeSpacing;
+    const double row = lattice == "triangular" ? 0.5 * std::sqrt(3.0) * kLatticeSpacing : kLatticeSpacing;
+    s.size = {30 * kLatticeSpacing, 24 * row, 0};
   } else {
     s.dimension = 3;
-    const double step = lattice == "fcc" ? kSpacing / std::sqrt(2.0) : kSpacing;
+    const double step = lattice == "fcc" ? kLatticeSpacing / std::sqrt(2.0) : kLatticeSpacing;
     const int across = lattice == "fcc" ? 14 : 10;  // fcc sites are 1/√2 spacing apart along the axes
     s.size = {(across + 2) * step, across * step, across * step};
   }
-  s.elementRadius = 0.5 * kSpacing;
+  s.elementRadius = 0.5 * kLatticeSpacing;
   return s;
 }
 
@@ -79,13 +79,13 @@ Measured uniaxialInterior(BondedSystem s, double eps) {
   for (std::size_t k = 0; k < n; ++k) {
     const double c[3] = {p.x[k], p.y[k], p.z[k]};
     bool inside = true;
-    for (int a = 0; a < d; ++a) inside = inside && c[a] > box[a][0] + 2.5 * kSpacing && c[a] < box[a][1] - 2.5 * kSpacing;
+    for (int a = 0; a < d; ++a) inside = inside && c[a] > box[a][0] + 2.5 * kLatticeSpacing && c[a] < box[a][1] - 2.5 * kLatticeSpacing;
     if (inside) interior.push_back(k);
     // Affine start, X faces (the sites within 0.6 spacing of them) held in x only.
     p.x[k] = x0[k] + eps * (x0[k] - xc);
     p.y[k] = y0[k] - 0.25 * eps * (y0[k] - yc);
     if (d == 3) p.z[k] = z0[k] - 0.25 * eps * (z0[k] - zc);
-    p.fixedDofs[k] = (x0[k] < box[0][0] + 0.6 * kSpacing || x0[k] > box[0][1] - 0.6 * kSpacing) ? kFixX : 0;
+    p.fixedDofs[k] = (x0[k] < box[0][0] + 0.6 * kLatticeSpacing || x0[k] > box[0][1] - 0.6 * kLatticeSpacing) ? kFixX : 0;
   }
   s.localDamping = 0.7;
   s.initialize();
@@ -135,7 +135,7 @@ TEST_P(LatticeUniaxial, UniaxialTensionRecoversTheTarget) {
   MaterialSpec material;
   material.model = c.model;
   material.density = 2500;
-  material.springs.youngModulus = kE;
+  material.springs.youngModulus = kLatticeYoung;
   const LatticeKind kind = latticeKind(c.lattice);
   const PoissonRange range = poissonRange(kind, c.model == "born");
   material.springs.poissonRatio = std::isnan(c.poissonRatio) ? range.max : c.poissonRatio;
@@ -144,7 +144,7 @@ TEST_P(LatticeUniaxial, UniaxialTensionRecoversTheTarget) {
   buildSample(sample, material, system);
   const Measured measured = uniaxialInterior(system, 1e-4);
   ASSERT_TRUE(measured.converged) << measured.youngModulus << " " << measured.poissonRatio;
-  EXPECT_NEAR(measured.youngModulus, kE, 0.02 * kE) << c.lattice << " " << c.model;
+  EXPECT_NEAR(measured.youngModulus, kLatticeYoung, 0.02 * kLatticeYoung) << c.lattice << " " << c.model;
   EXPECT_NEAR(measured.poissonRatio, material.springs.poissonRatio, 0.02) << c.lattice << " " << c.model;
 }
 
@@ -160,20 +160,20 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(SpringMapping, MatchesTheReferenceClosedFormsAndInvertsTheForwardMap) {
   // docs/references.md#eq-lattice: triangular Hookean plane stress k_n = √3 E t / 2, ν = 1/3.
   const double t = 2e-3;
-  const SpringConstants hookean = springConstants(LatticeKind::Triangular, false, kE, 1.0 / 3.0, kSpacing, t);
-  EXPECT_NEAR(hookean.normalStiffness, std::sqrt(3.0) * kE * t / 2, 1e-9 * kE * t);
+  const SpringConstants hookean = springConstants(LatticeKind::Triangular, false, kLatticeYoung, 1.0 / 3.0, kLatticeSpacing, t);
+  EXPECT_NEAR(hookean.normalStiffness, std::sqrt(3.0) * kLatticeYoung * t / 2, 1e-9 * kLatticeYoung * t);
   EXPECT_EQ(hookean.shearRatio, 0.0);
   // §2.2 table, plane stress: k_n = E t / (√3 (1 − ν)), k_s = E t (1 − 3ν) / (√3 (1 − ν²)).
   for (double nu : {-0.5, 0.0, 0.2, 1.0 / 3.0}) {
-    const SpringConstants born = springConstants(LatticeKind::Triangular, true, kE, nu, kSpacing, t);
-    EXPECT_NEAR(born.normalStiffness, kE * t / (std::sqrt(3.0) * (1 - nu)), 1e-9 * kE * t);
-    EXPECT_NEAR(born.shearRatio * born.normalStiffness, kE * t * (1 - 3 * nu) / (std::sqrt(3.0) * (1 - nu * nu)), 1e-9 * kE * t);
+    const SpringConstants born = springConstants(LatticeKind::Triangular, true, kLatticeYoung, nu, kLatticeSpacing, t);
+    EXPECT_NEAR(born.normalStiffness, kLatticeYoung * t / (std::sqrt(3.0) * (1 - nu)), 1e-9 * kLatticeYoung * t);
+    EXPECT_NEAR(born.shearRatio * born.normalStiffness, kLatticeYoung * t * (1 - 3 * nu) / (std::sqrt(3.0) * (1 - nu * nu)), 1e-9 * kLatticeYoung * t);
   }
   for (LatticeKind kind : {LatticeKind::Triangular, LatticeKind::Square, LatticeKind::SimpleCubic, LatticeKind::Fcc})
     for (double nu : {-0.6, 0.0, 0.15, poissonRange(kind, true).max}) {
-      const SpringConstants k = springConstants(kind, true, kE, nu, kSpacing, t);
-      const LatticeElasticity back = latticeElasticity(kind, k.normalStiffness, k.shearRatio, kSpacing, t);
-      EXPECT_NEAR(back.youngModulus, kE, 1e-9 * kE) << toString(kind);
+      const SpringConstants k = springConstants(kind, true, kLatticeYoung, nu, kLatticeSpacing, t);
+      const LatticeElasticity back = latticeElasticity(kind, k.normalStiffness, k.shearRatio, kLatticeSpacing, t);
+      EXPECT_NEAR(back.youngModulus, kLatticeYoung, 1e-9 * kLatticeYoung) << toString(kind);
       EXPECT_NEAR(back.poissonRatio, nu, 1e-12) << toString(kind);
     }
 }

@@ -14,21 +14,21 @@
 namespace rupture {
 namespace {
 
-constexpr double kL0 = 1e-3, kStiffness = 2e7, kWaveSpeed = 5000.0;
+constexpr double kBondLength = 1e-3, kBondStiffness = 2e7, kWaveSpeed = 5000.0;
 
 /// Bond 0–1 intact; with `brokenNeighbours`, 0 and 1 also each lost a bond (to 2 and 3, far away),
 /// so φ_0 = φ_1 = ½ (equal volumes). Particle 1 starts displaced by u0 along the bond.
 BondedSystem dampedPair(double d, bool brokenNeighbours, double u0) {
   BondedSystem s;
   s.particles.dimension = 3;
-  s.particles.add(0, 0, 0, 0.5 * kL0);
-  s.particles.add(kL0, 0, 0, 0.5 * kL0);
-  s.particles.add(0, 50 * kL0, 0, 0.5 * kL0);
-  s.particles.add(kL0, 50 * kL0, 0, 0.5 * kL0);
+  s.particles.add(0, 0, 0, 0.5 * kBondLength);
+  s.particles.add(kBondLength, 0, 0, 0.5 * kBondLength);
+  s.particles.add(0, 50 * kBondLength, 0, 0.5 * kBondLength);
+  s.particles.add(kBondLength, 50 * kBondLength, 0, 0.5 * kBondLength);
   s.particles.setMassFromDensity(2500, 0);
   for (auto [a, b] : {std::pair{0, 1}, {0, 2}, {1, 3}}) {
     const std::size_t k = s.bonds.add(s.particles, a, b);
-    s.bonds.stiffness[k] = kStiffness;
+    s.bonds.stiffness[k] = kBondStiffness;
     s.bonds.threshold[k] = 1.0;  // s0 = 1: never reached here
     if (a != 0 || b != 1) s.bonds.intact[k] = brokenNeighbours ? 0.0 : 1.0;
   }
@@ -48,10 +48,10 @@ BondedSystem dampedPair(double d, bool brokenNeighbours, double u0) {
 std::vector<double> extensionPeaks(BondedSystem& s, double period, int periods) {
   const double dt = period / 400;
   std::vector<double> peaks;
-  double before = 0, now = s.particles.x[1] - s.particles.x[0] - kL0;
+  double before = 0, now = s.particles.x[1] - s.particles.x[0] - kBondLength;
   for (int k = 0; k < 400 * periods; ++k) {
     s.step(dt);
-    const double next = s.particles.x[1] - s.particles.x[0] - kL0;
+    const double next = s.particles.x[1] - s.particles.x[0] - kBondLength;
     if (now > before && now >= next && now > 0) peaks.push_back(now);
     before = now;
     now = next;
@@ -65,8 +65,8 @@ TEST(LocalDamping, ADampedBondDecaysAtItsDashpotRate) {
   ASSERT_DOUBLE_EQ(s.damageIndex()[0], 0.5);
   ASSERT_DOUBLE_EQ(s.damageIndex()[1], 0.5);
   // μ ü + η u̇ + k u = 0, μ = m/2, η = φ̄ d k L0 / v0: envelope exp(−ζ ω_n t), ζ = η / (2 √(k μ)).
-  const double mu = 0.5 * s.particles.mass[0], omega = std::sqrt(kStiffness / mu);
-  const double eta = 0.5 * d * kStiffness * kL0 / kWaveSpeed, zeta = eta / (2 * std::sqrt(kStiffness * mu));
+  const double mu = 0.5 * s.particles.mass[0], omega = std::sqrt(kBondStiffness / mu);
+  const double eta = 0.5 * d * kBondStiffness * kBondLength / kWaveSpeed, zeta = eta / (2 * std::sqrt(kBondStiffness * mu));
   const double period = 2 * std::numbers::pi / (omega * std::sqrt(1 - zeta * zeta));
   const std::vector<double> peaks = extensionPeaks(s, period, 12);
   ASSERT_GE(peaks.size(), 10u);
@@ -80,7 +80,7 @@ TEST(LocalDamping, UndamagedMaterialIsNotDamped) {
   for (bool broken : {false, true}) {
     const double d = broken ? 0.0 : 0.2;  // intact neighbourhood with d > 0, or damage with d = 0
     BondedSystem s = dampedPair(d, broken, 1e-6);
-    const double mu = 0.5 * s.particles.mass[0], period = 2 * std::numbers::pi * std::sqrt(mu / kStiffness);
+    const double mu = 0.5 * s.particles.mass[0], period = 2 * std::numbers::pi * std::sqrt(mu / kBondStiffness);
     const std::vector<double> peaks = extensionPeaks(s, period, 12);
     ASSERT_GE(peaks.size(), 10u);
     EXPECT_NEAR(peaks[9] / peaks[0], 1.0, 1e-3) << (broken ? "d = 0" : "phi = 0");

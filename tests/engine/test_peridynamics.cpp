@@ -14,16 +14,16 @@
 namespace rupture {
 namespace {
 
-constexpr double kSpacing = 1e-3, kE = 72e9, kDensity = 2200, kHorizonFactor = 3.015;
+constexpr double kPdSpacing = 1e-3, kPdYoung = 72e9, kDensity = 2200, kHorizonFactor = 3.015;
 
 SampleSpec pdSample(int dimension, std::array<int, 3> sites) {
   SampleSpec s;
   s.dimension = dimension;
   s.lattice = dimension == 2 ? "square" : "simple-cubic";
-  s.spacing = kSpacing;
-  s.elementRadius = 0.5 * kSpacing;
-  s.thickness = dimension == 2 ? kSpacing : 0.0;
-  s.size = {sites[0] * kSpacing, sites[1] * kSpacing, dimension == 3 ? sites[2] * kSpacing : 0.0};
+  s.spacing = kPdSpacing;
+  s.elementRadius = 0.5 * kPdSpacing;
+  s.thickness = dimension == 2 ? kPdSpacing : 0.0;
+  s.size = {sites[0] * kPdSpacing, sites[1] * kPdSpacing, dimension == 3 ? sites[2] * kPdSpacing : 0.0};
   return s;
 }
 
@@ -31,7 +31,7 @@ MaterialSpec pmbMaterial(double fractureEnergy, const std::string& criterion = "
   MaterialSpec m;
   m.model = "pmb";
   m.density = kDensity;
-  m.pmb.youngModulus = kE;
+  m.pmb.youngModulus = kPdYoung;
   m.pmb.horizonFactor = kHorizonFactor;
   m.pmb.fractureEnergy = fractureEnergy;
   m.pmb.criterion = criterion;
@@ -57,8 +57,8 @@ std::vector<std::uint8_t> interior(const ParticleStore& p, double margin) {
 TEST(Pmb, IsotropicStretchGivesTheTargetBulkModulusAwayFromSurfaces) {
   BondedSystem s;
   buildSample(pdSample(3, {16, 16, 16}), pmbMaterial(NAN), s);
-  const double eps = 1e-4, delta = kHorizonFactor * kSpacing;
-  const std::vector<std::uint8_t> in = interior(s.particles, delta + kSpacing);
+  const double eps = 1e-4, delta = kHorizonFactor * kPdSpacing;
+  const std::vector<std::uint8_t> in = interior(s.particles, delta + kPdSpacing);
   ParticleStore& p = s.particles;
   for (std::size_t k = 0; k < p.size(); ++k) { p.x[k] *= 1 + eps; p.y[k] *= 1 + eps; p.z[k] *= 1 + eps; }
   // Each site owns half the energy of each of its bonds: W_i V_i = ½ Σ_j U_ij.
@@ -71,7 +71,7 @@ TEST(Pmb, IsotropicStretchGivesTheTargetBulkModulusAwayFromSurfaces) {
   for (std::size_t k = 0; k < p.size(); ++k) if (in[k]) { volume += p.volume[k]; ++count; }
   ASSERT_GT(count, 100u);
   const double bulk = 2.0 * (energy / volume) / (9.0 * eps * eps);  // W = 9/2 K ε²
-  EXPECT_NEAR(bulk, pmbBulkModulus(kE), 0.03 * pmbBulkModulus(kE));
+  EXPECT_NEAR(bulk, pmbBulkModulus(kPdYoung), 0.03 * pmbBulkModulus(kPdYoung));
 }
 
 TEST(Pmb, APlaneWaveTravelsAtTheContinuumSpeed) {
@@ -81,19 +81,19 @@ TEST(Pmb, APlaneWaveTravelsAtTheContinuumSpeed) {
   BondedSystem s;
   buildSample(pdSample(2, {200, 16, 0}), pmbMaterial(NAN), s);
   ParticleStore& p = s.particles;
-  const double v0 = 0.1, delta = kHorizonFactor * kSpacing;
-  const double c = std::sqrt(kE / (1.0 - 1.0 / 9.0) / kDensity);
-  const double rise = 10 * kSpacing / c;
+  const double v0 = 0.1, delta = kHorizonFactor * kPdSpacing;
+  const double c = std::sqrt(kPdYoung / (1.0 - 1.0 / 9.0) / kDensity);
+  const double rise = 10 * kPdSpacing / c;
   const double yMid = 0.5 * (*std::min_element(p.y.begin(), p.y.end()) + *std::max_element(p.y.begin(), p.y.end()));
   std::vector<std::size_t> driven;
   std::size_t stationA = 0, stationB = 0;
-  const double xa = 60 * kSpacing, xb = 140 * kSpacing;
+  const double xa = 60 * kPdSpacing, xb = 140 * kPdSpacing;
   for (std::size_t k = 0; k < p.size(); ++k) {
     p.fixedDofs[k] = kFixY | kFixZ;
     if (p.x[k] < delta) { driven.push_back(k); p.fixedDofs[k] |= kFixX; }
-    if (std::fabs(p.y[k] - yMid) < 0.6 * kSpacing) {
-      if (std::fabs(p.x[k] - xa) < std::fabs(p.x[stationA] - xa) || std::fabs(p.y[stationA] - yMid) >= 0.6 * kSpacing) stationA = k;
-      if (std::fabs(p.x[k] - xb) < std::fabs(p.x[stationB] - xb) || std::fabs(p.y[stationB] - yMid) >= 0.6 * kSpacing) stationB = k;
+    if (std::fabs(p.y[k] - yMid) < 0.6 * kPdSpacing) {
+      if (std::fabs(p.x[k] - xa) < std::fabs(p.x[stationA] - xa) || std::fabs(p.y[stationA] - yMid) >= 0.6 * kPdSpacing) stationA = k;
+      if (std::fabs(p.x[k] - xb) < std::fabs(p.x[stationB] - xb) || std::fabs(p.y[stationB] - yMid) >= 0.6 * kPdSpacing) stationB = k;
     }
   }
   s.prescribe = [&](ParticleStore& ps, double t) {
@@ -122,14 +122,14 @@ TEST(Pmb, APlaneWaveTravelsAtTheContinuumSpeed) {
 /// and the area is their number of rows (and layers) times the spacing (times the thickness in 2D).
 double cutEnergyPerArea(const BondedSystem& s, const SampleSpec& spec, bool byThreshold, double s0) {
   const ParticleStore& p = s.particles;
-  const double delta = kHorizonFactor * kSpacing, margin = delta + kSpacing;
+  const double delta = kHorizonFactor * kPdSpacing, margin = delta + kPdSpacing;
   const auto [xlo, xhi] = std::minmax_element(p.x.begin(), p.x.end());
-  const double xc = 0.5 * (*xlo + *xhi) + 0.25 * kSpacing;  // between two site planes whatever the parity
+  const double xc = 0.5 * (*xlo + *xhi) + 0.25 * kPdSpacing;  // between two site planes whatever the parity
   const auto [ylo, yhi] = std::minmax_element(p.y.begin(), p.y.end());
   const auto [zlo, zhi] = std::minmax_element(p.z.begin(), p.z.end());
   auto inBand = [&](double v, double lo, double hi) { return v >= lo + margin && v <= hi - margin; };
   auto rows = [&](double lo, double hi) {  // sites per line inside the band
-    return std::floor((hi - margin) / kSpacing - 0.5) - std::ceil((lo + margin) / kSpacing - 0.5) + 1;
+    return std::floor((hi - margin) / kPdSpacing - 0.5) - std::ceil((lo + margin) / kPdSpacing - 0.5) + 1;
   };
   double energy = 0;
   for (std::size_t b = 0; b < s.bonds.size(); ++b) {
@@ -140,8 +140,8 @@ double cutEnergyPerArea(const BondedSystem& s, const SampleSpec& spec, bool byTh
     const double L0 = s.bonds.restLength[b];
     energy += byThreshold ? s.bonds.threshold[b] : 0.5 * s.bonds.stiffness[b] * (s0 * L0) * (s0 * L0);
   }
-  const double area = spec.dimension == 2 ? rows(*ylo, *yhi) * kSpacing * spec.thickness
-                                          : rows(*ylo, *yhi) * rows(*zlo, *zhi) * kSpacing * kSpacing;
+  const double area = spec.dimension == 2 ? rows(*ylo, *yhi) * kPdSpacing * spec.thickness
+                                          : rows(*ylo, *yhi) * rows(*zlo, *zhi) * kPdSpacing * kPdSpacing;
   return energy / area;
 }
 
@@ -151,7 +151,7 @@ TEST(Pmb, CriticalStretchFromG0CostsG0PerUnitAreaIn2DAnd3D) {
     const SampleSpec spec = d == 2 ? pdSample(2, {30, 40, 0}) : pdSample(3, {14, 20, 20});
     BondedSystem s;
     buildSample(spec, pmbMaterial(G0), s);
-    const double s0 = pmbCriticalStretch(d, kE, kHorizonFactor * kSpacing, G0);
+    const double s0 = pmbCriticalStretch(d, kPdYoung, kHorizonFactor * kPdSpacing, G0);
     EXPECT_DOUBLE_EQ(s.bonds.threshold[0], s0);
     EXPECT_NEAR(cutEnergyPerArea(s, spec, false, s0), G0, 0.05 * G0) << d << "D";
     // The critical-energy criterion's thresholds are the same cut energy.

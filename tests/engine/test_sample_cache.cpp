@@ -10,6 +10,7 @@
 
 #include "samples/sample_builder.hpp"
 #include "scenarios/bonded/sample_cache.hpp"
+#include "sample_test_support.hpp"
 #include "support/test_support.hpp"
 
 namespace rupture {
@@ -17,6 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using rupture::testing::ScratchDir;
+using rupture::testing::ceramic;
 
 SampleSpec porousSpec(std::uint64_t seed) {
   SampleSpec s;
@@ -27,14 +29,6 @@ SampleSpec porousSpec(std::uint64_t seed) {
   s.poreRadius = {0.02e-6, 0.05e-6};
   s.seed = seed;
   return s;
-}
-
-MaterialSpec ceramic(double density = 6060) {
-  MaterialSpec m;
-  m.density = density;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9;
-  return m;
 }
 
 /// The same elements (positions, radii, masses, inertia), bonds (pairs, rest state) and report.

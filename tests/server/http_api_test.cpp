@@ -11,13 +11,7 @@ using test::expectProblem;
 using test::getJson;
 using test::LiveServer;
 
-void expectStillServing(httplib::Client& client) {
-  auto res = client.Get("/health");
-  ASSERT_TRUE(res) << "the server stopped answering";
-  EXPECT_EQ(res->status, 200);
-}
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 TEST(HttpApi, LandingHealthConformanceAndOpenApi) {
   LiveServer live;
@@ -76,7 +70,7 @@ TEST(HttpApi, BadSubmissionsGetProblemDocumentsAndNoJob) {
   LiveServer live([](ServerConfig& c) { c.maxRuns = 20; });
   auto client = live.client();
   const Json inputs = test::smallInputs();
-  auto post = [&](const std::string& body, const std::string& path = kExecute) {
+  auto post = [&](const std::string& body, const std::string& path = test::kExecutePath) {
     return client->Post(path.c_str(), body, "application/json");
   };
   auto withInputs = [&](const Json& in, const Json& extra = Json::object()) {
@@ -125,16 +119,16 @@ TEST(HttpApi, BadSubmissionsGetProblemDocumentsAndNoJob) {
   // Pathologically deep nesting is refused before parsing (it would overflow the parser's stack).
   const std::string deep = "{\"inputs\": " + std::string(400000, '[') + std::string(400000, ']') + "}";
   expectProblem(post(deep), 400);
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 
   // Form-encoded bodies (curl -d without --json) are refused: a web page can send those cross-site.
-  auto form = client->Post(kExecute.c_str(), "{\"inputs\": {", "application/x-www-form-urlencoded");
+  auto form = client->Post(test::kExecutePath.c_str(), "{\"inputs\": {", "application/x-www-form-urlencoded");
   expectProblem(form, 415, "Content-Type");
 
   // Nothing above created a job.
   Json jobs = getJson(*client, "/jobs");
   EXPECT_EQ(jobs["numberMatched"], 0);
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpApi, UnknownJobsRunsAndPathLikeIds) {
@@ -162,7 +156,7 @@ TEST(HttpApi, UnknownJobsRunsAndPathLikeIds) {
   const std::string del = test::rawExchange(
       live.port(), "DELETE /jobs/../../x HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(test::rawStatus(del), 404) << del;
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpApi, WrongMethodsAre405WithAllow) {
@@ -174,48 +168,48 @@ TEST(HttpApi, WrongMethodsAre405WithAllow) {
   EXPECT_NE(put->get_header_value("Allow").find("DELETE"), std::string::npos);
   expectProblem(client->Delete("/processes"), 405);
   expectProblem(client->Post("/jobs", "{}", "application/json"), 405);
-  expectProblem(client->Get(kExecute.c_str()), 405);
+  expectProblem(client->Get(test::kExecutePath.c_str()), 405);
   expectProblem(client->Patch("/health", "{}", "application/json"), 405);
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpApi, OversizedAndChunkedBodiesAreRefused) {
   LiveServer live([](ServerConfig& c) { c.maxRequestBytes = 64 * 1024; });
   auto client = live.client();
   const std::string big = "{\"inputs\": {\"pad\": \"" + std::string(100 * 1024, 'x') + "\"}}";
-  expectProblem(client->Post(kExecute.c_str(), big, "application/json"), 413);
-  expectStillServing(*client);
+  expectProblem(client->Post(test::kExecutePath.c_str(), big, "application/json"), 413);
+  test::expectStillServing(*client);
 
   // Chunked bodies escape cpp-httplib's size limit, so they are refused before being read: 411.
   const std::string chunked =
-      "POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+      "POST " + test::kExecutePath + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
       "Transfer-Encoding: chunked\r\n\r\n" "5\r\n{\"inp\r\n0\r\n\r\n";
   const std::string response = test::rawExchange(live.port(), chunked);
   EXPECT_EQ(test::rawStatus(response), 411) << response;
   EXPECT_NE(response.find("application/problem+json"), std::string::npos);
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpApi, TokenGuardsPostAndDeleteOnly) {
   LiveServer live([](ServerConfig& c) { c.token = "s3cret-token"; });
   auto client = live.client();
-  auto missing = client->Post(kExecute.c_str(), "{}", "application/json");
+  auto missing = client->Post(test::kExecutePath.c_str(), "{}", "application/json");
   expectProblem(missing, 401);
   EXPECT_EQ(missing->get_header_value("WWW-Authenticate"), "Bearer realm=\"rupture\"");
-  expectProblem(client->Post(kExecute.c_str(), httplib::Headers{{"Authorization", "Bearer wrong"}}, "{}",
+  expectProblem(client->Post(test::kExecutePath.c_str(), httplib::Headers{{"Authorization", "Bearer wrong"}}, "{}",
                              "application/json"),
                 401);
-  expectProblem(client->Post(kExecute.c_str(), httplib::Headers{{"Authorization", "s3cret-token"}}, "{}",
+  expectProblem(client->Post(test::kExecutePath.c_str(), httplib::Headers{{"Authorization", "s3cret-token"}}, "{}",
                              "application/json"),
                 401);
   expectProblem(client->Delete("/jobs/1"), 401);
   // With the token the request gets past authentication (and fails on its body or the job id).
   const httplib::Headers auth{{"Authorization", "Bearer s3cret-token"}};
-  EXPECT_NE(client->Post(kExecute.c_str(), auth, "{}", "application/json")->status, 401);
+  EXPECT_NE(client->Post(test::kExecutePath.c_str(), auth, "{}", "application/json")->status, 401);
   expectProblem(client->Delete("/jobs/1", auth), 404);
   // Reading needs no token.
   getJson(*client, "/jobs");
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpApi, InvalidQueryParametersAre400) {

@@ -14,7 +14,6 @@ namespace {
 
 using test::LiveServer;
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 /// Snippets that reach parser corners: overflow, control characters, invalid UTF-8, structure.
 const std::vector<std::string>& tokens() {
@@ -116,7 +115,7 @@ TEST(HttpFuzz, MutatedSubmissionsNeverGetA5xx) {
       for (int k = 0, n = 1 + static_cast<int>(rng() % 3); k < n; ++k) mutateStructure(doc, rng);
       body = doc.dump(-1, ' ', false, Json::error_handler_t::replace);
     }
-    auto res = client->Post(kExecute.c_str(), body, "application/json");
+    auto res = client->Post(test::kExecutePath.c_str(), body, "application/json");
     if (!res) {
       ++noAnswer;
       ADD_FAILURE() << "case " << i << ": no answer (" << httplib::to_string(res.error()) << ") for "

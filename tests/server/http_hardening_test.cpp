@@ -33,13 +33,7 @@ using test::expectProblem;
 using test::getJson;
 using test::LiveServer;
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
-void expectStillServing(httplib::Client& client) {
-  auto res = client.Get("/health");
-  ASSERT_TRUE(res) << "the server stopped answering";
-  EXPECT_EQ(res->status, 200);
-}
 
 /// A raw request with the usual headers; `extra` lines end in \r\n.
 std::string rawRequest(const std::string& method, const std::string& target, const std::string& extra = {},
@@ -133,7 +127,7 @@ TEST(HttpHardening, PathsThatAreNotUtf8GetJsonProblemsAndTheServerLives) {
       }
     }
     auto client = live.client();
-    expectStillServing(*client);
+    test::expectStillServing(*client);
   }
 }
 
@@ -148,24 +142,24 @@ TEST(HttpHardening, NumbersOutOfDoubleRangeAre400NamingTheField) {
   ASSERT_NE(at, std::string::npos) << body;
   const std::size_t valueEnd = body.find_first_of(",}", at + key.size());
   body = body.substr(0, at + key.size()) + "1e400" + body.substr(valueEnd);
-  Json doc = expectProblem(client->Post(kExecute.c_str(), body, "application/json"), 400, "loading.strain_rate");
+  Json doc = expectProblem(client->Post(test::kExecutePath.c_str(), body, "application/json"), 400, "loading.strain_rate");
   EXPECT_NE(doc["detail"].get<std::string>().find("range of a double"), std::string::npos) << doc.dump();
-  expectProblem(client->Post(kExecute.c_str(),
+  expectProblem(client->Post(test::kExecutePath.c_str(),
                              R"({"inputs": {}, "sweep": {"loading.strain_rate": [1e5, -1e999]}})",
                              "application/json"),
                 400, "sweep.loading.strain_rate[1]");
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpHardening, InvalidUtf8InBodiesAndQueriesIs400) {
   LiveServer live;
   auto client = live.client();
-  Json doc = expectProblem(client->Post(kExecute.c_str(), std::string("{\"inputs\": {\"name\": \"a\xFF\xFE\"}}"),
+  Json doc = expectProblem(client->Post(test::kExecutePath.c_str(), std::string("{\"inputs\": {\"name\": \"a\xFF\xFE\"}}"),
                                         "application/json"),
                            400);
   EXPECT_TRUE(doc.contains("byte")) << doc.dump();
   // A syntax error right after an invalid byte: the parser's excerpt is not echoed raw.
-  auto res = client->Post(kExecute.c_str(), std::string("{\"in\xC3\x28puts\" 1}"), "application/json");
+  auto res = client->Post(test::kExecutePath.c_str(), std::string("{\"in\xC3\x28puts\" 1}"), "application/json");
   expectProblem(res, 400);
   EXPECT_TRUE(isValidUtf8(res->body));
 
@@ -176,7 +170,7 @@ TEST(HttpHardening, InvalidUtf8InBodiesAndQueriesIs400) {
     EXPECT_EQ(problem.value("in", ""), "query") << query << ": " << r->body;
     EXPECT_TRUE(isValidUtf8(r->body)) << query;
   }
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpHardening, DescribeValueNeverCutsACharacterInHalf) {
@@ -210,13 +204,13 @@ TEST(HttpHardening, SlowClientsNeitherStarveOthersNorStayForever) {
   }
   // One more sends a whole head but only part of its body.
   RawConnection slowBody(live.port());
-  ASSERT_TRUE(slowBody.send("POST " + kExecute +
+  ASSERT_TRUE(slowBody.send("POST " + test::kExecutePath +
                             " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
                             "Content-Length: 100\r\n\r\n{\"inp"));
   auto client = live.client();
   for (int probe = 0; probe < 4; ++probe) {
     for (auto& c : slow) c->send("E");
-    expectStillServing(*client);
+    test::expectStillServing(*client);
   }
   // The deadline counts from the first byte of the request, whatever trickles after it: each slow
   // client is answered 408 and disconnected.
@@ -228,7 +222,7 @@ TEST(HttpHardening, SlowClientsNeitherStarveOthersNorStayForever) {
   const std::string bodyAnswer = slowBody.readUntilClosed(5);
   EXPECT_EQ(test::rawStatus(bodyAnswer), 408) << bodyAnswer;
   EXPECT_EQ(problemOf(bodyAnswer).value("type", ""), problem::kRequestTimeout);
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpHardening, OneClientCannotTakeEveryConnection) {
@@ -243,7 +237,7 @@ TEST(HttpHardening, OneClientCannotTakeEveryConnection) {
   held.clear();
   ASSERT_TRUE(test::waitFor([&] { return live.server().openConnections() == 0; }, 5));
   auto client = live.client();
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 // -- item 6: SIGTERM let runs start and POSTs through; stop waited on idle connections --------
@@ -271,7 +265,7 @@ TEST(HttpHardening, StoppingTheSchedulerFirstRequeuesRunsAndRefusesSubmissions) 
   }, 30)) << doc.dump(2);
   EXPECT_EQ(doc["runs"][1]["status"], "accepted");
   EXPECT_EQ(getJson(*client, "/health")["status"], "stopping");
-  expectProblem(test::postJson(*client, kExecute, smallBody()), 503);
+  expectProblem(test::postJson(*client, test::kExecutePath, smallBody()), 503);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_EQ(getJson(*client, "/jobs/" + std::to_string(id))["runs"][1]["status"], "accepted");
 }
@@ -298,7 +292,7 @@ TEST(HttpHardening, SigtermEndsTheServerWithinTwoSecondsWhateverClientsHold) {
   ASSERT_TRUE(idle.send("GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"));
   EXPECT_EQ(test::rawStatus(idle.readUntilClosed(0.5)), 200);
   RawConnection halfSent(server.port());
-  ASSERT_TRUE(halfSent.send("POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 50\r\n\r\n{"));
+  ASSERT_TRUE(halfSent.send("POST " + test::kExecutePath + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 50\r\n\r\n{"));
   RawConnection trickle(server.port());
   ASSERT_TRUE(trickle.send("GET /jo"));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -317,17 +311,17 @@ TEST(HttpHardening, MutatingRoutesNeedJsonAndTheirOwnOrigin) {
   auto client = live.client();
   const std::string body = smallBody().dump();
   for (const char* type : {"text/plain", "application/x-www-form-urlencoded", "multipart/form-data; boundary=x"}) {
-    expectProblem(client->Post(kExecute.c_str(), body, type), 415, "Content-Type");
+    expectProblem(client->Post(test::kExecutePath.c_str(), body, type), 415, "Content-Type");
   }
   const std::string self = "http://127.0.0.1:" + std::to_string(live.port());
-  expectProblem(client->Post(kExecute.c_str(), {{"Origin", "https://evil.example"}}, body, "application/json"), 403,
+  expectProblem(client->Post(test::kExecutePath.c_str(), {{"Origin", "https://evil.example"}}, body, "application/json"), 403,
                 "Origin");
   expectProblem(client->Delete("/jobs/1", {{"Origin", "null"}}), 403, "Origin");
   // Reads from any origin are answered (without CORS headers a browser will not show them).
   EXPECT_EQ(client->Get("/jobs", {{"Origin", "https://evil.example"}})->status, 200);
   // The server's own origin and listed origins may submit.
-  EXPECT_EQ(client->Post(kExecute.c_str(), {{"Origin", self}}, body, "application/json")->status, 201);
-  EXPECT_EQ(client->Post(kExecute.c_str(), {{"Origin", "https://app.example.org"}}, body, "application/json; charset=utf-8")
+  EXPECT_EQ(client->Post(test::kExecutePath.c_str(), {{"Origin", self}}, body, "application/json")->status, 201);
+  EXPECT_EQ(client->Post(test::kExecutePath.c_str(), {{"Origin", "https://app.example.org"}}, body, "application/json; charset=utf-8")
                 ->status,
             201);
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 2);
@@ -362,7 +356,7 @@ TEST(HttpHardening, ReadTokenGuardsEverythingButHealth) {
   EXPECT_EQ(client->Get("/jobs", {{"Authorization", "Bearer write-secret"}})->status, 200);
   expectProblem(client->Get("/jobs", {{"Authorization", "Bearer wrong"}}), 401);
   // Submitting still needs the write token.
-  expectProblem(client->Post(kExecute.c_str(), {{"Authorization", "Bearer read-secret"}}, "{}", "application/json"),
+  expectProblem(client->Post(test::kExecutePath.c_str(), {{"Authorization", "Bearer read-secret"}}, "{}", "application/json"),
                 401);
 }
 
@@ -421,7 +415,7 @@ TEST(HttpHardening, BusyPortAndLockedDataDirectoryAreRefusedClearly) {
       << err;
   // The first server never noticed.
   auto client = live.client();
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 // -- item 10: ranges, NUL bytes, empty keys, SVG, CSV, idempotent retries -----------------------
@@ -430,11 +424,11 @@ TEST(HttpHardening, BodiesWithNulBytesOrEmptyKeysAreRejected) {
   LiveServer live;
   auto client = live.client();
   const std::string valid = smallBody().dump();
-  Json doc = expectProblem(client->Post(kExecute.c_str(), valid + std::string("\0{\"x\":", 6), "application/json"), 400);
+  Json doc = expectProblem(client->Post(test::kExecutePath.c_str(), valid + std::string("\0{\"x\":", 6), "application/json"), 400);
   EXPECT_EQ(doc.value("byte", 0u), valid.size());
   Json empty = smallBody();
   empty["inputs"]["loading"][""] = 1;
-  expectProblem(test::postJson(*client, kExecute, empty), 400, "loading.\"\"");
+  expectProblem(test::postJson(*client, test::kExecutePath, empty), 400, "loading.\"\"");
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 0);
 }
 
@@ -442,11 +436,11 @@ TEST(HttpHardening, RequestFramingEdgeCases) {
   LiveServer live;
   // A POST without Content-Length has no body: 411, not a wait for the client to close.
   const std::string noLength = test::rawExchange(
-      live.port(), "POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n\r\n");
+      live.port(), "POST " + test::kExecutePath + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n\r\n");
   EXPECT_EQ(test::rawStatus(noLength), 411) << noLength;
   // Expect: 100-continue is answered before the body is sent.
   RawConnection expect(live.port());
-  ASSERT_TRUE(expect.send("POST " + kExecute + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+  ASSERT_TRUE(expect.send("POST " + test::kExecutePath + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
                           "Content-Length: 2\r\nExpect: 100-continue\r\nConnection: close\r\n\r\n"));
   std::string interim;
   ASSERT_TRUE(test::waitFor([&] {
@@ -470,7 +464,7 @@ TEST(HttpHardening, RequestFramingEdgeCases) {
       live.port(), "GET /health HTTP/1.1\r\nHost: 127.0.0.1\r\n" + std::string(70 * 1024, 'X'));
   EXPECT_EQ(test::rawStatus(huge), 431) << huge.substr(0, 200);
   auto client = live.client();
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 // -- issue 56: a listen queue that holds a burst, and the request timeout from accept -------------
@@ -562,7 +556,7 @@ TEST(HttpHardening, SilentConnectionsOfABurstAreClosedAfterTheRequestTimeout) {
   }
   EXPECT_TRUE(test::waitFor([&] { return live.server().openConnections() == 0; }, 2));
   auto client = live.client();
-  expectStillServing(*client);
+  test::expectStillServing(*client);
 }
 
 TEST(HttpHardening, TheListenBacklogIsAnOptionDefaultingToTheSystemsLimit) {
@@ -581,12 +575,12 @@ TEST(HttpHardening, ControlCharactersInAJobNameAre400NamingName) {
   auto client = live.client();
   for (const std::string& name : {std::string("a\0b", 3), std::string("tab\there"), std::string("esc\x1b[31m"),
                                   std::string("del\x7f"), std::string("next line \xc2\x85")}) {
-    const Json problem = expectProblem(test::postJson(*client, kExecute, smallBody(name)), 400, "name");
+    const Json problem = expectProblem(test::postJson(*client, test::kExecutePath, smallBody(name)), 400, "name");
     EXPECT_NE(problem.value("detail", "").find("control character"), std::string::npos) << problem.dump();
   }
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 0);
   // Printable text, other scripts included, is a name.
-  auto res = test::postJson(*client, kExecute, smallBody("Zugversuch \xc3\xa9 \xe2\x80\x94 run 1"));
+  auto res = test::postJson(*client, test::kExecutePath, smallBody("Zugversuch \xc3\xa9 \xe2\x80\x94 run 1"));
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 201) << res->body;
 }
@@ -627,7 +621,7 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
     id = test::submit(*client, body, key);
     ASSERT_GT(id, 0);
     // The same key and body: the same job, not a second one.
-    auto again = test::postJson(*client, kExecute, body, key);
+    auto again = test::postJson(*client, test::kExecutePath, body, key);
     ASSERT_TRUE(again);
     EXPECT_EQ(again->status, 201);
     EXPECT_EQ(Json::parse(again->body)["jobID"], std::to_string(id));
@@ -635,7 +629,7 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
     // The same key with another body: refused, naming the header.
     Json other = body;
     other["name"] = "another";
-    expectProblem(test::postJson(*client, kExecute, other, key), 422, "Idempotency-Key");
+    expectProblem(test::postJson(*client, test::kExecutePath, other, key), 422, "Idempotency-Key");
 
     Json doc = test::waitForJob(*client, id, {"successful", "failed"}, 120);
     ASSERT_EQ(doc["status"], "successful") << doc.dump(2);
@@ -678,7 +672,7 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
   // After a restart the key still names the job.
   LiveServer restarted({}, data.path());
   auto client = restarted.client();
-  auto retry = test::postJson(*client, kExecute, body, key);
+  auto retry = test::postJson(*client, test::kExecutePath, body, key);
   ASSERT_TRUE(retry);
   EXPECT_EQ(retry->status, 201);
   EXPECT_EQ(Json::parse(retry->body)["jobID"], std::to_string(id));
@@ -699,13 +693,13 @@ TEST(HttpHardening, RangesSvgNamesAndIdempotentRetriesOnAFinishedJob) {
     EXPECT_EQ(sqlite3_changes(db), 1);
     sqlite3_close(db);
   }
-  auto legacy = test::postJson(*client, kExecute, body, key);
+  auto legacy = test::postJson(*client, test::kExecutePath, body, key);
   ASSERT_TRUE(legacy);
   EXPECT_EQ(legacy->status, 201);
   EXPECT_EQ(Json::parse(legacy->body)["jobID"], std::to_string(id));
   Json other = body;
   other["name"] = "another";
-  expectProblem(test::postJson(*client, kExecute, other, key), 422, "Idempotency-Key");
+  expectProblem(test::postJson(*client, test::kExecutePath, other, key), 422, "Idempotency-Key");
 }
 
 }  // namespace

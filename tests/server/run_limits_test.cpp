@@ -16,21 +16,20 @@
 namespace rupture::server {
 namespace {
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 TEST(RunLimits, RunsAboveMaxElementsAreRefusedWithTheEstimate) {
   if (!test::scenarioAvailable()) GTEST_SKIP() << "scenario not registered";
   test::LiveServer server([](ServerConfig& c) { c.maxElements = 2000; });
   auto client = server.client();
   Json inputs = test::smallInputs();  // about 1,600 elements: accepted
-  const auto ok = test::postJson(*client, kExecute, Json{{"inputs", inputs}});
+  const auto ok = test::postJson(*client, test::kExecutePath, Json{{"inputs", inputs}});
   ASSERT_TRUE(ok);
   EXPECT_EQ(ok->status, 201) << ok->body;
 
   // Half the element radius: four times the elements, refused before anything is queued.
   const double radius = inputs["sample"]["element_radius"].get<double>();
   Json sweep = {{"sample.element_radius", {radius, radius / 2}}};
-  const auto refused = test::postJson(*client, kExecute, Json{{"inputs", inputs}, {"sweep", sweep}});
+  const auto refused = test::postJson(*client, test::kExecutePath, Json{{"inputs", inputs}, {"sweep", sweep}});
   const Json doc = test::expectProblem(refused, 400, "sample.element_radius");
   EXPECT_EQ(doc.value("sweep_point", -1), 1) << doc.dump();
   EXPECT_NE(doc["detail"].get<std::string>().find("--max-elements"), std::string::npos) << doc.dump();
@@ -56,7 +55,7 @@ TEST(RunLimits, SpecsThatCouldNeverFinishAreRefused) {
   for (const RunawaySpec& r : kRunawaySpecs) {
     Json inputs = test::smallInputs();
     inputs[Json::json_pointer(r.pointer)] = r.value;
-    const Json doc = test::expectProblem(test::postJson(*client, kExecute, Json{{"inputs", inputs}}), 400, r.field);
+    const Json doc = test::expectProblem(test::postJson(*client, test::kExecutePath, Json{{"inputs", inputs}}), 400, r.field);
     EXPECT_NE(doc.value("detail", std::string()).find("allowed"), std::string::npos) << doc.dump();
   }
   EXPECT_EQ(test::getJson(*client, "/jobs")["jobs"].size(), 0u) << "nothing was queued";
@@ -88,7 +87,7 @@ TEST(RunLimits, RunsAboveMaxRunStepsAreRefusedWithTheEstimate) {
   ASSERT_GT(id, 0);
   client->Delete(("/jobs/" + std::to_string(id)).c_str());
   // Half the strain rate: twice the steps, refused with the estimate.
-  const Json doc = test::expectProblem(test::postJson(*client, kExecute, Json{{"inputs", longInputs(5e2)}}), 400,
+  const Json doc = test::expectProblem(test::postJson(*client, test::kExecutePath, Json{{"inputs", longInputs(5e2)}}), 400,
                                        "loading.strain_rate");
   EXPECT_NE(doc.value("detail", std::string()).find("--max-run-steps"), std::string::npos) << doc.dump();
   EXPECT_NEAR(doc.value("estimated_steps", 0.0), 2 * edge, 0.01 * edge) << doc.dump();

@@ -67,6 +67,13 @@ inline constexpr const char* kScenario = "dynamic-tension";
 /// Where jobs of kScenario are submitted.
 inline const std::string kExecutePath = std::string("/processes/") + kScenario + "/execution";
 
+/// The server still answers GET /health with 200 (after a request meant to upset it).
+inline void expectStillServing(httplib::Client& client) {
+  auto res = client.Get("/health");
+  ASSERT_TRUE(res) << "the server stopped answering";
+  EXPECT_EQ(res->status, 200);
+}
+
 inline fs::path exampleFile() { return fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"; }
 
 inline bool scenarioAvailable() {

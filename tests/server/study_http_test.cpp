@@ -18,7 +18,6 @@ using test::expectProblem;
 using test::getJson;
 using test::LiveServer;
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 class StudyHttp : public ::testing::Test {
 protected:
@@ -47,9 +46,9 @@ TEST_F(StudyHttp, ReplicatedSweepReportsMeansAndIntervalsOfItsRowsAndComparesWit
   // Bad replicates are refused whole, naming the field.
   Json bad = body;
   bad["replicates"]["count"] = 0;
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "replicates.count");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "replicates.count");
   bad["replicates"] = {{"count", 2}, {"vary", "loading.strain_rate"}};
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "replicates.vary");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "replicates.vary");
 
   const Json done = test::waitForJob(*client, id, {"successful", "failed", "dismissed"}, 240);
   ASSERT_EQ(done["status"], "successful") << done.dump(2);
@@ -163,10 +162,10 @@ TEST_F(StudyHttp, RefinementAddsItsBudgetBetweenTheNeighboursAndRecordsWhy) {
                {"refine", {{"path", "loading.strain_rate"}, {"quantity", "peak_stress"}, {"max_runs", 1}, {"tolerance", 0.01}}}};
   Json bad = body;
   bad["refine"]["path"] = "loading.initial_velocity";
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "refine.path");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "refine.path");
   bad = body;
   bad["refine"]["max_runs"] = 0;
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "refine.max_runs");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "refine.max_runs");
 
   const std::int64_t id = test::submit(*client, body);
   ASSERT_GT(id, 0);

@@ -15,7 +15,6 @@ using test::expectProblem;
 using test::getJson;
 using test::LiveServer;
 
-const std::string kExecute = std::string("/processes/") + test::kScenario + "/execution";
 
 /// Downloads `path` into a file in `dir` and opens it with the HDF5 API.
 rupture::io::Hdf5File download(httplib::Client& client, const std::string& path, const test::TempDir& dir,
@@ -47,7 +46,7 @@ TEST_F(SweepEndToEnd, GridOfTwoByTwoCompletesWithSummaryPlotAndFiles) {
                {"sweep", {{"loading.strain_rate", test::twoStrainRates()}, {"loading.initial_velocity", {"V0", "VL"}}}},
                {"sweep_mode", "grid"}};
   const auto posted = std::chrono::steady_clock::now();
-  auto res = test::postJson(*client, kExecute, body, {{"Prefer", "respond-async"}});
+  auto res = test::postJson(*client, test::kExecutePath, body, {{"Prefer", "respond-async"}});
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 201) << res->body;
   EXPECT_EQ(res->get_header_value("Preference-Applied"), "respond-async");
@@ -259,7 +258,7 @@ TEST_F(SweepEndToEnd, ZipAndGridExpandToDifferentCounts) {
   // Unequal zip lists are refused, naming the list that differs.
   Json bad = zip;
   bad["sweep"]["run.max_strain"] = {0.004, 0.005};
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "run.max_strain");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "run.max_strain");
   for (auto id : {gridId, zipId}) EXPECT_EQ(client->Delete(("/jobs/" + std::to_string(id)).c_str())->status, 200);
 }
 
@@ -268,7 +267,7 @@ TEST_F(SweepEndToEnd, OneInvalidSweepPointRejectsTheWholeJob) {
   auto client = live.client();
   Json body = {{"inputs", test::smallInputs()},
                {"sweep", {{"loading.initial_velocity", {"V0", "VL"}}, {"loading.strain_rate", {1e5, -3.0, 1e6}}}}};
-  auto res = test::postJson(*client, kExecute, body);
+  auto res = test::postJson(*client, test::kExecutePath, body);
   Json p = expectProblem(res, 400, "loading.strain_rate");
   EXPECT_EQ(p["type"], problem::kInvalidSpec);
   EXPECT_EQ(p["in"], "sweep");
@@ -278,7 +277,7 @@ TEST_F(SweepEndToEnd, OneInvalidSweepPointRejectsTheWholeJob) {
   EXPECT_EQ(getJson(*client, "/jobs")["numberMatched"], 0);
   Json bad = body;
   bad["sweep"] = {{"loading.initial_velocity", {"V0", "VX"}}};
-  expectProblem(test::postJson(*client, kExecute, bad), 400, "loading.initial_velocity");
+  expectProblem(test::postJson(*client, test::kExecutePath, bad), 400, "loading.initial_velocity");
   EXPECT_EQ(getJson(*client, "/health")["queue_depth"], 0);
 }
 
