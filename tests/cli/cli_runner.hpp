@@ -57,8 +57,7 @@ inline nlohmann::json smallExampleSpec() {
 /// The small example (examples/dynamic-tension-small.json) pulled fast, at 1e7 /s from the VL
 /// field: a run of a few seconds, for the tests that need a real run file.
 inline nlohmann::json quickSmallSpec() {
-  nlohmann::json spec =
-      nlohmann::json::parse(readWhole(std::filesystem::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   return spec;
 }

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using rupture::testing::readWhole;
 using rupture::testing::runCli;
 using rupture::testing::SmallFilesystem;
+using rupture::testing::smallExampleSpec;
 using rupture::testing::writeSpec;
 
 std::string writeText(const std::string& text, const std::string& name) {
@@ -45,7 +46,7 @@ TEST(CliInputGuards, DeeplyNestedJsonExits2) {
 }
 
 TEST(CliInputGuards, NumbersBeyondTheDoubleRangeExit2NamingTheField) {
-  nlohmann::json spec = nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+  nlohmann::json spec = smallExampleSpec();
   std::string text = spec.dump();
   const std::string key = "\"strain_rate\":";
   const auto at = text.find(key);
@@ -66,7 +67,7 @@ TEST(CliInputGuards, AnUnreadableSpecFileSaysWhy) {
 TEST(CliInputGuards, AFullDiskFailsTheRunCleanly) {
   SmallFilesystem disk(200 * 1024);  // the small example's result file is several hundred kB
   if (!disk.mounted()) GTEST_SKIP() << disk.whyNot();
-  nlohmann::json spec = nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   const fs::path out = disk.path() / "run.h5";
   const auto r = runCli("run " + writeSpec(spec, "full-disk.json") + " -o " + out.string() + " --threads 1");
@@ -76,16 +77,12 @@ TEST(CliInputGuards, AFullDiskFailsTheRunCleanly) {
   EXPECT_TRUE(fs::is_empty(disk.path())) << "nothing half-written is left";
 }
 
-nlohmann::json smallExample() {
-  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
-}
-
 TEST(CliInputGuards, SpecsThatCouldNeverFinishExit2NamingTheField) {
   const std::pair<const char*, double> runaway[] = {{"/loading/strain_rate", 1e20},
                                                    {"/material/density", 1e308},
                                                    {"/material/beam/young_modulus", 1e-300}};
   for (const auto& [pointer, value] : runaway) {
-    nlohmann::json spec = smallExample();
+    nlohmann::json spec = smallExampleSpec();
     spec[nlohmann::json::json_pointer(pointer)] = value;
     std::string field = std::string(pointer).substr(1);
     std::replace(field.begin(), field.end(), '/', '.');
@@ -99,7 +96,7 @@ TEST(CliInputGuards, SpecsThatCouldNeverFinishExit2NamingTheField) {
 }
 
 TEST(CliInputGuards, RunsAboveMaxRunStepsExit2WithTheEstimate) {
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e3}, {"initial_velocity", "VL"}};
   nlohmann::json full = spec;
   const double steps = rupture::estimateRun(full).steps;
@@ -163,13 +160,13 @@ void expectCtrlCStopsWithinASecond(const nlohmann::json& spec, const std::string
 }
 
 TEST(CliInputGuards, ALongAdmittedRunStopsOnCtrlCWithinASecond) {
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e3}, {"initial_velocity", "VL"}};  // half an hour of one core
   expectCtrlCStopsWithinASecond(spec, "long-run", "main run");
 }
 
 TEST(CliInputGuards, CtrlCStopsTheBuildingOfALargeSampleWithinASecond) {
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   // About 400,000 elements: the packing alone takes tens of seconds on one core.
   spec["sample"]["size"] = {4.3e-6, 4.3e-6};
   spec["sample"]["element_radius"] = 3.3e-9;

@@ -26,10 +26,11 @@ namespace fs = std::filesystem;
 using rupture::testing::readWhole;
 using rupture::testing::runCli;
 using rupture::testing::ScratchDir;
+using rupture::testing::smallExampleSpec;
 using rupture::testing::writeSpec;
 
 nlohmann::json longRun() {
-  nlohmann::json spec = nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
+  nlohmann::json spec = smallExampleSpec();
   // From rest at 1e5 /s without a preliminary run: a few seconds of stepping to interrupt.
   spec["loading"] = {{"strain_rate", 1e5}, {"initial_velocity", "V0"}, {"ramp_time", 1e-9}};
   return spec;

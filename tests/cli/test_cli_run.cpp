@@ -25,16 +25,13 @@ namespace {
 namespace fs = std::filesystem;
 using rupture::testing::readWhole;
 using rupture::testing::runCli;
+using rupture::testing::smallExampleSpec;
 using rupture::testing::writeSpec;
 using rupture::testing::ScratchDir;
 
-nlohmann::json smallExample() {
-  return nlohmann::json::parse(readWhole(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dynamic-tension-small.json"));
-}
-
 TEST(CliRun, WritesResultSidecarAndSummary) {
   ScratchDir dir;
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   spec["run"]["snapshot_strains"] = {0.0, 3e-4};
   const fs::path out = dir.path() / "run.h5";
@@ -77,7 +74,7 @@ class CliRunBadSpec : public ::testing::TestWithParam<BadRunSpec> {};
 
 TEST_P(CliRunBadSpec, ExitsTwoNamingTheField) {
   const BadRunSpec& bad = GetParam();
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   const nlohmann::json::json_pointer pointer(bad.pointer);
   if (bad.value.is_null()) spec[pointer.parent_pointer()].erase(pointer.back());
   else spec[pointer] = bad.value;
@@ -105,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(CliRun, UsageErrorsExitTwo) {
   EXPECT_EQ(runCli("run").exitCode, 2);
-  EXPECT_EQ(runCli("run " + writeSpec(smallExample(), "cli-run-noout.json")).exitCode, 2);  // no -o
+  EXPECT_EQ(runCli("run " + writeSpec(smallExampleSpec(), "cli-run-noout.json")).exitCode, 2);  // no -o
   EXPECT_EQ(runCli("run a.json -o x.h5 --threads 0").exitCode, 2);
   EXPECT_EQ(runCli("run a.json -o x.h5 --fast").exitCode, 2);
   const auto missing = runCli("run /nonexistent/spec.json -o x.h5");
@@ -114,7 +111,7 @@ TEST(CliRun, UsageErrorsExitTwo) {
 
 TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
   ScratchDir dir;
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   // A long run without preliminary: from rest at 2e4 /s (about 15 s of computing).
   spec["loading"] = {{"strain_rate", 2e4}, {"initial_velocity", "V0"}, {"ramp_time", 1e-9}};
   const std::string specPath = writeSpec(spec, "cli-run-interrupt.json");
@@ -155,7 +152,7 @@ TEST(CliRun, InterruptLeavesAValidIncompleteFile) {
 
 TEST(CliRun, PrintsOneTableAndNeverReplacesAFileUnasked) {
   ScratchDir dir;
-  nlohmann::json spec = smallExample();
+  nlohmann::json spec = smallExampleSpec();
   spec["loading"] = {{"strain_rate", 1e7}, {"initial_velocity", "VL"}};
   const std::string specPath = writeSpec(spec, "cli-run-table.json");
   const fs::path out = dir.path() / "run.h5";
@@ -215,7 +212,7 @@ TEST(CliHelp, ListsEveryOptionTheCommandsAccept) {
 }
 
 TEST(CliValidate, RecognisesAServerRequestFile) {
-  nlohmann::json inputs = smallExample();
+  nlohmann::json inputs = smallExampleSpec();
   inputs.erase("scenario");
   const nlohmann::json request = {{"name", "rate sweep"}, {"inputs", inputs},
                                   {"sweep", {{"loading.strain_rate", {1e6, 1e7}}}}};
