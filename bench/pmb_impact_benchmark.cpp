@@ -25,12 +25,10 @@ constexpr double kAlpha = 0.25;              // compression term
 constexpr double kIndenterRadius = 5 * kSpacing;
 constexpr double kIndenterSpeed = 100.0;     // m/s, towards −z
 constexpr double kIndenterStiffness = 1e17;  // N/m² (LAMMPS fix indent: F = K (R − r)²)
-constexpr double kTimeStep = 1e-7;           // s
 
 }  // namespace
 
-nlohmann::json runW2(const W2Options& options) {
-  omp_set_num_threads(std::max(1, options.threads));
+BondedSystem buildW2Block() {
   SampleSpec sample;
   sample.dimension = 3;
   sample.lattice = "simple-cubic";
@@ -50,15 +48,16 @@ nlohmann::json runW2(const W2Options& options) {
   material.contact.enabled = false;  // the bond kernel and the indenter only (see bench/README.md)
   BondedSystem s;
   buildSample(sample, material, s);
-  ParticleStore& p = s.particles;
+  return s;
+}
 
+std::function<void(ParticleStore&, double)> w2Indenter(double top) {
   // The rigid sphere: centred above the middle of the top face, 0.1 dx above it at t = 0.
   const double cx = 0.5 * kSites[0] * kSpacing, cy = 0.5 * kSites[1] * kSpacing;
-  const double top = *std::max_element(p.z.begin(), p.z.end());
   const double z0 = top + kIndenterRadius + 0.1 * kSpacing;
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
-  s.externalLoads = [&](ParticleStore& ps, double t) {
+  return [=](ParticleStore& ps, double t) {
     const double cz = z0 - kIndenterSpeed * t;
+    const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(ps.size());
     // Only sites near the sphere can be touched: a cheap band test first.
 #pragma omp parallel for schedule(static) if (n > 8192)
     for (std::ptrdiff_t k = 0; k < n; ++k) {
@@ -72,11 +71,18 @@ nlohmann::json runW2(const W2Options& options) {
       ps.fx[k] += f * ex; ps.fy[k] += f * ey; ps.fz[k] += f * ez;
     }
   };
+}
+
+nlohmann::json runW2(const W2Options& options) {
+  omp_set_num_threads(std::max(1, options.threads));
+  BondedSystem s = buildW2Block();
+  ParticleStore& p = s.particles;
+  s.externalLoads = w2Indenter(*std::max_element(p.z.begin(), p.z.end()));
   s.initialize();
 
   const double cpuStart = processCpuSeconds();
   const auto start = std::chrono::steady_clock::now();
-  for (int step = 0; step < options.steps; ++step) s.step(kTimeStep);
+  for (int step = 0; step < options.steps; ++step) s.step(kW2TimeStep);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpuSeconds = processCpuSeconds() - cpuStart;
 
@@ -85,7 +91,7 @@ nlohmann::json runW2(const W2Options& options) {
   meanDamage /= static_cast<double>(p.size());
   nlohmann::json report = bondedBenchReport("W2", s, options.steps, options.threads, seconds, cpuSeconds);
   report["mean_damage"] = meanDamage;
-  report["time_step"] = kTimeStep;
+  report["time_step"] = kW2TimeStep;
   report["stable_time_step"] = s.criticalTimeStep();
   report.update(checkpointCost([&](StateArchive& a) { s.exchangeState(a); }));
   return report;

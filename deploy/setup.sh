@@ -9,7 +9,8 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(build-essential cmake pkg-config curl python3 python3-yaml
           libeigen3-dev libcpp-httplib-dev nlohmann-json3-dev libsqlite3-dev
           libhdf5-dev hdf5-tools libgtest-dev libgmock-dev
-          libcairo2-dev librsvg2-dev fonts-dejavu-core "$@")
+          libcairo2-dev librsvg2-dev fonts-dejavu-core
+          libopenmpi-dev openmpi-bin "$@")
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

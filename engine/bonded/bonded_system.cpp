@@ -65,6 +65,7 @@ void BondedSystem::initialize() {
     }
   }
   m_step = 0.0;
+  if (refreshGhosts) refreshGhosts(particles, m_minStretch);
   computeLoads();
 }
 
@@ -320,6 +321,7 @@ void BondedSystem::step(double dt) {
   kick(0.5 * dt);                                  // v(t + dt/2) from F(t)
   if (prescribe) prescribe(particles, time + 0.5 * dt);
   drift(dt);                                       // x(t + dt), q(t + dt)
+  if (refreshGhosts) refreshGhosts(particles, m_minStretch);
   m_loadTime = time + dt;
   m_step = dt;
   computeLoads();                                  // F(t + dt); beams may break

@@ -34,6 +34,12 @@ public:
   /// contacts have set the particle forces; called at every force evaluation.
   std::function<void(ParticleStore&, double t)> externalLoads;
 
+  /// Overwrites the ghost particles' state with their owners' before each force evaluation (after
+  /// the drift; in initialize, before the first): set by a decomposed run (distributed/subdomain.hpp),
+  /// empty on one rank. nodalMinimum: each node's smallest failure measure of the last evaluation
+  /// (the nodal shift's s_min), which ghosts take from their owners too.
+  std::function<void(ParticleStore&, std::vector<double>& nodalMinimum)> refreshGhosts;
+
   /// Cundall local damping coefficient γ in [0, 1) (0: none). Only for quasi-static runs.
   double localDamping = 0.0;
 

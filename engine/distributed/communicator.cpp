@@ -1,0 +1,136 @@
+#include "distributed/communicator.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#ifdef RUPTURE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace rupture {
+
+#ifdef RUPTURE_HAVE_MPI
+
+namespace {
+
+bool mpiRunning() {
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  return initialised && !finalised;
+}
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed (error " + std::to_string(code) + ")");
+}
+
+template <class T>
+std::vector<T> gatherConcatenated(const std::vector<T>& mine, MPI_Datatype type, int size) {
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(size), offsets(size);
+  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+  std::size_t total = 0;
+  for (int r = 0; r < size; ++r) {
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<T> all(total);
+  check(MPI_Allgatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, MPI_COMM_WORLD),
+        "MPI_Allgatherv");
+  return all;
+}
+
+}  // namespace
+
+Communicator Communicator::world() {
+  if (!mpiRunning()) return Communicator(0, 1);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return Communicator(rank, size);
+}
+
+void Communicator::exchange(const std::vector<Message>& sends, const std::vector<Message>& receives) const {
+  if (m_size == 1) return;
+  std::vector<MPI_Request> requests;
+  requests.reserve(sends.size() + receives.size());
+  constexpr int kTag = 17;
+  for (const Message& m : receives) {
+    requests.emplace_back();
+    check(MPI_Irecv(m.data, static_cast<int>(m.count), MPI_DOUBLE, m.peer, kTag, MPI_COMM_WORLD, &requests.back()),
+          "MPI_Irecv");
+  }
+  for (const Message& m : sends) {
+    requests.emplace_back();
+    check(MPI_Isend(m.data, static_cast<int>(m.count), MPI_DOUBLE, m.peer, kTag, MPI_COMM_WORLD, &requests.back()),
+          "MPI_Isend");
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+}
+
+double Communicator::sum(double value) const {
+  if (m_size == 1) return value;
+  double total = 0;
+  check(MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD), "MPI_Allreduce");
+  return total;
+}
+
+std::uint64_t Communicator::sum(std::uint64_t value) const {
+  if (m_size == 1) return value;
+  std::uint64_t total = 0;
+  check(MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD), "MPI_Allreduce");
+  return total;
+}
+
+double Communicator::max(double value) const {
+  if (m_size == 1) return value;
+  double largest = 0;
+  check(MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return largest;
+}
+
+std::vector<double> Communicator::allGather(const std::vector<double>& mine) const {
+  if (m_size == 1) return mine;
+  return gatherConcatenated(mine, MPI_DOUBLE, m_size);
+}
+
+std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t>& mine) const {
+  if (m_size == 1) return mine;
+  return gatherConcatenated(mine, MPI_INT64_T, m_size);
+}
+
+void Communicator::barrier() const {
+  if (m_size > 1) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+}
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  int provided = 0;
+  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+}
+
+MpiSession::~MpiSession() {
+  if (mpiRunning()) MPI_Finalize();
+}
+
+bool MpiSession::available() { return true; }
+
+#else  // one rank: every call is the identity
+
+Communicator Communicator::world() { return Communicator(0, 1); }
+void Communicator::exchange(const std::vector<Message>& sends, const std::vector<Message>& receives) const {
+  if (!sends.empty() || !receives.empty())
+    throw std::logic_error("Communicator::exchange: messages to other ranks in a build without MPI");
+}
+double Communicator::sum(double value) const { return value; }
+std::uint64_t Communicator::sum(std::uint64_t value) const { return value; }
+double Communicator::max(double value) const { return value; }
+std::vector<double> Communicator::allGather(const std::vector<double>& mine) const { return mine; }
+std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t>& mine) const { return mine; }
+void Communicator::barrier() const {}
+MpiSession::MpiSession(int&, char**&) {}
+MpiSession::~MpiSession() = default;
+bool MpiSession::available() { return false; }
+
+#endif
+
+}  // namespace rupture

@@ -1,0 +1,61 @@
+#pragma once
+// The ranks one run is spread over: MPI_COMM_WORLD when Rupture is built with MPI
+// (RUPTURE_HAVE_MPI, Debian's Open MPI found by CMake's FindMPI) and the process was started by
+// mpirun or srun; one rank otherwise, with the same calls. Every MPI call of the engine goes through
+// here, so that the rest of engine/distributed reads the same with and without MPI.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rupture {
+
+class Communicator {
+public:
+  /// All the processes of the run (MPI_COMM_WORLD; one rank without MPI or before MpiSession).
+  static Communicator world();
+
+  int rank() const { return m_rank; }
+  int size() const { return m_size; }
+
+  /// A block of doubles sent to or received from one other rank.
+  struct Message {
+    int peer;
+    double* data;
+    std::size_t count;
+  };
+  /// Posts every receive and send at once (non-blocking) and waits for all of them: the halo
+  /// exchange. The pairs must match: what rank r sends to s, s receives from r, of the same count.
+  void exchange(const std::vector<Message>& sends, const std::vector<Message>& receives) const;
+
+  /// Sum over the ranks, on every rank. The order of the sum is MPI's: the same on every rank, but
+  /// not the order of a one-rank sum (round-off).
+  double sum(double value) const;
+  std::uint64_t sum(std::uint64_t value) const;
+  double max(double value) const;
+
+  /// Every rank's vector, concatenated in rank order, on every rank.
+  std::vector<double> allGather(const std::vector<double>& mine) const;
+  std::vector<std::int64_t> allGather(const std::vector<std::int64_t>& mine) const;
+
+  /// Waits until every rank has come here.
+  void barrier() const;
+
+private:
+  Communicator(int rank, int size) : m_rank(rank), m_size(size) {}
+  int m_rank = 0, m_size = 1;
+};
+
+/// Initialises MPI for the life of the object (MPI_Init_thread, funneled: OpenMP threads never call
+/// MPI) and finalises it; does nothing without MPI. One per process, in main.
+class MpiSession {
+public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+
+  /// True when this build has MPI (RUPTURE_HAVE_MPI).
+  static bool available();
+};
+
+}  // namespace rupture

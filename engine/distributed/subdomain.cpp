@@ -1,0 +1,129 @@
+#include "distributed/subdomain.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace rupture {
+
+namespace {
+
+void sortUnique(std::vector<std::int32_t>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+}  // namespace
+
+Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm) : m_comm(comm) {
+  const int me = comm.rank();
+  const std::size_t n = whole.particles.size();
+  if (owner.size() != n)
+    throw std::invalid_argument("Subdomain: " + std::to_string(owner.size()) + " owners for " + std::to_string(n) +
+                                " particles");
+  if (whole.contact.parameters().enabled && comm.size() > 1)
+    throw std::invalid_argument(
+        "material.contact.enabled: true is not supported on more than one rank yet (contact candidates move "
+        "between sub-domains); set it to false or run on one rank");
+  if (whole.bondDamping > 0 && comm.size() > 1)
+    throw std::invalid_argument("material.local_damping: " + std::to_string(whole.bondDamping) +
+                                " is not supported on more than one rank yet (it reads the partners' damage "
+                                "index); set it to 0 or run on one rank");
+  m_wholeSize = n;
+
+  // Owned particles, ghosts, and what each neighbour sends and receives (global indices).
+  std::vector<std::uint8_t> keep(n, 0);
+  for (std::size_t k = 0; k < n; ++k) keep[k] = owner[k] == me;
+  std::map<int, Halo::Neighbour> lists;
+  const BondStore& wb = whole.bonds;
+  for (std::size_t b = 0; b < wb.size(); ++b) {
+    const std::int32_t i = wb.i[b], j = wb.j[b];
+    const int oi = owner[i], oj = owner[j];
+    if (oi == oj) continue;
+    if (oi == me) {
+      keep[j] = 1;
+      lists[oj].send.push_back(i);
+      lists[oj].receive.push_back(j);
+    } else if (oj == me) {
+      keep[i] = 1;
+      lists[oi].send.push_back(j);
+      lists[oi].receive.push_back(i);
+    }
+  }
+
+  system = whole;
+  system.prescribe = nullptr;
+  system.externalLoads = nullptr;
+  const std::vector<std::int32_t> local = system.particles.compact(keep);
+  system.bonds.remap(local);
+  m_global.reserve(system.particles.size());
+  for (std::size_t k = 0; k < n; ++k)
+    if (local[k] >= 0) m_global.push_back(static_cast<std::int32_t>(k));
+  m_owned.resize(m_global.size());
+  for (std::size_t k = 0; k < m_global.size(); ++k) m_owned[k] = owner[m_global[k]] == me;
+  m_ownedCount = static_cast<std::size_t>(std::count(m_owned.begin(), m_owned.end(), 1));
+  // A bond between two ghosts is their owners' to evaluate.
+  std::vector<std::uint8_t> keepBond(system.bonds.size());
+  for (std::size_t b = 0; b < keepBond.size(); ++b)
+    keepBond[b] = m_owned[system.bonds.i[b]] || m_owned[system.bonds.j[b]];
+  system.bonds.filter(keepBond);
+
+  std::vector<Halo::Neighbour> neighbours;
+  for (auto& [rank, nb] : lists) {
+    nb.rank = rank;
+    for (auto* v : {&nb.send, &nb.receive}) {
+      sortUnique(*v);
+      for (std::int32_t& k : *v) k = local[k];
+    }
+    neighbours.push_back(std::move(nb));
+  }
+  const bool rotations =
+      whole.visitModel([](const auto& law, const auto&) { return std::decay_t<decltype(law)>::kRotational; });
+  m_halo = std::make_shared<Halo>(comm, std::move(neighbours), rotations);
+  system.refreshGhosts = [halo = m_halo](ParticleStore& p, std::vector<double>& nodalMinimum) {
+    halo->refresh(p, nodalMinimum);
+  };
+}
+
+std::int32_t Subdomain::localOf(std::int32_t global) const {
+  const auto it = std::lower_bound(m_global.begin(), m_global.end(), global);
+  return it != m_global.end() && *it == global ? static_cast<std::int32_t>(it - m_global.begin()) : -1;
+}
+
+std::vector<double> Subdomain::gather(const std::vector<double>& local) const {
+  std::vector<std::int64_t> ids;
+  std::vector<double> values;
+  ids.reserve(m_ownedCount);
+  values.reserve(m_ownedCount);
+  for (std::size_t k = 0; k < m_global.size(); ++k)
+    if (m_owned[k]) {
+      ids.push_back(m_global[k]);
+      values.push_back(local[k]);
+    }
+  const std::vector<std::int64_t> allIds = m_comm.allGather(ids);
+  const std::vector<double> allValues = m_comm.allGather(values);
+  std::vector<double> whole(m_wholeSize, 0.0);
+  for (std::size_t t = 0; t < allIds.size(); ++t) whole[static_cast<std::size_t>(allIds[t])] = allValues[t];
+  return whole;
+}
+
+std::uint64_t Subdomain::brokenBonds() const {
+  std::uint64_t broken = 0;
+  const BondStore& b = system.bonds;
+  for (std::size_t t = 0; t < b.size(); ++t)
+    if (m_owned[b.i[t]] && b.intact[t] <= 0.0) ++broken;
+  return m_comm.sum(broken);
+}
+
+double Subdomain::kineticEnergy() const {
+  const ParticleStore& p = system.particles;
+  return sumOwned([&](std::size_t k) {
+    return 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k] + p.vz[k] * p.vz[k]) +
+           0.5 * p.inertia[k] * (p.wx[k] * p.wx[k] + p.wy[k] * p.wy[k] + p.wz[k] * p.wz[k]);
+  });
+}
+
+}  // namespace rupture

@@ -1,0 +1,67 @@
+#pragma once
+// One rank's part of a decomposed bonded run: a BondedSystem of its owned particles and their
+// ghosts (distributed/halo.hpp), numbered in the order of the whole sample, with the bonds that
+// have an owned end. Each owned particle keeps all its bonds in the whole sample's order, so its
+// force is the same sum in the same order as on one rank: the owned particles' trajectories are
+// the one-rank trajectories bit for bit, for any rank count and any partition. Reductions over
+// particles (energies, momentum) sum each rank's share and then the ranks: round-off apart from
+// the one-rank sum.
+//
+// Set up on every rank from the same whole sample (every rank builds it: the sample builders are
+// deterministic), then only the sub-domain is kept. What the decomposition does not carry yet, it
+// refuses by name: contact (its candidates move, so its ghosts would too), Silling's bond damping
+// (it reads the partners' damage index).
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bonded/bonded_system.hpp"
+#include "distributed/communicator.hpp"
+#include "distributed/halo.hpp"
+
+namespace rupture {
+
+class Subdomain {
+public:
+  /// Keeps the particles of `whole` owned by comm.rank() (owner[k], from bisectCoordinates) and
+  /// their ghosts. `whole` is set up (sample, material, velocities, fixed degrees of freedom) but not
+  /// initialised; the sub-domain's system is not either: set its `prescribe` and `externalLoads` in
+  /// local indices (globalIndex, localOf) and call system.initialize() on every rank.
+  Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm);
+
+  BondedSystem system;
+
+  std::size_t wholeSize() const { return m_wholeSize; }
+  /// Global index of each local particle (ascending).
+  const std::vector<std::int32_t>& globalIndex() const { return m_global; }
+  /// Local index of a global particle, -1 when this rank holds it neither as owned nor as ghost.
+  std::int32_t localOf(std::int32_t global) const;
+  bool owns(std::size_t local) const { return m_owned[local] != 0; }
+  std::size_t ownedCount() const { return m_ownedCount; }
+  const Halo& halo() const { return *m_halo; }
+  const Communicator& communicator() const { return m_comm; }
+
+  /// A per-particle field of the owned particles, in the whole sample's order, on every rank.
+  std::vector<double> gather(const std::vector<double>& local) const;
+  /// Σ over the owned particles of f(local index), summed over the ranks.
+  template <class F>
+  double sumOwned(F&& f) const {
+    double s = 0;
+    for (std::size_t k = 0; k < system.particles.size(); ++k)
+      if (m_owned[k]) s += f(k);
+    return m_comm.sum(s);
+  }
+  /// Bonds broken so far in the whole sample (each counted once: by the owner of its end i).
+  std::uint64_t brokenBonds() const;
+  /// Translational and rotational kinetic energy of the whole sample (J).
+  double kineticEnergy() const;
+
+private:
+  Communicator m_comm;
+  std::size_t m_wholeSize = 0, m_ownedCount = 0;
+  std::vector<std::int32_t> m_global;
+  std::vector<std::uint8_t> m_owned;
+  std::shared_ptr<Halo> m_halo;  // shared with system.refreshGhosts
+};
+
+}  // namespace rupture

@@ -1,0 +1,28 @@
+#pragma once
+// The sample the distributed tests share: a PMB block on a simple cubic lattice (14 × 10 × 8 mm,
+// 1 mm spacing, horizon 3.015 spacings), glass-like, without contact.
+#include "samples/sample_builder.hpp"
+
+namespace rupture::testing {
+
+inline BondedSystem pmbBlock(double compressionFactor = 0.0) {
+  SampleSpec s;
+  s.dimension = 3;
+  s.lattice = "simple-cubic";
+  s.spacing = 1e-3;
+  s.elementRadius = 0.5e-3;
+  s.size = {14e-3, 10e-3, 8e-3};
+  MaterialSpec m;
+  m.model = "pmb";
+  m.density = 2200;
+  m.pmb.youngModulus = 22e9;
+  m.pmb.horizonFactor = 3.015;
+  m.pmb.criticalStretch = 5e-4;
+  m.pmb.compressionFactor = compressionFactor;
+  m.contact.enabled = false;
+  BondedSystem system;
+  buildSample(s, m, system);
+  return system;
+}
+
+}  // namespace rupture::testing

@@ -1,0 +1,240 @@
+// A bonded sample decomposed over the ranks of the run (distributed/subdomain.hpp) against the
+// same sample on one process: a PMB block torn apart (with the compression term's nodal shift), a
+// spring lattice with a pre-crack opened by a velocity field, and porous ceramic beam samples in
+// tension (several microstructures) give the one-process trajectories, damage and broken bonds bit
+// for bit; a bond across the partition breaks on both of its ranks in the same step; momentum is
+// conserved to round-off. Run by ctest on one rank and under mpiexec on two and three.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "distributed/coordinate_bisection.hpp"
+#include "distributed/subdomain.hpp"
+#include "distributed_test_support.hpp"
+
+namespace rupture {
+namespace {
+
+/// Sets a system's initial velocities and prescribed degrees of freedom from positions alone, so
+/// that the whole sample and each sub-domain get the same loading.
+using Loading = std::function<void(BondedSystem&)>;
+
+struct Outcome {
+  std::vector<double> x, y, z, vx, vy, vz, damage;
+  std::uint64_t broken = 0;
+  double kinetic = 0;
+  std::array<double, 3> momentum{0, 0, 0};
+};
+
+Outcome runWhole(BondedSystem s, const Loading& load, int steps, double dt) {
+  load(s);
+  s.initialize();
+  for (int t = 0; t < steps; ++t) s.step(dt);
+  const ParticleStore& p = s.particles;
+  Outcome o{p.x, p.y, p.z, p.vx, p.vy, p.vz, s.damageIndex(), 0, s.kineticEnergy(), {}};
+  o.broken = s.bonds.size() - s.bonds.intactCount();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    o.momentum[0] += p.mass[k] * p.vx[k]; o.momentum[1] += p.mass[k] * p.vy[k]; o.momentum[2] += p.mass[k] * p.vz[k];
+  }
+  return o;
+}
+
+/// The crossing bonds (one end owned, the other a ghost) that broke, as (step, global i, global j).
+using CrossingBreaks = std::vector<std::int64_t>;
+
+Outcome runDecomposed(const BondedSystem& whole, const Loading& load, int steps, double dt,
+                      CrossingBreaks* crossing = nullptr) {
+  const Communicator comm = Communicator::world();
+  Subdomain d(whole, bisectCoordinates(whole.particles, whole.bonds, comm.size()), comm);
+  BondedSystem& s = d.system;
+  load(s);
+  s.initialize();
+  const auto& g = d.globalIndex();
+  std::vector<std::uint8_t> seen(s.bonds.size(), 0);
+  for (int t = 0; t < steps; ++t) {
+    s.step(dt);
+    if (!crossing) continue;
+    for (std::size_t b = 0; b < s.bonds.size(); ++b) {
+      if (seen[b] || s.bonds.intact[b] > 0.0 || d.owns(s.bonds.i[b]) == d.owns(s.bonds.j[b])) continue;
+      seen[b] = 1;
+      crossing->insert(crossing->end(), {t, g[s.bonds.i[b]], g[s.bonds.j[b]]});
+    }
+  }
+  const ParticleStore& p = s.particles;
+  Outcome o{d.gather(p.x), d.gather(p.y), d.gather(p.z), d.gather(p.vx), d.gather(p.vy), d.gather(p.vz),
+            d.gather(s.damageIndex()), d.brokenBonds(), d.kineticEnergy(), {}};
+  o.momentum = {d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vx[k]; }),
+                d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vy[k]; }),
+                d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vz[k]; })};
+  return o;
+}
+
+/// Index of the first element where two fields differ in any bit (-1: none).
+std::ptrdiff_t firstDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (std::memcmp(&a[k], &b[k], sizeof(double)) != 0) return static_cast<std::ptrdiff_t>(k);
+  return -1;
+}
+
+void expectSameRun(const Outcome& one, const Outcome& many, double kineticScale) {
+  const int ranks = Communicator::world().size();
+  EXPECT_EQ(firstDifference(one.x, many.x), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.y, many.y), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.z, many.z), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.vx, many.vx), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.vy, many.vy), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.vz, many.vz), -1) << ranks << " ranks";
+  EXPECT_EQ(firstDifference(one.damage, many.damage), -1) << ranks << " ranks";
+  EXPECT_EQ(one.broken, many.broken) << ranks << " ranks";
+  // Reductions: each rank's share, then the ranks: round-off apart from the one-process sum.
+  EXPECT_NEAR(many.kinetic, one.kinetic, 1e-12 * kineticScale) << ranks << " ranks";
+}
+
+/// Stretches the block along x (v from −2 to 2 m/s): it tears apart in the middle, across the cut
+/// of two ranks and between those of three.
+const Loading kStretchAlongX = [](BondedSystem& s) {
+  for (std::size_t k = 0; k < s.particles.size(); ++k) s.particles.vx[k] = 4.0 * (s.particles.x[k] / 14e-3 - 0.5);
+};
+
+TEST(Subdomain, APmbBlockTornApartFollowsTheOneProcessRunBitForBit) {
+  const BondedSystem whole = testing::pmbBlock(0.25);  // the nodal shift: ghosts take their owners' s_min
+  const double dt = 0.5 * whole.criticalTimeStep();
+  const Outcome one = runWhole(whole, kStretchAlongX, 150, dt);
+  CrossingBreaks crossing;
+  const Outcome many = runDecomposed(whole, kStretchAlongX, 150, dt, &crossing);
+  ASSERT_GT(one.broken, 100u);  // it did tear
+  expectSameRun(one, many, one.kinetic);
+
+  // Every crossing bond that broke is reported by both of its ranks, at the same step.
+  const Communicator comm = Communicator::world();
+  const std::vector<std::int64_t> all = comm.allGather(crossing);
+  std::map<std::array<std::int64_t, 3>, int> reports;
+  for (std::size_t t = 0; t + 2 < all.size(); t += 3) ++reports[{all[t], all[t + 1], all[t + 2]}];
+  std::map<std::array<std::int64_t, 2>, int> bondReports;
+  for (const auto& [key, count] : reports) {
+    EXPECT_EQ(count, 2) << "bond " << key[1] << "-" << key[2] << " at step " << key[0];
+    ++bondReports[{key[1], key[2]}];
+  }
+  for (const auto& [bond, steps] : bondReports) EXPECT_EQ(steps, 1) << "bond " << bond[0] << "-" << bond[1];
+  if (comm.size() > 1) {
+    EXPECT_GT(reports.size(), 10u);  // the tear runs along the cut
+  }
+}
+
+TEST(Subdomain, MomentumIsConservedToRoundOffAcrossTheSubdomains) {
+  const BondedSystem whole = testing::pmbBlock(0.25);  // the nodal shift: ghosts take their owners' s_min
+  const double dt = 0.5 * whole.criticalTimeStep();
+  double scale = 0;  // Σ m |v| at the start
+  for (std::size_t k = 0; k < whole.particles.size(); ++k)
+    scale += whole.particles.mass[k] * std::fabs(4.0 * (whole.particles.x[k] / 14e-3 - 0.5));
+  const Outcome many = runDecomposed(whole, kStretchAlongX, 150, dt);
+  double start = 0;
+  for (std::size_t k = 0; k < whole.particles.size(); ++k)
+    start += whole.particles.mass[k] * 4.0 * (whole.particles.x[k] / 14e-3 - 0.5);
+  EXPECT_NEAR(many.momentum[0], start, 1e-13 * scale);
+  EXPECT_NEAR(many.momentum[1], 0.0, 1e-13 * scale);
+  EXPECT_NEAR(many.momentum[2], 0.0, 1e-13 * scale);
+}
+
+TEST(Subdomain, ASpringLatticeWithAPreCrackFollowsTheOneProcessRunBitForBit) {
+  SampleSpec s;
+  s.dimension = 2;
+  s.lattice = "triangular";
+  s.spacing = 1e-4;
+  s.elementRadius = 0.5e-4;
+  s.thickness = 1e-4;
+  s.size = {6e-3, 4e-3, 0};
+  s.notches.push_back({{0, 2e-3, 0}, {2e-3, 2e-3, 0}});
+  MaterialSpec m;
+  m.model = "hookean";
+  m.density = 2500;
+  m.springs.youngModulus = 70e9;
+  m.springs.poissonRatio = 0.25;
+  m.springs.criterion = "critical_stretch";
+  m.springs.criticalValue = 2e-3;
+  m.contact.enabled = false;
+  BondedSystem whole;
+  buildSample(s, m, whole);
+  // Opens the crack: v_y from −15 to 15 m/s across the height.
+  const Loading open = [](BondedSystem& sys) {
+    for (std::size_t k = 0; k < sys.particles.size(); ++k) sys.particles.vy[k] = 30.0 * (sys.particles.y[k] / 4e-3 - 0.5);
+  };
+  const double dt = 0.5 * whole.criticalTimeStep();
+  const Outcome one = runWhole(whole, open, 400, dt);
+  const Outcome many = runDecomposed(whole, open, 400, dt);
+  ASSERT_GT(one.broken, 20u);  // the crack ran
+  expectSameRun(one, many, one.kinetic);
+}
+
+/// The seed's porous ceramic (Table 3 beams) on a small 2D square, both faces pulled apart at
+/// 1 m/s, its microstructure drawn from `seed`.
+BondedSystem ceramicSample(std::uint64_t seed, double& size) {
+  SampleSpec s;
+  s.dimension = 2;
+  s.size = {0.3e-6, 0.3e-6, 0};
+  s.elementRadius = 3.3e-9;
+  s.porosity = 0.11;
+  s.poreRadius = {0.02e-6, 0.06e-6};
+  s.seed = seed;
+  MaterialSpec m;
+  m.density = 6060;
+  m.beam = {2865e9, 0.3, 0.3, 4e9};
+  m.contact.enabled = false;
+  BondedSystem system;
+  buildSample(s, m, system);
+  size = s.size[0];
+  return system;
+}
+
+TEST(Subdomain, PorousBeamSamplesInTensionFollowTheOneProcessRunBitForBit) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    double size = 0;
+    const BondedSystem whole = ceramicSample(seed, size);
+    const double band = 2 * 3.3e-9, speed = 20.0;
+    const Loading pull = [=](BondedSystem& sys) {
+      ParticleStore& p = sys.particles;
+      for (std::size_t k = 0; k < p.size(); ++k)
+        if (p.x[k] < band || p.x[k] > size - band) p.fixedDofs[k] |= kFixX;
+      sys.prescribe = [=](ParticleStore& ps, double) {
+        for (std::size_t k = 0; k < ps.size(); ++k)
+          if (ps.fixedDofs[k] & kFixX) ps.vx[k] = ps.x[k] < 0.5 * size ? -speed : speed;
+      };
+      sys.prescribe(p, 0.0);
+    };
+    const double dt = 0.5 * whole.criticalTimeStep();
+    const Outcome one = runWhole(whole, pull, 600, dt);
+    const Outcome many = runDecomposed(whole, pull, 600, dt);
+    ASSERT_GT(one.broken, 0u) << "seed " << seed;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    expectSameRun(one, many, one.kinetic);
+  }
+}
+
+TEST(Subdomain, ContactOnMoreThanOneRankIsRefusedNamingTheField) {
+  BondedSystem whole = testing::pmbBlock(0.25);  // the nodal shift: ghosts take their owners' s_min
+  whole.contact.setParameters({22e9, 0.25, 0.3, 0.1, true});
+  const Communicator comm = Communicator::world();
+  const std::vector<int> owner = bisectCoordinates(whole.particles, whole.bonds, comm.size());
+  if (comm.size() == 1) {
+    EXPECT_NO_THROW(Subdomain(whole, owner, comm));
+    return;
+  }
+  try {
+    Subdomain d(whole, owner, comm);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("material.contact.enabled"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rupture
