@@ -317,6 +317,13 @@ void BondedSystem::drift(double dt) {
   }
 }
 
+void BondedSystem::adoptGatheredState(double atTime, std::size_t atSteps) {
+  time = atTime;
+  steps = atSteps;
+  m_loadTime = atTime;
+  m_loadsStale = true;
+}
+
 void BondedSystem::step(double dt) {
   kick(0.5 * dt);                                  // v(t + dt/2) from F(t)
   if (prescribe) prescribe(particles, time + 0.5 * dt);

@@ -68,6 +68,11 @@ public:
   /// prescriptions) is rebuilt first.
   void exchangeState(StateArchive& archive);
 
+  /// Takes the particles' and bonds' state a decomposed run gathered into this whole system from
+  /// its ranks (distributed/subdomain.hpp), at `time` after `steps` steps: the per-bond loads are
+  /// evaluated again when next read (bondLoads). The system is not stepped itself.
+  void adoptGatheredState(double atTime, std::size_t atSteps);
+
   /// One velocity-Verlet step of length dt (translation and rotation).
   void step(double dt);
 

@@ -35,6 +35,7 @@
 #include "cli/interrupt_guard.hpp"
 #include "cli/progress_view.hpp"
 #include "cli/spec_file.hpp"
+#include "distributed/communicator.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/status_line.hpp"
@@ -70,6 +71,22 @@ void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const n
 }
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
+
+/// A rank of a decomposed run other than the first: the same run on this thread, in silence (the
+/// first rank shows the progress and writes the file); only a failure of its own is told.
+int runQuietRank(const ParsedSpec& parsed, const std::string& specPath, const std::string& output,
+                 RunControl& control, int threads, int rank) {
+  InterruptGuard guard(control.cancel);
+  try {
+    const RunOutcome outcome = runSpec(parsed, output, control, threads);
+    return outcome.completed ? 0 : kExitInterrupted;
+  } catch (const SpecError&) {
+    return 2;  // the first rank reports it
+  } catch (const std::exception& e) {
+    std::cerr << "rupture run (rank " << rank << "): failed on " << specPath << ": " << e.what() << "\n";
+    return 1;
+  }
+}
 
 /// Seconds between status lines off a terminal unless --status-interval says otherwise: often
 /// enough to see a run is healthy, rarely enough that a day's log stays readable.
@@ -150,7 +167,9 @@ constexpr const char* kRunUsage =
     "  --status-interval S     when stderr is not a terminal (a log, nohup, Slurm), print a status\n"
     "                          line every S seconds (default 10): progress, ETA, step, time, strain,\n"
     "                          the headline quantity, broken bonds and speed\n"
-    "  -h, --help              this text\n";
+    "  -h, --help              this text\n"
+    "Under mpirun -np N (N > 1) the N processes step one impact run together and the first writes\n"
+    "RUN.h5, the same file as one process writes (contact off; docs/distributed.md).\n";
 
 }  // namespace
 
@@ -201,6 +220,10 @@ int runCommand(const Args& args) {
   if (specPath.empty()) return usageError("run: missing SPEC.json; see rupture run --help");
   if (output.empty()) return usageError("run: missing -o RUN.h5; see rupture run --help");
 
+  // Started by mpirun -np N (N > 1): one rank of a decomposed run (docs/distributed.md). Every rank
+  // parses, checks and runs the same spec; the first writes the file and speaks.
+  const Communicator ranks = Communicator::world();
+  const bool firstRank = ranks.rank() == 0;
   nlohmann::json spec;
   if (int code = readSpecFile(specPath, spec)) return code;
   ParsedSpec parsed;  // parsed once: the run reads this value
@@ -208,7 +231,17 @@ int runCommand(const Args& args) {
     parsed = parseSpec(spec);
     checkRunSteps(spec, parsed.estimate(), static_cast<double>(maxRunSteps));
   } catch (const SpecError& e) {
-    return reportSpecError(specPath, e);
+    return firstRank ? reportSpecError(specPath, e) : 2;
+  }
+  if (ranks.size() > 1) {
+    const auto refuse = [&](const std::string& message) { return firstRank ? usageError(message) : 2; };
+    if (parsed.scenarioName() != "impact")
+      return refuse("run: the " + parsed.scenarioName() + " scenario runs on one rank; " +
+                    std::to_string(ranks.size()) + " ranks (mpirun -np " + std::to_string(ranks.size()) +
+                    ") run the impact scenario only, so far (docs/distributed.md)");
+    if (resume)
+      return refuse("run: --resume on " + std::to_string(ranks.size()) +
+                    " ranks: checkpoints are not carried across ranks yet; resume on one rank");
   }
 
   // The output location is checked before any work: a missing directory fails now, not after the
@@ -254,6 +287,11 @@ int runCommand(const Args& args) {
   RunControl control;
   control.resume = resume;
   control.checkpointOnCancel = true;  // Ctrl-C, SIGTERM: keep the work for --resume
+  if (ranks.size() > 1) {  // no checkpoints across ranks yet
+    control.checkpointOnCancel = false;
+    control.checkpointInterval = 0;
+  }
+  if (!firstRank) return runQuietRank(parsed, specPath, output, control, static_cast<int>(threads), ranks.rank());
   ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1, statusInterval);
   io::StatusLine statusLine;
   const auto runStart = std::chrono::steady_clock::now();

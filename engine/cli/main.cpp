@@ -1,7 +1,9 @@
 // rupture: run, validate and inspect scenarios; calibrate beams; benchmark the engine.
 #include <algorithm>
 #include <iostream>
+#include <optional>
 
+#include "distributed/communicator.hpp"
 #include "io/provenance.hpp"
 #include "cli/cli.hpp"
 
@@ -19,7 +21,8 @@ commands:
                                           --resume continues a run stopped by Ctrl-C or SIGTERM
                                           from RUN.h5.checkpoint; off a terminal, a status line
                                           every --status-interval S seconds (default 10) and a
-                                          timing breakdown at the end (rupture run --help says more)
+                                          timing breakdown at the end (rupture run --help says more);
+                                          under mpirun -np N, one impact run over N processes
   xdmf RESULT.h5 [-o OUT.xdmf2] [--force] write a ParaView sidecar for a run file, or one per run
                                           for a job's merged file (RESULT.run-<k>.xdmf2); an
                                           existing sidecar is replaced only with --force
@@ -73,6 +76,10 @@ exit codes: 0 done, 1 failure, 2 invalid input, 130 interrupted (run: the file i
 
 int main(int argc, char** argv) {
   using namespace rupture::cli;
+  // Under mpirun or srun each process is one rank of a decomposed run (docs/distributed.md); a
+  // program started alone never starts MPI.
+  std::optional<rupture::MpiSession> mpi;
+  if (rupture::MpiSession::launched()) mpi.emplace(argc, argv);
   Args args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << kUsage;

@@ -1,5 +1,6 @@
 #include "distributed/communicator.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -105,7 +106,11 @@ void Communicator::barrier() const {
 
 MpiSession::MpiSession(int& argc, char**& argv) {
   int provided = 0;
-  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided), "MPI_Init_thread");
+  if (provided < MPI_THREAD_SERIALIZED) {
+    MPI_Finalize();
+    throw std::runtime_error("MPI: this MPI library does not let one thread at a time call it (MPI_THREAD_SERIALIZED)");
+  }
 }
 
 MpiSession::~MpiSession() {
@@ -132,5 +137,11 @@ MpiSession::~MpiSession() = default;
 bool MpiSession::available() { return false; }
 
 #endif
+
+bool MpiSession::launched() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(variable) != nullptr) return true;
+  return false;
+}
 
 }  // namespace rupture

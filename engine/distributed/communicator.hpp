@@ -45,11 +45,15 @@ private:
   int m_rank = 0, m_size = 1;
 };
 
-/// Initialises MPI for the life of the object (MPI_Init_thread, funneled: OpenMP threads never call
-/// MPI) and finalises it; does nothing without MPI. One per process, in main.
+/// Initialises MPI for the life of the object and finalises it; does nothing without MPI. One per
+/// process, in main. Serialized: one thread at a time calls MPI (the CLI runs a spec on a worker
+/// thread while its main thread draws the progress; OpenMP threads never call MPI).
 class MpiSession {
 public:
   MpiSession(int& argc, char**& argv);
+  /// True when a launcher started this process as a rank of a parallel job: Open MPI's mpirun,
+  /// a PMI or PMIx launcher (MPICH's hydra, srun). Without one, a program need not start MPI at all.
+  static bool launched();
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;

@@ -70,6 +70,12 @@ Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, C
   for (std::size_t b = 0; b < keepBond.size(); ++b)
     keepBond[b] = m_owned[system.bonds.i[b]] || m_owned[system.bonds.j[b]];
   system.bonds.filter(keepBond);
+  m_gatheredIntact = system.bonds.intact;
+  // The same selection in the whole sample's bond order: remap kept the bonds with both ends here, in order.
+  for (std::size_t b = 0, kept = 0; b < wb.size(); ++b) {
+    if (!keep[wb.i[b]] || !keep[wb.j[b]]) continue;
+    if (keepBond[kept++]) m_globalBond.push_back(static_cast<std::int64_t>(b));
+  }
 
   std::vector<Halo::Neighbour> neighbours;
   for (auto& [rank, nb] : lists) {
@@ -108,6 +114,60 @@ std::vector<double> Subdomain::gather(const std::vector<double>& local) const {
   std::vector<double> whole(m_wholeSize, 0.0);
   for (std::size_t t = 0; t < allIds.size(); ++t) whole[static_cast<std::size_t>(allIds[t])] = allValues[t];
   return whole;
+}
+
+void Subdomain::gatherInto(BondedSystem& whole) const {
+  ParticleStore& w = whole.particles;
+  const ParticleStore& p = system.particles;
+  if (w.size() != m_wholeSize || whole.bonds.size() < m_globalBond.size())
+    throw std::logic_error("Subdomain::gatherInto: not the sample this sub-domain was cut from");
+  constexpr std::size_t kArrays = 13;
+  const std::array<std::vector<double>*, kArrays> wholeArrays{&w.x,  &w.y,  &w.z,  &w.vx, &w.vy, &w.vz, &w.qw,
+                                                              &w.qx, &w.qy, &w.qz, &w.wx, &w.wy, &w.wz};
+  const std::array<const std::vector<double>*, kArrays> localArrays{&p.x,  &p.y,  &p.z,  &p.vx, &p.vy,
+                                                                    &p.vz, &p.qw, &p.qx, &p.qy, &p.qz,
+                                                                    &p.wx, &p.wy, &p.wz};
+  std::vector<std::int64_t> ids;
+  std::vector<double> values;
+  ids.reserve(m_ownedCount);
+  values.reserve(kArrays * m_ownedCount);
+  for (std::size_t k = 0; k < m_global.size(); ++k) {
+    if (!m_owned[k]) continue;
+    ids.push_back(m_global[k]);
+    for (const auto* a : localArrays) values.push_back((*a)[k]);
+  }
+  const std::vector<std::int64_t> allIds = m_comm.allGather(ids);
+  const std::vector<double> allValues = m_comm.allGather(values);
+  for (std::size_t t = 0; t < allIds.size(); ++t)
+    for (std::size_t a = 0; a < kArrays; ++a) (*wholeArrays[a])[allIds[t]] = allValues[kArrays * t + a];
+
+  std::vector<std::int64_t> bondIds;
+  std::vector<double> intact;
+  const BondStore& b = system.bonds;
+  for (std::size_t t = 0; t < b.size(); ++t)
+    if (m_owned[b.i[t]] && b.intact[t] != m_gatheredIntact[t]) {
+      bondIds.push_back(m_globalBond[t]);
+      intact.push_back(b.intact[t]);
+      m_gatheredIntact[t] = b.intact[t];
+    }
+  const std::vector<std::int64_t> allBonds = m_comm.allGather(bondIds);
+  const std::vector<double> allIntact = m_comm.allGather(intact);
+  for (std::size_t t = 0; t < allBonds.size(); ++t) whole.bonds.intact[allBonds[t]] = allIntact[t];
+  whole.brokenLastStep = 0;
+  whole.adoptGatheredState(system.time, system.steps);
+}
+
+std::array<double, 3> Subdomain::sumInWholeOrder(const std::vector<std::int64_t>& ids,
+                                                 const std::vector<double>& terms) const {
+  const std::vector<std::int64_t> allIds = m_comm.allGather(ids);
+  const std::vector<double> allTerms = m_comm.allGather(terms);
+  std::vector<std::size_t> order(allIds.size());
+  for (std::size_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return allIds[a] < allIds[b]; });
+  std::array<double, 3> sum{0.0, 0.0, 0.0};
+  for (std::size_t t : order)
+    for (int c = 0; c < 3; ++c) sum[c] += allTerms[3 * t + c];
+  return sum;
 }
 
 std::uint64_t Subdomain::brokenBonds() const {

@@ -11,6 +11,7 @@
 // deterministic), then only the sub-domain is kept. What the decomposition does not carry yet, it
 // refuses by name: contact (its candidates move, so its ghosts would too), Silling's bond damping
 // (it reads the partners' damage index).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -24,8 +25,8 @@ namespace rupture {
 class Subdomain {
 public:
   /// Keeps the particles of `whole` owned by comm.rank() (owner[k], from bisectCoordinates) and
-  /// their ghosts. `whole` is set up (sample, material, velocities, fixed degrees of freedom) but not
-  /// initialised; the sub-domain's system is not either: set its `prescribe` and `externalLoads` in
+  /// their ghosts. `whole` is set up (sample, material, velocities, fixed degrees of freedom),
+  /// initialised or not; the sub-domain's system is not: set its `prescribe` and `externalLoads` in
   /// local indices (globalIndex, localOf) and call system.initialize() on every rank.
   Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm);
 
@@ -51,6 +52,17 @@ public:
       if (m_owned[k]) s += f(k);
     return m_comm.sum(s);
   }
+  /// Writes every rank's owned particles (kinematics and orientations) and the bonds whose end i it
+  /// owns and whose integrity changed since the last gather into `whole` (the sample this sub-domain was cut from, on every rank),
+  /// which then reads as the one-process system would at this step (BondedSystem::adoptGatheredState).
+  /// Collective. Scenarios call it before each output and compute their observables on `whole`.
+  void gatherInto(BondedSystem& whole) const;
+
+  /// Σ of per-particle terms (three each: terms[3t..3t+2] of the owned particle with global index
+  /// ids[t]) over every rank, added in the whole sample's order from 0: the sum one process takes
+  /// over its particles in index order, bit for bit (an external body's reaction). Collective.
+  std::array<double, 3> sumInWholeOrder(const std::vector<std::int64_t>& ids, const std::vector<double>& terms) const;
+
   /// Bonds broken so far in the whole sample (each counted once: by the owner of its end i).
   std::uint64_t brokenBonds() const;
   /// Translational and rotational kinetic energy of the whole sample (J).
@@ -61,6 +73,10 @@ private:
   std::size_t m_wholeSize = 0, m_ownedCount = 0;
   std::vector<std::int32_t> m_global;
   std::vector<std::uint8_t> m_owned;
+  std::vector<std::int64_t> m_globalBond;  // each local bond's index in the whole sample
+  // Each local bond's integrity as the whole system last took it: a gather sends only the bonds
+  // that changed since (bonds are many, and few break between two outputs).
+  mutable std::vector<double> m_gatheredIntact;
   std::shared_ptr<Halo> m_halo;  // shared with system.refreshGhosts
 };
 

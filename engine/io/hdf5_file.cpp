@@ -359,6 +359,14 @@ Hdf5File Hdf5File::createBuffered(const std::string& path) {
   return Hdf5File(checkId(id, path, "", "cannot create file"), path);
 }
 
+Hdf5File Hdf5File::createInMemory(const std::string& name) {
+  silenceAutoPrint();
+  Handle fapl = writerFapl(name);
+  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, 0), name, "", "cannot select the in-memory driver");
+  const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  return Hdf5File(checkId(id, name, "", "cannot create file"), name);
+}
+
 Hdf5File Hdf5File::openReadOnly(const std::string& path) {
   silenceAutoPrint();
   const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

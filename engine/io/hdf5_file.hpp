@@ -29,6 +29,9 @@ public:
   /// only when closed, in one pass: a disk that fills up fails that write (close() throws), never
   /// an object copy half way through.
   static Hdf5File createBuffered(const std::string& path);
+  /// A file held in memory only and never written (HDF5's core driver without a backing store):
+  /// `name` only names it in error messages.
+  static Hdf5File createInMemory(const std::string& name);
   static Hdf5File openReadOnly(const std::string& path);
   static Hdf5File openReadWrite(const std::string& path);
 

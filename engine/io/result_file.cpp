@@ -44,6 +44,19 @@ ResultFile::ResultFile(std::string resultPath, const std::string& scenario, cons
   writeStartProvenance(m_file);
 }
 
+ResultFile::ResultFile(std::string resultPath, const std::string& scenario, Destination destination)
+    : m_resultPath(std::move(resultPath)),
+      m_partPath(destination == Destination::kDisk && !isCallersTemporary(m_resultPath) ? m_resultPath + ".part"
+                                                                                       : m_resultPath),
+      m_file(destination == Destination::kDisk ? openPartial(m_partPath, "")
+                                               : Hdf5File::createInMemory(m_resultPath + " (in memory)")),
+      m_discarded(destination == Destination::kDiscarded) {
+  m_file.setAttribute("/", "scenario", scenario);
+  m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
+  m_file.setAttribute("/", "completed", std::int64_t{0});
+  writeStartProvenance(m_file);
+}
+
 ResultFile::~ResultFile() {
   if (!m_done) abandon();
 }
@@ -94,7 +107,7 @@ void ResultFile::finish(bool completed) {
   m_file.setAttribute("/", "completed", std::int64_t{completed ? 1 : 0});
   writeFinishProvenance(m_file);
   m_file.close();
-  if (m_partPath != m_resultPath) std::filesystem::rename(m_partPath, m_resultPath);
+  if (!m_discarded && m_partPath != m_resultPath) std::filesystem::rename(m_partPath, m_resultPath);
   m_done = true;
 }
 
@@ -104,7 +117,7 @@ void ResultFile::abandon() noexcept {
   } catch (...) {
   }
   std::error_code ec;
-  std::filesystem::remove(m_partPath, ec);
+  if (!m_discarded) std::filesystem::remove(m_partPath, ec);
   m_done = true;
 }
 

@@ -25,6 +25,10 @@ public:
   /// continueFrom: a checkpoint (io/checkpoint_file.hpp) whose copy of the partial result this run
   /// continues: copied onto RESULT.part and opened, nothing written; "" starts a new file.
   ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom = "");
+  /// Where the file goes: on disk, or (kDiscarded) in memory only, never written: the ranks of a
+  /// decomposed run but the first run the same output code on the same gathered state.
+  enum class Destination { kDisk, kDiscarded };
+  ResultFile(std::string resultPath, const std::string& scenario, Destination destination);
   ~ResultFile();
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
@@ -57,6 +61,7 @@ private:
   Hdf5File m_file;
   bool m_done = false;
   bool m_continued = false;
+  bool m_discarded = false;
 };
 
 }  // namespace rupture::io

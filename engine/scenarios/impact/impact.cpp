@@ -19,6 +19,8 @@
 #include "scenarios/impact/crack_tracking.hpp"
 #include "scenarios/impact/impact_spec.hpp"
 #include "scenarios/bonded/bonded_run.hpp"
+#include "distributed/coordinate_bisection.hpp"
+#include "distributed/subdomain.hpp"
 #include "scenarios/run_checkpoints.hpp"
 #include "scenarios/run_support.hpp"
 #include "rupture/spec_error.hpp"
@@ -79,6 +81,14 @@ std::vector<double> particleStress(const BondedSystem& s) {
   return sigma;
 }
 
+/// The members of a particle set (whole sample's indices) that a sub-domain holds, in its numbering.
+std::vector<std::int32_t> localMembers(const Subdomain& part, const std::vector<std::int32_t>& members) {
+  std::vector<std::int32_t> out;
+  for (std::int32_t k : members)
+    if (const std::int32_t local = part.localOf(k); local >= 0) out.push_back(local);
+  return out;
+}
+
 struct Projectile {
   ProjectileSpec spec;
   double x[3], v[3], f[3] = {0, 0, 0};
@@ -116,14 +126,6 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     if (driven.back().first.empty()) throw emptyRegion("loading.velocity_regions", i, r.box, d);
     for (std::int32_t k : driven.back().first) p.fixedDofs[k] |= kFixX | kFixY | kFixZ;
   }
-  system.prescribe = [&driven](ParticleStore& ps, double t) {
-    for (const auto& [members, region] : driven) {
-      const double f = region->rampTime > 0 ? std::min(1.0, t / region->rampTime) : 1.0;
-      for (std::int32_t k : members) {
-        ps.vx[k] = f * region->velocity[0]; ps.vy[k] = f * region->velocity[1]; ps.vz[k] = f * region->velocity[2];
-      }
-    }
-  };
   // Tractions: the traction times the loaded area, shared equally by the region's particles.
   std::vector<std::pair<std::vector<std::int32_t>, std::array<double, 3>>> pushed;
   for (std::size_t i = 0; i < spec.tractions.size(); ++i) {
@@ -140,25 +142,92 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     if (pr.spec.stiffness <= 0) pr.spec.stiffness = spec.material.contact.youngModulus;
     projectile = pr;
   }
-  system.externalLoads = [&](ParticleStore& ps, double) {
-    for (const auto& [members, force] : pushed)
+
+  // On several ranks (mpirun -np N, engine/distributed): each rank steps its sub-domain, and the
+  // whole system, on every rank, takes the ranks' gathered state before each output; everything
+  // that reads `system` below reads it as on one process, bit for bit (docs/distributed.md).
+  const Communicator comm = Communicator::world();
+  std::optional<Subdomain> part;
+  if (comm.size() > 1) {
+    if (spec.material.contact.enabled)
+      throw SpecError("material.contact.enabled", "true",
+                      "false on more than one rank (mpirun -np " + std::to_string(comm.size()) +
+                          "): contact between fragments is not decomposed yet; run on one rank for contact");
+    if (spec.material.localDamping > 0)
+      throw SpecError("material.local_damping", formatNumber(spec.material.localDamping),
+                      "0 on more than one rank (mpirun -np " + std::to_string(comm.size()) +
+                          "): Silling's bond damping is not decomposed yet");
+    part.emplace(system, bisectCoordinates(p, system.bonds, comm.size()), comm);
+  }
+  BondedSystem& stepped = part ? part->system : system;
+  // The loaded sets in the numbering of the system stepped here (a sub-domain's: its owned
+  // particles and ghosts).
+  auto drivenHere = driven;
+  auto pushedHere = pushed;
+  if (part) {
+    for (auto& entry : drivenHere) entry.first = localMembers(*part, entry.first);
+    for (auto& entry : pushedHere) entry.first = localMembers(*part, entry.first);
+  }
+  auto prescriber = [](const decltype(driven)& sets) {
+    return [&sets](ParticleStore& ps, double t) {
+      for (const auto& [members, region] : sets) {
+        const double f = region->rampTime > 0 ? std::min(1.0, t / region->rampTime) : 1.0;
+        for (std::int32_t k : members) {
+          ps.vx[k] = f * region->velocity[0]; ps.vy[k] = f * region->velocity[1]; ps.vz[k] = f * region->velocity[2];
+        }
+      }
+    };
+  };
+  stepped.prescribe = prescriber(drivenHere);
+  // The projectile's reaction: each touched particle's term, added in particle order from 0 (on
+  // several ranks over all of them: Subdomain::sumInWholeOrder), the same sum on any rank count.
+  std::vector<std::int64_t> touched;
+  std::vector<double> reaction;
+  stepped.externalLoads = [&](ParticleStore& ps, double) {
+    for (const auto& [members, force] : pushedHere)
       for (std::int32_t k : members) { ps.fx[k] += force[0]; ps.fy[k] += force[1]; ps.fz[k] += force[2]; }
     if (!projectile) return;
     Projectile& pr = *projectile;
-    pr.f[0] = pr.f[1] = pr.f[2] = 0;
+    touched.clear();
+    reaction.clear();
     const double R = pr.spec.radius;
     for (std::size_t k = 0; k < ps.size(); ++k) {  // penalty F = K δ² on every particle inside
+      if (part && !part->owns(k)) continue;
       const double ex = ps.x[k] - pr.x[0], ey = ps.y[k] - pr.x[1], ez = d == 3 ? ps.z[k] - pr.x[2] : 0.0;
       if (std::fabs(ex) > R || std::fabs(ey) > R || std::fabs(ez) > R) continue;
       const double r2 = ex * ex + ey * ey + ez * ez;
       if (r2 >= R * R || r2 == 0) continue;
       const double r = std::sqrt(r2), overlap = R - r, f = pr.spec.stiffness * overlap * overlap / r;
       ps.fx[k] += f * ex; ps.fy[k] += f * ey; ps.fz[k] += f * ez;
-      pr.f[0] -= f * ex; pr.f[1] -= f * ey; pr.f[2] -= f * ez;
+      touched.push_back(part ? part->globalIndex()[k] : static_cast<std::int64_t>(k));
+      reaction.insert(reaction.end(), {-(f * ex), -(f * ey), -(f * ez)});
     }
+    std::array<double, 3> sum{0.0, 0.0, 0.0};
+    if (part) {
+      sum = part->sumInWholeOrder(touched, reaction);
+    } else {
+      for (std::size_t t = 0; t < touched.size(); ++t)
+        for (int c = 0; c < 3; ++c) sum[c] += reaction[3 * t + c];
+    }
+    for (int c = 0; c < 3; ++c) pr.f[c] = sum[c];
   };
-  system.prescribe(p, 0.0);
-  system.initialize();
+  stepped.prescribe(stepped.particles, 0.0);
+  stepped.initialize();
+  if (part) {  // the whole system, for the outputs: its velocities at t = 0 and its bond arrays
+    system.prescribe = prescriber(driven);
+    system.prescribe(p, 0.0);
+    system.initialize();
+  }
+  // Bonds broken since the start: counted step by step on one rank, from the gathered bonds on several.
+  const std::size_t brokenAtStart = system.bonds.size() - system.bonds.intactCount();
+  std::size_t broken = 0;
+  std::size_t gatheredAtStep = system.steps;
+  auto gatherWhole = [&] {
+    if (!part || gatheredAtStep == part->system.steps) return;
+    part->gatherInto(system);
+    gatheredAtStep = system.steps;
+    broken = system.bonds.size() - system.bonds.intactCount() - brokenAtStart;
+  };
 
   // Crack origin: the end of the first notch, else where the load is applied.
   std::array<double, 3> origin{0.5 * spec.sample.size[0], 0.5 * spec.sample.size[1], 0.5 * spec.sample.size[2]};
@@ -180,7 +249,10 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   };
 
   // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
-  io::ResultFile result(resultPath, "impact", checkpoints.continueFrom());
+  // Every rank writes the same file from the same gathered state; only the first keeps it.
+  io::ResultFile result = comm.rank() == 0
+                              ? io::ResultFile(resultPath, "impact", checkpoints.continueFrom())
+                              : io::ResultFile(resultPath, "impact", io::ResultFile::Destination::kDiscarded);
   io::Hdf5File& file = result.file();
   const std::size_t n = p.size();
   if (!checkpoints.resuming()) {
@@ -194,6 +266,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   }
   std::size_t snapshots = 0;
   auto snapshot = [&](const std::string& trigger, const std::vector<double>& damage) {
+    gatherWhole();
     char name[32];
     std::snprintf(name, sizeof name, "/snapshots/%06zu", snapshots++);
     const std::string base = name;
@@ -224,8 +297,8 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     return 0.5 * projectile->spec.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   };
   std::vector<double> damage = elementDamage(system.bonds, n, &p.volume);
-  std::size_t broken = 0;
   auto record = [&] {
+    gatherWhole();
     damage = elementDamage(system.bonds, n, &p.volume);
     const double speed = tracker.observe(system.time, p, damage);
     const CrackTip& tip = tracker.tip();
@@ -289,7 +362,9 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       while (nextSnapshot < spec.snapshotTimes.size() && system.time >= spec.snapshotTimes[nextSnapshot]) ++nextSnapshot;
     }
     if (system.time >= spec.endTime * (1 - 1e-12)) break;
-    if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
+    bool stop = checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop;
+    if (part) stop = comm.max(stop ? 1.0 : 0.0) > 0;  // a cancel on any rank stops every rank
+    if (stop) {
       stopReason = "cancelled";
       break;
     }
@@ -298,8 +373,14 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       Projectile& pr = *projectile;
       for (int a = 0; a < d; ++a) { pr.v[a] += 0.5 * dt * pr.f[a] / pr.spec.mass; pr.x[a] += dt * pr.v[a]; }
     }
-    system.step(dt);
-    broken += system.brokenLastStep;
+    if (part) {
+      part->system.step(dt);
+      system.time = part->system.time;
+      system.steps = part->system.steps;
+    } else {
+      system.step(dt);
+      broken += system.brokenLastStep;
+    }
     if (projectile)
       for (int a = 0; a < d; ++a) projectile->v[a] += 0.5 * dt * projectile->f[a] / projectile->spec.mass;
     if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
@@ -311,6 +392,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     }
   }
   publishStatus();
+  gatherWhole();
   if (series[0].empty() || series[0].back() != system.time) record();
   snapshot("final", damage);
   file.createGroup("/series");
