@@ -19,6 +19,7 @@
 #include "distributed/coordinate_bisection.hpp"
 #include "distributed/subdomain.hpp"
 #include "distributed_test_support.hpp"
+#include "engine/sample_test_support.hpp"
 
 namespace rupture {
 namespace {
@@ -175,19 +176,11 @@ TEST(Subdomain, ASpringLatticeWithAPreCrackFollowsTheOneProcessRunBitForBit) {
   expectSameRun(one, many, one.kinetic);
 }
 
-/// The seed's porous ceramic (Table 3 beams) on a small 2D square, both faces pulled apart at
-/// 1 m/s, its microstructure drawn from `seed`.
+/// The seed's porous ceramic (Table 3 beams) on a small 2D square (the sample-builder tests'),
+/// its microstructure drawn from `seed`, without contact.
 BondedSystem ceramicSample(std::uint64_t seed, double& size) {
-  SampleSpec s;
-  s.dimension = 2;
-  s.size = {0.3e-6, 0.3e-6, 0};
-  s.elementRadius = 3.3e-9;
-  s.porosity = 0.11;
-  s.poreRadius = {0.02e-6, 0.06e-6};
-  s.seed = seed;
-  MaterialSpec m;
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
+  const SampleSpec s = testing::porousSpec(2, seed);
+  MaterialSpec m = testing::ceramic();
   m.contact.enabled = false;
   BondedSystem system;
   buildSample(s, m, system);
