@@ -100,8 +100,19 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
+  if (command == "run") {
+    // On several ranks a failure of one (a full disk under the first's file) would leave the
+    // others waiting in a collective, and MPI_Finalize waiting for them: it ends the whole job.
+    int code = 1;
+    try {
+      code = runCommand(rest);
+    } catch (const std::exception& e) {
+      std::cerr << "rupture run: " << e.what() << "\n";
+    }
+    if (code == 1) rupture::MpiSession::abortJob(code);
+    return code;
+  }
   try {
-    if (command == "run") return runCommand(rest);
     if (command == "validate") return validateCommand(rest);
     if (command == "scenarios") return scenariosCommand(rest);
     if (command == "schema") return schemaCommand(rest);

@@ -119,6 +119,10 @@ MpiSession::~MpiSession() {
 
 bool MpiSession::available() { return true; }
 
+void MpiSession::abortJob(int code) {
+  if (mpiRunning() && Communicator::world().size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
+}
+
 #else  // one rank: every call is the identity
 
 Communicator Communicator::world() { return Communicator(0, 1); }
@@ -135,6 +139,7 @@ void Communicator::barrier() const {}
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;
 bool MpiSession::available() { return false; }
+void MpiSession::abortJob(int) {}
 
 #endif
 

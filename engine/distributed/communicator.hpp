@@ -60,6 +60,9 @@ public:
 
   /// True when this build has MPI (RUPTURE_HAVE_MPI).
   static bool available();
+  /// On more than one rank, ends every rank of the job with `code` (MPI_Abort): for a failure of
+  /// this rank alone, which would leave the others waiting. Returns on one rank or without MPI.
+  static void abortJob(int code);
 };
 
 }  // namespace rupture
