@@ -117,8 +117,6 @@ MpiSession::~MpiSession() {
   if (mpiRunning()) MPI_Finalize();
 }
 
-bool MpiSession::available() { return true; }
-
 void MpiSession::abortJob(int code) {
   if (mpiRunning() && Communicator::world().size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
 }
@@ -138,7 +136,6 @@ std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t
 void Communicator::barrier() const {}
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;
-bool MpiSession::available() { return false; }
 void MpiSession::abortJob(int) {}
 
 #endif

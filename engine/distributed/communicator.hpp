@@ -58,8 +58,6 @@ public:
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
 
-  /// True when this build has MPI (RUPTURE_HAVE_MPI).
-  static bool available();
   /// On more than one rank, ends every rank of the job with `code` (MPI_Abort): for a failure of
   /// this rank alone, which would leave the others waiting. Returns on one rank or without MPI.
   static void abortJob(int code);

@@ -351,21 +351,23 @@ Hdf5File Hdf5File::create(const std::string& path) {
   return Hdf5File(checkId(id, path, "", "cannot create file"), path);
 }
 
-Hdf5File Hdf5File::createBuffered(const std::string& path) {
+namespace {
+
+/// A new file on HDF5's core (in-memory) driver: written to `path` on close when backingStore is
+/// true, never written otherwise.
+std::int64_t createOnCoreDriver(const std::string& path, bool backingStore) {
   silenceAutoPrint();
   Handle fapl = writerFapl(path);
-  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, 1), path, "", "cannot select the in-memory driver");
-  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  return Hdf5File(checkId(id, path, "", "cannot create file"), path);
+  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, backingStore ? 1 : 0), path, "",
+          "cannot select the in-memory driver");
+  return checkId(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path, "", "cannot create file");
 }
 
-Hdf5File Hdf5File::createInMemory(const std::string& name) {
-  silenceAutoPrint();
-  Handle fapl = writerFapl(name);
-  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, 0), name, "", "cannot select the in-memory driver");
-  const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  return Hdf5File(checkId(id, name, "", "cannot create file"), name);
-}
+}  // namespace
+
+Hdf5File Hdf5File::createBuffered(const std::string& path) { return Hdf5File(createOnCoreDriver(path, true), path); }
+
+Hdf5File Hdf5File::createInMemory(const std::string& name) { return Hdf5File(createOnCoreDriver(name, false), name); }
 
 Hdf5File Hdf5File::openReadOnly(const std::string& path) {
   silenceAutoPrint();
