@@ -244,6 +244,13 @@ int runCommand(const Args& args) {
                     " ranks: checkpoints are not carried across ranks yet; resume on one rank");
   }
 
+  // run.ranks is what a server gives the run; here mpirun decides, and the result is the same.
+  if (const int asked = parsed.estimate().ranks;
+      firstRank && asked != ranks.size() && spec.contains(nlohmann::json::json_pointer("/run/ranks")))
+    std::cerr << "rupture run: the spec asks for " << asked << " rank(s) (run.ranks); this run has " << ranks.size()
+              << (ranks.size() == 1 ? " (start it with mpirun -np " + std::to_string(asked) + " to decompose it)" : std::string())
+              << ": the result is the same\n";
+
   // The output location is checked before any work: a missing directory fails now, not after the
   // sample is built.
   {

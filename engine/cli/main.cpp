@@ -79,7 +79,12 @@ int main(int argc, char** argv) {
   // Under mpirun or srun each process is one rank of a decomposed run (docs/distributed.md); a
   // program started alone never starts MPI.
   std::optional<rupture::MpiSession> mpi;
-  if (rupture::MpiSession::launched()) mpi.emplace(argc, argv);
+  try {
+    if (rupture::MpiSession::launched()) mpi.emplace(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "rupture: " << e.what() << "\n";
+    return 2;
+  }
   Args args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << kUsage;

@@ -134,7 +134,13 @@ double Communicator::max(double value) const { return value; }
 std::vector<double> Communicator::allGather(const std::vector<double>& mine) const { return mine; }
 std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t>& mine) const { return mine; }
 void Communicator::barrier() const {}
-MpiSession::MpiSession(int&, char**&) {}
+MpiSession::MpiSession(int&, char**&) {
+  // N copies of a one-rank run would each write the whole result to the same file.
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* size = std::getenv(variable); size != nullptr && std::atoi(size) > 1)
+      throw std::runtime_error(std::string("this rupture was built without MPI (RUPTURE_MPI off, or no libopenmpi-dev) "
+                                           "but was started as one of ") + size + " ranks; run it alone, or rebuild with MPI");
+}
 MpiSession::~MpiSession() = default;
 void MpiSession::abortJob(int) {}
 

@@ -51,6 +51,7 @@ nlohmann::json checkpointSpecIdentity(const nlohmann::json& spec) {
   nlohmann::json identity = spec;
   if (identity.is_object() && identity.contains("run") && identity["run"].is_object()) {
     identity["run"].erase("checkpoint_interval_s");
+    identity["run"].erase("ranks");  // how many processes step it, not what it computes (docs/distributed.md)
     if (identity["run"].empty()) identity.erase("run");
   }
   return identity;

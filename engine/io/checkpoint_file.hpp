@@ -38,7 +38,8 @@ struct CheckpointHeader {
 };
 
 /// The part of a spec that must match for a checkpoint to continue a run: all of it but
-/// run.checkpoint_interval_s (how often to checkpoint never changes the result).
+/// run.checkpoint_interval_s and run.ranks (how often to checkpoint, and on how many processes the
+/// run steps, never change the result).
 nlohmann::json checkpointSpecIdentity(const nlohmann::json& spec);
 
 /// Writes the checkpoint at `path`: the partial result made whole on disk and copied, the header

@@ -86,6 +86,7 @@ struct RunEstimate {
   double memoryBytes = 0;  ///< peak resident memory (B), from measured bytes per particle
   std::string field;       ///< the spec field that sets the size, e.g. "sample.element_radius"
   std::string basis;       ///< what the memory estimate counts, for the error that quotes it
+  int ranks = 1;           ///< MPI ranks the spec asks for (run.ranks); memoryBytes is their sum
 
   // Length (for --max-run-steps): the run's end (end strain over strain rate, or end time) over
   // its stable time step, both estimated from the spec by the scenario's own step rule, capped by
@@ -101,6 +102,10 @@ struct RunEstimate {
 /// every example and validation case (docs/server.md lists their estimates), well below a run that
 /// would hold a worker for days.
 inline constexpr double kDefaultMaxRunSteps = 1e8;
+
+/// The most MPI ranks a spec may ask for (run.ranks): a bound on input, not on a machine; servers
+/// refuse what their own site allows less of (docs/distributed.md).
+inline constexpr int kMaxRanks = 4096;
 
 struct Scenario;
 

@@ -48,6 +48,7 @@ struct ImpactSpec {
   std::int64_t maxSteps = 20'000'000;
   double checkpointInterval = 300;  ///< wall time between checkpoints (s; 0: none)
   double damageThreshold = 0.25;        ///< φ above which a particle counts as cracked (1)
+  int ranks = 1;                        ///< MPI ranks asked of a server (run.ranks; docs/distributed.md)
 
   double interval() const { return outputInterval ? *outputInterval : endTime / 200.0; }
 };
