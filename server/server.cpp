@@ -91,6 +91,8 @@ RuptureServer::RuptureServer(ServerConfig config) {
     slurm.time = m_context.config.slurmTime;
     slurm.checkpointLead = m_context.config.slurmCheckpointLead;
     slurm.cpusPerRun = m_context.config.slurmCpusPerRun;
+    slurm.maxRanks = m_context.config.slurmMaxRanks;
+    slurm.mpiPlugin = m_context.config.slurmMpi;
     slurm.options = m_context.config.slurmOptions;
     slurm.cli = m_context.config.ruptureCli.empty() ? defaultRuptureCli() : m_context.config.ruptureCli;
     m_context.resultsDir = slurm.sharedDir;
@@ -100,6 +102,10 @@ RuptureServer::RuptureServer(ServerConfig config) {
                                              m_context.config.threadsPerRun);
     local->setMinFreeBytes(static_cast<std::uintmax_t>(m_context.config.minFreeBytes));
     local->setStatusInterval(m_context.config.statusInterval);
+    std::string noMpi;
+    std::optional<MpiLauncher> mpi =
+        MpiLauncher::find(m_context.config.ruptureCli.empty() ? defaultRuptureCli() : m_context.config.ruptureCli, noMpi);
+    local->setMpiLauncher(std::move(mpi), noMpi);
     m_context.resultsDir = m_context.dataDir;
     m_scheduler = std::move(local);
   }

@@ -177,6 +177,13 @@ const std::vector<Option>& options() {
       {"slurm-cpus-per-run", "RUPTURE_SLURM_CPUS_PER_RUN", "N",
        "slurm: sbatch --cpus-per-task, and the OpenMP threads of each run", "1",
        intSetter(&ServerConfig::slurmCpusPerRun, 1, 1024)},
+      {"slurm-max-ranks", "RUPTURE_SLURM_MAX_RANKS", "N",
+       "slurm: most MPI ranks one run may ask for (the spec's run.ranks; more get 400); each rank is a task of "
+       "--slurm-cpus-per-run CPUs, anywhere in the cluster", "64",
+       intSetter(&ServerConfig::slurmMaxRanks, 1, 4096)},
+      {"slurm-mpi", "RUPTURE_SLURM_MPI", "PLUGIN",
+       "slurm: srun --mpi plugin that starts the ranks of a run of several ranks (Debian's Open MPI speaks pmix)",
+       "pmix", textSetter(&ServerConfig::slurmMpi, "a plugin name is required")},
       {"slurm-option", "RUPTURE_SLURM_OPTIONS", "OPTION",
        "slurm: an extra #SBATCH line such as --qos=short; repeat the flag for more (the variable takes one "
        "per line)",
@@ -191,7 +198,8 @@ const std::vector<Option>& options() {
          return "";
        }},
       {"rupture-cli", "RUPTURE_CLI", "PATH",
-       "slurm: the rupture binary the batch script runs on the compute nodes", "(the one beside rupture-server)",
+       "the rupture binary the batch script runs on the compute nodes (slurm), or that mpirun starts on each rank "
+       "of a run of several ranks (local)", "(the one beside rupture-server)",
        textSetter(&ServerConfig::ruptureCli, "a path is required")},
       {"request-timeout", "RUPTURE_REQUEST_TIMEOUT", "SECONDS",
        "deadline for receiving a whole request (line, headers and body), however slowly it trickles; "

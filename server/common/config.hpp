@@ -38,6 +38,8 @@ struct ServerConfig {
   std::string slurmPartition, slurmAccount, slurmTime;  ///< sbatch --partition/--account/--time when set
   int slurmCheckpointLead = 120;  ///< s before the time limit at which a run is told to checkpoint and stop
   int slurmCpusPerRun = 1;                ///< sbatch --cpus-per-task, and rupture run --threads
+  int slurmMaxRanks = 64;                 ///< most MPI ranks one run may ask for (run.ranks)
+  std::string slurmMpi = "pmix";          ///< srun --mpi for runs of several ranks
   std::vector<std::string> slurmOptions;  ///< extra "#SBATCH" lines, e.g. "--qos=short"
   std::string ruptureCli;                 ///< the `rupture` binary the batch script runs (default: beside the server)
   // HTTP boundary (docs/server.md, "Security and limits")

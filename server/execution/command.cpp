@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -14,7 +15,11 @@ extern char** environ;
 
 namespace rupture::server {
 
-CommandResult runCommand(const std::vector<std::string>& argv, std::chrono::milliseconds timeout) {
+namespace {
+
+/// The shared body: `timeout` kills with SIGKILL; `watch` (optional) asks for SIGTERM.
+CommandResult runProgram(const std::vector<std::string>& argv, std::chrono::milliseconds timeout,
+                         const std::function<bool()>& watch, std::size_t keepErrorBytes) {
   CommandResult result;
   if (argv.empty()) {
     result.error = "no command";
@@ -51,6 +56,11 @@ CommandResult runCommand(const std::vector<std::string>& argv, std::chrono::mill
     return result;
   }
   const auto deadline = std::chrono::steady_clock::now() + timeout;
+  // Asked to stop (watch said so): SIGTERM once, SIGKILL at termDeadline.
+  bool terminated = false;
+  std::chrono::steady_clock::time_point killDeadline{};
+  constexpr auto kWatchPeriod = std::chrono::milliseconds(200);
+  constexpr auto kTermGrace = std::chrono::seconds(10);
   pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
   std::string* sinks[2] = {&result.output, &result.error};
   int open = 2;
@@ -61,13 +71,26 @@ CommandResult runCommand(const std::vector<std::string>& argv, std::chrono::mill
       timedOut = true;
       break;
     }
-    if (::poll(fds, 2, static_cast<int>(left.count())) < 0 && errno != EINTR) break;
+    const auto slice = watch ? std::min(left, std::chrono::duration_cast<std::chrono::milliseconds>(kWatchPeriod)) : left;
+    if (::poll(fds, 2, static_cast<int>(slice.count())) < 0 && errno != EINTR) break;
+    if (watch) {
+      const auto now = std::chrono::steady_clock::now();
+      if (!terminated && watch()) {
+        ::kill(pid, SIGTERM);
+        terminated = true;
+        killDeadline = now + kTermGrace;
+      } else if (terminated && now > killDeadline) {
+        ::kill(pid, SIGKILL);
+        killDeadline = now + std::chrono::hours(24);
+      }
+    }
     for (int i = 0; i < 2; ++i) {
       if (fds[i].fd < 0 || (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) == 0) continue;
       char buffer[4096];
       const ssize_t n = ::read(fds[i].fd, buffer, sizeof buffer);
       if (n > 0) {
         sinks[i]->append(buffer, static_cast<std::size_t>(n));
+        if (i == 1 && result.error.size() > 2 * keepErrorBytes) result.error.erase(0, result.error.size() - keepErrorBytes);
       } else if (n == 0 || errno != EINTR) {
         ::close(fds[i].fd);
         fds[i].fd = -1;
@@ -87,6 +110,17 @@ CommandResult runCommand(const std::vector<std::string>& argv, std::chrono::mill
   }
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+}  // namespace
+
+CommandResult runCommand(const std::vector<std::string>& argv, std::chrono::milliseconds timeout) {
+  return runProgram(argv, timeout, {}, std::string::npos / 4);
+}
+
+CommandResult runWatchedCommand(const std::vector<std::string>& argv, const std::function<bool()>& watch,
+                                std::size_t keepErrorBytes) {
+  return runProgram(argv, std::chrono::hours(24 * 365 * 100), watch, keepErrorBytes);
 }
 
 }  // namespace rupture::server

@@ -1,7 +1,8 @@
 #pragma once
-// Runs an external program (sbatch, squeue, scontrol, scancel) without a shell: argv as given,
-// stdout and stderr captured, a time limit after which it is killed. Safe to call from any thread.
+// Runs an external program (sbatch, squeue, scontrol, scancel, mpirun) without a shell: argv as
+// given, stdout and stderr captured, a time limit after which it is killed. Safe to call from any thread.
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,5 +17,11 @@ struct CommandResult {
 
 CommandResult runCommand(const std::vector<std::string>& argv,
                          std::chrono::milliseconds timeout = std::chrono::seconds(30));
+
+/// A long-running program (a run under mpirun): no time limit; `watch` is called about every
+/// 0.2 s while it runs, and once it returns true the program gets SIGTERM, then SIGKILL if it
+/// has not ended 10 s later. Only the last `keepErrorBytes` of stderr are kept.
+CommandResult runWatchedCommand(const std::vector<std::string>& argv, const std::function<bool()>& watch,
+                                std::size_t keepErrorBytes = 64 * 1024);
 
 }  // namespace rupture::server

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "jobs/job_store.hpp"
@@ -34,6 +35,13 @@ public:
   virtual const char* name() const = 0;  ///< "local" or "slurm"
   virtual int workers() const = 0;        ///< runs at a time (local), 0 when the cluster decides
   virtual int threadsPerRun() const = 0;
+  /// The most MPI ranks one run may have here (run.ranks), and why not more, for the 400 that
+  /// refuses a spec asking for more (docs/distributed.md).
+  struct RankLimit {
+    int ranks = 1;
+    std::string why;
+  };
+  virtual RankLimit rankLimit() const = 0;
   virtual bool waitingForDisk() const = 0;
   virtual int unrecordedOutcomes() const = 0;
 

@@ -99,6 +99,32 @@ Scheduler::Scheduler(JobStore& store, fs::path dataDir, int workers, int threads
 
 Scheduler::~Scheduler() { shutdown(); }
 
+void Scheduler::setMpiLauncher(std::optional<MpiLauncher> launcher, std::string why) {
+  m_mpi = std::move(launcher);
+  m_mpiMissing = std::move(why);
+}
+
+Executor::RankLimit Scheduler::rankLimit() const {
+  if (!m_mpi) return {1, m_mpiMissing.empty() ? std::string("this server runs each run in one process") : m_mpiMissing};
+  return {m_workerCount, "a run of N ranks takes N of this server's " + std::to_string(m_workerCount) +
+                             " workers (--workers), each rank with " + std::to_string(m_threadsPerRun) +
+                             " thread(s) (--threads-per-run)"};
+}
+
+int Scheduler::slotsOf(RunKey key) {
+  if (auto it = m_slots.find(key); it != m_slots.end()) return it->second;
+  int ranks = 1;
+  try {
+    if (auto run = m_store.run(key)) ranks = requestedRanks(nlohmann::json(run->spec));
+  } catch (const std::exception& e) {
+    logLine(describe(key) + ": cannot read its ranks (" + e.what() + "); it takes one worker");
+  }
+  // Never more than there are: a spec admitted by a server with more workers still runs here.
+  ranks = std::clamp(ranks, 1, m_workerCount);
+  m_slots.emplace(key, ranks);
+  return ranks;
+}
+
 fs::path Scheduler::jobDir(std::int64_t jobId) const { return m_dataDir / "jobs" / std::to_string(jobId); }
 
 fs::path Scheduler::runFile(RunKey key) const {
@@ -282,7 +308,10 @@ void Scheduler::workerLoop() {
       control->cacheDirectory = (m_dataDir / "cache").string();
     {
       std::unique_lock lock(m_mutex);
-      m_wake.wait(lock, [this] { return m_stopping || !m_queue.empty(); });
+      // The head of the queue starts when its slots are free (first come, first served).
+      m_wake.wait(lock, [this] {
+        return m_stopping || (!m_queue.empty() && m_busySlots + slotsOf(m_queue.front()) <= m_workerCount);
+      });
       if (m_stopping) return;
       if (!diskHasRoom()) {  // leave the run queued; look again in a second
         if (!m_waitingForDisk.exchange(true))
@@ -295,6 +324,7 @@ void Scheduler::workerLoop() {
       key = m_queue.front();
       m_queue.pop_front();
       m_active.emplace(key, control);
+      m_busySlots += slotsOf(key);
     }
     bool started = false;
     try {
@@ -309,7 +339,10 @@ void Scheduler::workerLoop() {
       m_stages.erase(key);
       m_resumeRecorded.erase(key);
       m_statusWatches.erase(key);
+      m_busySlots -= slotsOf(key);
+      if (std::find(m_queue.begin(), m_queue.end(), key) == m_queue.end()) m_slots.erase(key);
     }
+    m_wake.notify_all();  // its slots may let the head of the queue start
   }
 }
 
@@ -359,7 +392,12 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
       }
     } timingLogger{key, *control};
     try {
-      result = m_executor(nlohmann::json(run->spec), partial.string(), *control, m_threadsPerRun);
+      const nlohmann::json spec(run->spec);
+      const int ranks = requestedRanks(spec);
+      if (ranks > 1 && !m_mpi)
+        throw std::runtime_error("the spec asks for " + std::to_string(ranks) + " ranks (run.ranks) and " + m_mpiMissing);
+      result = ranks > 1 ? m_mpi->run(spec, partial, *control, std::min(ranks, m_workerCount), m_threadsPerRun)
+                         : m_executor(spec, partial.string(), *control, m_threadsPerRun);
     } catch (const rupture::CheckpointError& e) {
       // Never mixed into another run, never kept to fail again: a retry starts afresh.
       removeQuietly(checkpoint);

@@ -21,6 +21,10 @@
 // starts; a run that fails because the disk filled up is re-queued with its last good checkpoint
 // and set aside until the disk has room for twice its partial result (or checkpoint) and the
 // floor; only three such failures in a row without its checkpoint advancing fail it.
+//
+// A run whose spec asks for N > 1 ranks (run.ranks) runs under mpirun (execution/mpi_launch.hpp)
+// and takes N of the workers' places: the workers are slots, and the run at the head of the queue
+// waits until it has its slots (first come, first served: a wide run is never overtaken for ever).
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -38,6 +42,7 @@
 #include <vector>
 
 #include "execution/executor.hpp"
+#include "execution/mpi_launch.hpp"
 #include "io/status_line.hpp"
 #include "jobs/job_store.hpp"
 #include "rupture/progress.hpp"
@@ -74,6 +79,8 @@ public:
   /// Seconds between the status lines each running run writes to the log (io::StatusLine), as
   /// `rupture run` prints them off a terminal. Call before start().
   void setStatusInterval(double seconds) { m_statusInterval = seconds; }
+  /// How runs of several ranks start (nullopt: they are refused, for the reason `why`). Call before start().
+  void setMpiLauncher(std::optional<MpiLauncher> launcher, std::string why);
   /// True while queued runs wait for disk space (the floor, or a run re-queued for a full disk
   /// waiting for the room it needs).
   bool waitingForDisk() const override;
@@ -86,6 +93,7 @@ public:
   const char* name() const override { return "local"; }
   int workers() const override { return m_workerCount; }
   int threadsPerRun() const override { return m_threadsPerRun; }
+  RankLimit rankLimit() const override;
   int running() const;
 
   /// <data-dir>/jobs/<id>/run-<k>.h5
@@ -101,6 +109,8 @@ private:
     std::string message;  ///< Failed
   };
   void workerLoop();
+  /// The slots (workers' places) a queued run takes: its ranks, read from its spec once (under m_mutex).
+  int slotsOf(RunKey key);
   bool diskHasRoom() const;
   bool hasFreeBytes(std::uintmax_t bytes) const;
   /// Writes an outcome to the store; if the store fails, keeps it for the monitor to retry.
@@ -118,6 +128,8 @@ private:
   int m_workerCount;
   int m_threadsPerRun;
   RunExecutor m_executor;
+  std::optional<MpiLauncher> m_mpi;
+  std::string m_mpiMissing;  ///< why runs of several ranks are refused when m_mpi is empty
 
   mutable std::mutex m_mutex;
   std::condition_variable m_wake;         // workers: queue or stop
@@ -130,6 +142,8 @@ private:
   };
   std::map<RunKey, std::shared_ptr<rupture::RunControl>, RunKeyLess> m_active;
   std::map<RunKey, std::string, RunKeyLess> m_stages;  ///< last stage message of each active run
+  std::map<RunKey, int, RunKeyLess> m_slots;            ///< slots of each run read so far (its ranks)
+  int m_busySlots = 0;                                  ///< slots the active runs hold
   std::set<RunKey, RunKeyLess> m_resumeRecorded;        ///< active runs whose resume the store has
   /// What the periodic status line of an active run needs between lines (guarded by m_mutex).
   struct StatusWatch {

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "execution/command.hpp"
+#include "execution/mpi_launch.hpp"
 #include "common/files.hpp"
 #include "io/checkpoint_file.hpp"
 #include "common/log.hpp"
@@ -88,12 +90,16 @@ fs::path SlurmExecutor::runPath(RunKey key, const std::string& suffix) const {
   return jobDir(key.job) / ("run-" + std::to_string(key.index) + suffix);
 }
 
-std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
+std::string SlurmExecutor::batchScript(std::int64_t jobId, int ranks) const {
   const fs::path dir = jobDir(jobId);
   std::ostringstream s;
   s << "#!/bin/bash\n"
     << "#SBATCH --job-name=rupture-job-" << jobId << "\n"
-    << "#SBATCH --cpus-per-task=" << m_settings.cpusPerRun << "\n"
+    << "#SBATCH --cpus-per-task=" << m_settings.cpusPerRun << "\n";
+  // A run of several ranks (run.ranks): that many tasks, anywhere in the cluster, started by srun
+  // through Slurm's PMIx plugin, which Debian's Open MPI speaks (docs/distributed.md).
+  if (ranks > 1) s << "#SBATCH --ntasks=" << ranks << "\n";
+  s
     << "#SBATCH --output=" << (dir / "slurm" / "%A_%a.out").string() << "\n"
     // The time limit's warning goes to this script (B:), which passes it on to rupture run.
     << "#SBATCH --signal=B:TERM@" << m_settings.checkpointLead << "\n";
@@ -120,6 +126,9 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
     << "resume=\"\"\n"
     << "if [ -f \"run-$k.h5.checkpoint\" ]; then resume=\"--resume\"; fi\n"
     << "# The engine leaves a result named *.part for its caller to rename: this script, once the summary is kept.\n"
+    << (ranks > 1 ? "srun --mpi=" + shellQuote(m_settings.mpiPlugin) + " --ntasks=" + std::to_string(ranks) +
+                        " --cpus-per-task=" + std::to_string(m_settings.cpusPerRun) + " --kill-on-bad-exit=1 "
+                  : std::string())
     << shellQuote(m_settings.cli) << " run \"run-$k.spec.json\" -o \"run-$k.h5.part\" --threads "
     << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" --json $resume > \"run-$k.summary.tmp\" 2> \"run-$k.log\" &\n"
     << "pid=$!\n"
@@ -148,7 +157,7 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId) const {
 void SlurmExecutor::submit(std::int64_t jobId, const std::vector<int>& indices) {
   if (indices.empty()) return;
   std::lock_guard lock(m_submitMutex);
-  std::vector<int> submitted;
+  std::map<int, std::vector<int>> byRanks;  // run indices by the ranks their specs ask for
   try {
     const fs::path dir = jobDir(jobId);
     fs::create_directories(dir / "slurm");
@@ -160,25 +169,38 @@ void SlurmExecutor::submit(std::int64_t jobId, const std::vector<int>& indices) 
       }
       const std::optional<RunRecord> run = m_store.run(key);  // one spec in memory at a time
       if (!run) throw std::runtime_error("run " + std::to_string(k) + " of job " + std::to_string(jobId) + " is not in the store");
-      writeFileAtomic(runPath(key, ".spec.json"), run->spec.dump(2) + "\n");
+      writeFileAtomic(runPath(key, ".spec.json"), run->spec.dump(2) + "\n");  // in the order it was sent
+      byRanks[requestedRanks(nlohmann::json(run->spec))].push_back(k);
     }
     std::size_t count = 0;
     for (const auto& entry : fs::directory_iterator(dir / "slurm")) count += entry.path().extension() == ".sbatch";
-    const fs::path script = dir / "slurm" / ("submission-" + std::to_string(count + 1) + ".sbatch");
-    writeFileAtomic(script, batchScript(jobId));
-    const CommandResult r = runCommand({"sbatch", "--parsable", "--array=" + arraySpec(indices), script.string()});
-    const std::string id = trim(r.output.substr(0, r.output.find(';')));
-    if (!r.ok() || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-      throw std::runtime_error("sbatch failed: " + trim(r.error.empty() ? r.output : r.error));
-    for (int k : indices) writeFileAtomic(runPath({jobId, k}, ".slurm"), id + "\n");
-    logLine("job " + std::to_string(jobId) + ": runs " + arraySpec(indices) + " submitted as Slurm array job " + id);
-  } catch (const std::exception& e) {
-    logLine("job " + std::to_string(jobId) + ": " + e.what());
-    for (int k : indices) {
+    // One array per rank count: an array's tasks share one allocation shape.
+    for (const auto& [ranks, group] : byRanks) {
       try {
-        m_store.finishFailed({jobId, k}, e.what());
-      } catch (const std::exception&) {
+        const fs::path script = dir / "slurm" / ("submission-" + std::to_string(++count) + ".sbatch");
+        writeFileAtomic(script, batchScript(jobId, ranks));
+        const CommandResult r = runCommand({"sbatch", "--parsable", "--array=" + arraySpec(group), script.string()});
+        const std::string id = trim(r.output.substr(0, r.output.find(';')));
+        if (!r.ok() || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+          throw std::runtime_error("sbatch failed: " + trim(r.error.empty() ? r.output : r.error));
+        for (int k : group) writeFileAtomic(runPath({jobId, k}, ".slurm"), id + "\n");
+        logLine("job " + std::to_string(jobId) + ": runs " + arraySpec(group) + " submitted as Slurm array job " + id +
+                (ranks > 1 ? " (" + std::to_string(ranks) + " ranks each)" : std::string()));
+      } catch (const std::exception& e) {
+        failRuns(jobId, group, e.what());
       }
+    }
+  } catch (const std::exception& e) {
+    failRuns(jobId, indices, e.what());
+  }
+}
+
+void SlurmExecutor::failRuns(std::int64_t jobId, const std::vector<int>& indices, const std::string& why) {
+  logLine("job " + std::to_string(jobId) + ": " + why);
+  for (int k : indices) {
+    try {
+      m_store.finishFailed({jobId, k}, why);
+    } catch (const std::exception&) {
     }
   }
 }

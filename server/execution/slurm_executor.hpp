@@ -1,6 +1,7 @@
 #pragma once
 // The Slurm executor (--executor slurm): each job becomes one `sbatch --array` whose task ids are
-// the run indices; a generated batch script runs `rupture run` on the run's spec file in the shared
+// the run indices (one array per rank count when runs ask for several MPI ranks, run.ranks, which
+// srun starts); a generated batch script runs `rupture run` on the run's spec file in the shared
 // directory. The cluster's queue replaces the worker threads; a tracker thread follows the runs.
 //
 // Files of run k of job J, in <shared-dir>/jobs/J/ (the truth; the store is the record):
@@ -42,6 +43,8 @@ struct SlurmSettings {
   std::string partition, account, time;
   int checkpointLead = 120;  ///< s before the time limit: SIGTERM, a checkpoint, a resubmission
   int cpusPerRun = 1;
+  int maxRanks = 64;              ///< most ranks one run may ask for (run.ranks)
+  std::string mpiPlugin = "pmix";  ///< srun --mpi for runs of several ranks
   std::vector<std::string> options;  ///< extra #SBATCH lines
   std::string cli;                   ///< the rupture binary on the compute nodes
   std::chrono::milliseconds pollInterval{1000};
@@ -65,17 +68,23 @@ public:
   const char* name() const override { return "slurm"; }
   int workers() const override { return 0; }
   int threadsPerRun() const override { return m_settings.cpusPerRun; }
+  RankLimit rankLimit() const override {
+    return {m_settings.maxRanks, "this server's --slurm-max-ranks; each rank takes --slurm-cpus-per-run " +
+                                     std::to_string(m_settings.cpusPerRun) + " CPU(s)"};
+  }
   bool waitingForDisk() const override { return false; }
   int unrecordedOutcomes() const override { return 0; }
   std::filesystem::path jobDir(std::int64_t jobId) const override;
 
-  /// The batch script of a submission (also written under slurm/ for the record).
-  std::string batchScript(std::int64_t jobId) const;
+  /// The batch script of a submission of runs of `ranks` ranks (also written under slurm/ for the record).
+  std::string batchScript(std::int64_t jobId, int ranks = 1) const;
 
 private:
   std::filesystem::path runPath(RunKey key, const std::string& suffix) const;
   /// Writes the specs and the script and calls sbatch; on failure the runs are recorded failed.
   void submit(std::int64_t jobId, const std::vector<int>& indices);
+  /// Records the runs failed with the reason (a submission that did not happen).
+  void failRuns(std::int64_t jobId, const std::vector<int>& indices, const std::string& why);
   void trackLoop();
   void poll();
   /// Records the outcome of a run whose status file exists. False if the files are not complete yet.

@@ -197,14 +197,16 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
 }
 
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
-                         double maxMemoryBytes, double maxSteps) {
+                         double maxMemoryBytes, double maxSteps, int maxRanks, const std::string& ranksWhy) {
   for (std::size_t k = 0; k < points.size(); ++k)
-    validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes, maxSteps);
+    validateSweepPoint(points[k], k, plan, maxElements, maxMemoryBytes, maxSteps, maxRanks, ranksWhy);
 }
 
 rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t k, const SweepPlan& plan,
-                                        double maxElements, double maxMemoryBytes, double maxSteps) {
+                                        double maxElements, double maxMemoryBytes, double maxSteps, int maxRanks,
+                                        const std::string& ranksWhy) {
   double memoryEstimate = -1;  // set when the point is refused for memory
+  int memoryRanks = 1;         // the ranks that memory is spread over
   double stepsEstimate = -1;   // set when the point is refused for its length
   try {
     const nlohmann::json spec(point.spec);  // one copy at a time
@@ -222,13 +224,18 @@ rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t k, 
               << " MiB of memory";
       throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
     }
-    if (estimate.memoryBytes > maxMemoryBytes) {
+    if (estimate.ranks > maxRanks)
+      throw rupture::SpecError("run.ranks", valueAt("run.ranks"),
+                               "at most " + std::to_string(maxRanks) + " on this server (" + ranksWhy + ")");
+    // A run of N ranks takes N workers' places, so N workers' memory (the estimate is their sum).
+    if (estimate.memoryBytes > maxMemoryBytes * estimate.ranks) {
       std::ostringstream allowed;
-      allowed << "a run needing at most " << formatBytes(maxMemoryBytes)
-              << " of memory (this server's --max-run-memory); this spec needs about " << formatBytes(estimate.memoryBytes)
+      allowed << "a run needing at most " << formatBytes(maxMemoryBytes * estimate.ranks)
+              << " of memory (this server's --max-run-memory" << (estimate.ranks > 1 ? " per rank" : "") << "); this spec needs about " << formatBytes(estimate.memoryBytes)
               << " for about " << std::llround(estimate.particles) << " elements (" << estimate.basis
               << "): make " << estimate.field << " larger or the sample smaller";
       memoryEstimate = estimate.memoryBytes;
+      memoryRanks = estimate.ranks;
       throw rupture::SpecError(estimate.field, valueAt(estimate.field), allowed.str());
     }
     stepsEstimate = estimate.steps;  // quoted in the problem when checkRunSteps refuses it
@@ -241,7 +248,7 @@ rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t k, 
     extra["allowed"] = e.allowed();
     if (memoryEstimate >= 0) {
       extra["estimated_memory_bytes"] = std::llround(memoryEstimate);
-      extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes);
+      extra["max_run_memory_bytes"] = std::llround(maxMemoryBytes * std::max(1, memoryRanks));
     }
     if (stepsEstimate != -1) {  // NaN too: a step count that is not a number
       extra["estimated_steps"] = std::isfinite(stepsEstimate) ? Json(stepsEstimate) : Json(nullptr);

@@ -54,16 +54,17 @@ std::vector<SweepPoint> expandSweep(const std::string& scenario, const Json& inp
 
 /// Validates every expanded spec with rupture::validateSpec, and its size (rupture::estimateRun)
 /// against maxElements, its memory estimate against maxMemoryBytes and its step estimate against
-/// maxSteps (rupture::checkRunSteps). Throws ApiError(400) for the first bad point, naming the
+/// maxSteps (rupture::checkRunSteps), and the ranks it asks for (run.ranks) against maxRanks
+/// (ranksWhy says where that limit comes from). Throws ApiError(400) for the first bad point, naming the
 /// field, the value, what is allowed (with the estimate in bytes or steps), the point's index and
 /// its swept values.
 void validateSweepPoints(const std::vector<SweepPoint>& points, const SweepPlan& plan, double maxElements,
-                         double maxMemoryBytes, double maxSteps);
+                         double maxMemoryBytes, double maxSteps, int maxRanks, const std::string& ranksWhy);
 
 /// validateSweepPoints for the one point at run index `index`; returns the estimate it checked
 /// (the dry run of a submission reports it).
 rupture::RunEstimate validateSweepPoint(const SweepPoint& point, std::size_t index, const SweepPlan& plan, double maxElements,
-                        double maxMemoryBytes, double maxSteps);
+                                        double maxMemoryBytes, double maxSteps, int maxRanks, const std::string& ranksWhy);
 
 /// "a.b.0.c" -> {"a","b","0","c"}; empty segments are an error (returns empty vector).
 std::vector<std::string> splitPath(const std::string& path);

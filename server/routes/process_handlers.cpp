@@ -225,11 +225,12 @@ NewJob planJob(ServerContext& ctx, const std::string& scenario, const Submission
   // inputs a few times over, never once per run (docs/server.md, "Security and limits").
   const Json base = jobBaseSpec(scenario, inputs);
   const ReplicateExpander replicator(replicates, scenario);
+  const Executor::RankLimit rankLimit = ctx.scheduler->rankLimit();
   forEachSweepPoint(scenario, inputs, plan, maxRuns, [&](SweepPoint&& point) {
     replicator.expand(std::move(point), [&](ReplicatedPoint&& rp) {
       const rupture::RunEstimate estimate =
           validateSweepPoint(rp.point, job.runs.size(), plan, static_cast<double>(ctx.config.maxElements),
-                             ctx.maxRunMemory, static_cast<double>(ctx.config.maxRunSteps));
+                             ctx.maxRunMemory, static_cast<double>(ctx.config.maxRunSteps), rankLimit.ranks, rankLimit.why);
       if (forecasts) forecasts->push_back({rp.point.swept, rp.replicate, estimate});
       job.runPatches.push_back(Json::diff(base, rp.point.spec).dump());
       job.runs.emplace_back(std::move(rp.point.swept), Json());

@@ -54,6 +54,9 @@ void getHealth(ServerContext& ctx, const Request&, Response& res) {
   doc["executor"] = ctx.scheduler->name();
   doc["workers"] = ctx.scheduler->workers();
   doc["threads_per_run"] = ctx.scheduler->threadsPerRun();
+  const Executor::RankLimit ranks = ctx.scheduler->rankLimit();
+  doc["max_ranks"] = ranks.ranks;
+  doc["max_ranks_reason"] = ranks.why;
   doc["running"] = ctx.store->runningCount();  // the store's view, as GET /jobs shows it
   doc["queue_depth"] = ctx.store->queueDepth();
   doc["waiting_for_disk"] = ctx.scheduler->waitingForDisk();          // below --min-free-bytes

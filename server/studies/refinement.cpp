@@ -389,7 +389,8 @@ void RefinementDriver::refineJob(std::int64_t jobId) {
       const std::vector<ReplicatedPoint> expanded = expandReplicates(std::move(points), replicates, job->processId);
       std::vector<SweepPoint> specs;
       for (const ReplicatedPoint& rp : expanded) specs.push_back(rp.point);
-      validateSweepPoints(specs, onePoint, m_maxElements, m_maxMemoryBytes, m_maxSteps);
+      const Executor::RankLimit ranks = m_executor.rankLimit();
+      validateSweepPoints(specs, onePoint, m_maxElements, m_maxMemoryBytes, m_maxSteps, ranks.ranks, ranks.why);
       Json indices = Json::array();
       for (const ReplicatedPoint& rp : expanded) {
         runs.emplace_back(rp.point.swept, rp.point.spec);

@@ -15,7 +15,7 @@ using test::expectProblem;
 using test::getJson;
 using test::LiveServer;
 
-std::string getHtml(httplib::Client& client, const std::string& path) {
+std::string getPageBody(httplib::Client& client, const std::string& path) {
   auto res = client.Get(path.c_str());
   if (!res) return "";
   EXPECT_EQ(res->status, 200) << path << ": " << res->body.substr(0, 400);
@@ -76,7 +76,7 @@ TEST(KeepWhatWasAsked, AVariantOfASweepPostsTheSweepsRequestBack) {
   EXPECT_TRUE(sameJson(formRequest(process, body), body));
   // And the page the job links to is filled from the request the server kept.
   const std::string page =
-      getHtml(*client, std::string("/processes/") + test::kScenario + "?f=html&from=" + std::to_string(id));
+      getPageBody(*client, std::string("/processes/") + test::kScenario + "?f=html&from=" + std::to_string(id));
   EXPECT_NE(page.find("<option selected>loading.strain_rate</option>"), std::string::npos);
   EXPECT_NE(page.find("<option selected>loading.initial_velocity</option>"), std::string::npos);
   EXPECT_NE(page.find("value=\"1e6, 1e7\""), std::string::npos);
@@ -85,7 +85,7 @@ TEST(KeepWhatWasAsked, AVariantOfASweepPostsTheSweepsRequestBack) {
   EXPECT_NE(page.find("id=\"replicates\" size=\"4\" value=\"3\""), std::string::npos);
   EXPECT_NE(page.find("id=\"job-name\" size=\"40\" value=\"rate sweep, three seeds\""), std::string::npos);
   // A fresh form leaves the job part empty.
-  const std::string fresh = getHtml(*client, std::string("/processes/") + test::kScenario + "?f=html");
+  const std::string fresh = getPageBody(*client, std::string("/processes/") + test::kScenario + "?f=html");
   EXPECT_EQ(fresh.find("<option selected>loading.strain_rate</option>"), std::string::npos);
   EXPECT_NE(fresh.find("id=\"replicates\" size=\"4\" value=\"1\""), std::string::npos);
   // Members with no field in the form travel with it unchanged.
@@ -115,7 +115,7 @@ TEST(KeepWhatWasAsked, ACancelledJobResumedEndsWithEveryRunSuccessful) {
   ASSERT_TRUE(test::waitFor([&] { return getJson(*client, job)["runs"][1]["status"] == "dismissed"; }, 10));
   EXPECT_EQ(getJson(*client, job)["status"], "dismissed");
   // The page offers to resume the two unfinished runs (the retry of failed runs does not apply).
-  const std::string dismissedPage = getHtml(*client, job + "?f=html");
+  const std::string dismissedPage = getPageBody(*client, job + "?f=html");
   EXPECT_NE(dismissedPage.find("id=\"resume\""), std::string::npos);
   EXPECT_NE(dismissedPage.find("run the 2 unfinished runs again"), std::string::npos);
   expectProblem(client->Post((job + "/retry").c_str(), "{}", "application/json"), 409);
@@ -134,7 +134,7 @@ TEST(KeepWhatWasAsked, ACancelledJobResumedEndsWithEveryRunSuccessful) {
   EXPECT_EQ(done["runs"][1]["attempts"], 2) << "started, cancelled, started again";
   EXPECT_FALSE(done["runs"][2].contains("attempts")) << "never started before the resume: one start";
   // The page shows each run's attempts and marks the one that ran again.
-  const std::string page = getHtml(*client, job + "?f=html");
+  const std::string page = getPageBody(*client, job + "?f=html");
   const std::size_t row1 = page.find("id=\"run-1\""), row2 = page.find("id=\"run-2\"");
   ASSERT_NE(row1, std::string::npos);
   ASSERT_NE(row2, std::string::npos);
@@ -164,13 +164,13 @@ TEST(KeepWhatWasAsked, TheComparisonListsTheInputsThatDiffer) {
   EXPECT_EQ(velocity[std::to_string(ja)], "VL");
   EXPECT_EQ(velocity[std::to_string(jb)], "VH");
   EXPECT_TRUE(cmp["differing_inputs"][1]["values"][std::to_string(ja)].is_null()) << "no replicates: the default";
-  const std::string page = getHtml(*client, "/summary?f=html&jobs=" + ids);
+  const std::string page = getPageBody(*client, "/summary?f=html&jobs=" + ids);
   EXPECT_NE(page.find("<table id=\"differing\">"), std::string::npos);
   EXPECT_NE(page.find("<code>loading.initial_velocity</code></td><td>VL</td><td>VH</td>"), std::string::npos) << page;
   // The same inputs: said in words; one job alone: nothing to list.
   const std::int64_t jc = test::submit(*client, a);
   EXPECT_TRUE(getJson(*client, "/summary?jobs=" + std::to_string(ja) + "," + std::to_string(jc))["differing_inputs"].empty());
-  EXPECT_NE(getHtml(*client, "/summary?f=html&jobs=" + std::to_string(ja) + "," + std::to_string(jc))
+  EXPECT_NE(getPageBody(*client, "/summary?f=html&jobs=" + std::to_string(ja) + "," + std::to_string(jc))
                 .find("The jobs were asked with the same inputs."),
             std::string::npos);
   EXPECT_TRUE(getJson(*client, "/summary?jobs=" + std::to_string(ja))["differing_inputs"].empty());

@@ -28,7 +28,7 @@ std::string readAll(const ZipArchive& zip) {
   return bytes;
 }
 
-void writeFile(const fs::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
+void writeBytes(const fs::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 /// Extracts `zip` into `into` with Python's zipfile after checking every member's CRC; false when
 /// Python could not.
@@ -49,7 +49,7 @@ TEST(ZipArchive, AnIndependentReaderGetsTheMembersBack) {
   test::TempDir dir;
   std::string large(3 * 1024 * 1024 + 17, '\0');
   for (std::size_t k = 0; k < large.size(); ++k) large[k] = static_cast<char>((k * 2654435761u) >> 13);
-  writeFile(dir.path() / "large.bin", large);
+  writeBytes(dir.path() / "large.bin", large);
   ZipArchive zip;
   zip.addText("a/readme.txt", "héllo, crate\n", 1700000000);
   zip.addFile("b/large.bin", dir.path() / "large.bin", 1700000000);
@@ -66,7 +66,7 @@ TEST(ZipArchive, AnIndependentReaderGetsTheMembersBack) {
     at += n;
   }
   EXPECT_EQ(pieced, bytes);
-  writeFile(dir.path() / "x.zip", bytes);
+  writeBytes(dir.path() / "x.zip", bytes);
   ASSERT_TRUE(extractWithPython(dir.path() / "x.zip", dir.path() / "out"));
   EXPECT_EQ(test::readText(dir.path() / "out" / "a" / "readme.txt"), "héllo, crate\n");
   EXPECT_EQ(test::readText(dir.path() / "out" / "b" / "large.bin"), large);
@@ -105,7 +105,7 @@ TEST_F(JobCrate, DescribesTheJobAndEveryFileItHolds) {
   EXPECT_EQ(res->get_header_value("Content-Type"), "application/zip");
   EXPECT_EQ(res->get_header_value("Content-Length"), std::to_string(res->body.size()));
   test::TempDir dir;
-  writeFile(dir.path() / "crate.zip", res->body);
+  writeBytes(dir.path() / "crate.zip", res->body);
   const fs::path out = dir.path() / "crate";
   ASSERT_TRUE(extractWithPython(dir.path() / "crate.zip", out)) << "Python's zipfile could not read the crate";
 

@@ -415,6 +415,7 @@ public:
   const char* name() const override { return "recording"; }
   int workers() const override { return 1; }
   int threadsPerRun() const override { return 1; }
+  RankLimit rankLimit() const override { return {1, "a test executor"}; }
   bool waitingForDisk() const override { return false; }
   int unrecordedOutcomes() const override { return 0; }
   std::filesystem::path jobDir(std::int64_t) const override { return {}; }

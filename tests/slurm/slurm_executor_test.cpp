@@ -104,6 +104,54 @@ TEST(SlurmExecutor, SameSweepSameResultsAsTheLocalExecutor) {
   EXPECT_TRUE(fs::exists(shared.path() / "jobs" / std::to_string(id) / "run-1.h5"));
 }
 
+// run.ranks on the cluster (docs/distributed.md): a job whose runs ask for 1 and 2 ranks becomes one
+// array per rank count, the 2-rank one of 2 tasks started by srun; both files are the local 2-rank
+// result bit for bit (series, snapshots, sample), and a run asking for more than --slurm-max-ranks
+// gets a 400 naming run.ranks.
+TEST(SlurmExecutor, TwoRankRunGivesTheLocalTwoRankResult) {
+  REQUIRE_CLUSTER();
+#ifndef RUPTURE_HAVE_MPI
+  GTEST_SKIP() << "built without MPI";
+#endif
+  const Json spec = Json::parse(test::readText(fs::path(RUPTURE_SOURCE_DIR) / "tests" / "distributed" / "impact_pmb_projectile.json"));
+  const Json body = {{"inputs", spec}, {"sweep", {{"run.ranks", {1, 2}}}}};
+  test::LiveServer local;
+  auto localClient = local.client();
+  const auto localId = test::submit(*localClient, body, {}, "impact");
+  ASSERT_EQ(test::waitForJob(*localClient, localId, {"successful", "failed"}, 300)["status"], "successful");
+  const fs::path localTwoRanks = local.dataDir() / "jobs" / std::to_string(localId) / "run-1.h5";
+
+  test::TempDir shared;
+  test::LiveServer server([&](ServerConfig& c) {
+    slurmConfig(shared.path())(c);
+    c.slurmMaxRanks = 2;
+  });
+  auto client = server.client();
+  Json tooWide = spec;
+  tooWide["run"]["ranks"] = 3;
+  test::expectProblem(test::postJson(*client, "/processes/impact/execution", {{"inputs", tooWide}}), 400, "run.ranks");
+  const auto id = test::submit(*client, body, {}, "impact");
+  const Json done = test::waitForJob(*client, id, {"successful", "failed"}, 300);
+  ASSERT_EQ(done["status"], "successful") << done.dump(2);
+  const fs::path dir = shared.path() / "jobs" / std::to_string(id);
+  EXPECT_NE(arrayOf(shared.path(), id, 0), arrayOf(shared.path(), id, 1)) << "one array per rank count";
+  bool srunScript = false;
+  for (const auto& entry : fs::directory_iterator(dir / "slurm")) {
+    const std::string script = test::readText(entry.path());
+    if (script.find("#SBATCH --ntasks=2") != std::string::npos && script.find("srun --mpi=") != std::string::npos) srunScript = true;
+  }
+  EXPECT_TRUE(srunScript) << "no batch script asks for 2 tasks and starts them with srun";
+  // Two ranks of one run, not two one-rank runs (which `rupture run` would say in the log).
+  const std::string log = test::readText(dir / "run-1.log");
+  EXPECT_EQ(log.find("this run has 1"), std::string::npos) << log;
+  for (int k = 0; k < 2; ++k) {
+    for (const char* group : {"/series", "/snapshots", "/sample"}) {
+      const CommandResult diff = runCommand({"h5diff", "-r", localTwoRanks.string(), (dir / ("run-" + std::to_string(k) + ".h5")).string(), group});
+      EXPECT_EQ(diff.exitCode, 0) << "run " << k << " " << group << " differs from the local 2-rank run:\n" << diff.output.substr(0, 4000);
+    }
+  }
+}
+
 TEST(SlurmExecutor, ReplicatesAndRefinementRunOnTheClusterAsLocally) {
   REQUIRE_CLUSTER();
   // 2 rates x 2 replicates, then one refined point (2 more runs, a second array submission).
