@@ -77,6 +77,12 @@ constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
 int runQuietRank(const ParsedSpec& parsed, const std::string& specPath, const std::string& output,
                  RunControl& control, int threads, int rank) {
   InterruptGuard guard(control.cancel);
+  // The first rank tells the run's story; the others speak only of their own trouble: a checkpoint
+  // of theirs that could not be written leaves the run without a resumable checkpoint.
+  control.log = [rank](const std::string& text) {
+    if (text.find("checkpoint") != std::string::npos && (text.find("cannot") != std::string::npos || text.find("no room") != std::string::npos))
+      std::cerr << "rupture run (rank " << rank << "): " << text << "\n";
+  };
   try {
     const RunOutcome outcome = runSpec(parsed, output, control, threads);
     return outcome.completed ? 0 : kExitInterrupted;
@@ -153,7 +159,7 @@ std::string sidecarPath(const std::string& h5Path) {
 
 constexpr const char* kRunUsage =
     "usage: rupture run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]\n"
-    "                  [--max-run-steps N] [--status-interval S]\n"
+    "                  [--max-run-steps N] [--status-interval S] [--stop-at-step N]\n"
     "  -o, --output RUN.h5     the result file (HDF5; RUN.xdmf2 is written beside it for ParaView)\n"
     "  --threads N             OpenMP threads (default: all cores)\n"
     "  --progress-file FILE    keep FILE up to date (about once a second) with the progress as JSON\n"
@@ -167,9 +173,12 @@ constexpr const char* kRunUsage =
     "  --status-interval S     when stderr is not a terminal (a log, nohup, Slurm), print a status\n"
     "                          line every S seconds (default 10): progress, ETA, step, time, strain,\n"
     "                          the headline quantity, broken bonds and speed\n"
+    "  --stop-at-step N        stop after step N with a checkpoint, as an interrupted run (exit 130),\n"
+    "                          for --resume to continue (to try a resume, or to split a run)\n"
     "  -h, --help              this text\n"
     "Under mpirun -np N (N > 1) the N processes step one impact run together and the first writes\n"
-    "RUN.h5, the same file as one process writes (contact off; docs/distributed.md).\n";
+    "RUN.h5, the same file as one process writes (contact off; docs/distributed.md). Each rank\n"
+    "keeps its own checkpoint (RUN.h5.checkpoint, RUN.h5.checkpoint.rank-1, ...): --resume on as many ranks.\n";
 
 }  // namespace
 
@@ -177,6 +186,7 @@ int runCommand(const Args& args) {
   std::string specPath, output, progressPath;
   long long threads = omp_get_max_threads();
   long long maxRunSteps = static_cast<long long>(kDefaultMaxRunSteps);
+  long long stopAtStep = -1;
   double statusInterval = kDefaultStatusInterval;
   bool json = false, force = false, resume = false;
   for (std::size_t k = 0; k < args.size(); ++k) {
@@ -186,7 +196,7 @@ int runCommand(const Args& args) {
       return 0;
     }
     if (a == "-o" || a == "--output" || a == "--threads" || a == "--progress-file" || a == "--max-run-steps" ||
-        a == "--status-interval") {
+        a == "--status-interval" || a == "--stop-at-step") {
       if (k + 1 >= args.size()) return usageError("run: option " + a + " needs a value; see rupture run --help");
       if (a == "--threads") {
         if (!parseIntOption("--threads", args[k + 1], 1, 1024, threads)) return 2;
@@ -195,6 +205,8 @@ int runCommand(const Args& args) {
           return 2;
       } else if (a == "--status-interval") {
         if (!parseStatusInterval(args[k + 1], statusInterval)) return 2;
+      } else if (a == "--stop-at-step") {
+        if (!parseIntOption("--stop-at-step", args[k + 1], 1, std::numeric_limits<long long>::max(), stopAtStep)) return 2;
       } else if (a == "--progress-file") {
         progressPath = args[k + 1];
       } else {
@@ -210,7 +222,7 @@ int runCommand(const Args& args) {
     } else if (!a.empty() && a[0] == '-') {
       return usageError("run: unknown option '" + a +
                         "'; allowed: -o/--output, --threads, --progress-file, --json, --force, --resume, --max-run-steps, "
-                        "--status-interval, --help");
+                        "--status-interval, --stop-at-step, --help");
     } else if (specPath.empty()) {
       specPath = a;
     } else {
@@ -239,9 +251,6 @@ int runCommand(const Args& args) {
       return refuse("run: the " + parsed.scenarioName() + " scenario runs on one rank; " +
                     std::to_string(ranks.size()) + " ranks (mpirun -np " + std::to_string(ranks.size()) +
                     ") run the impact scenario only, so far (docs/distributed.md)");
-    if (resume)
-      return refuse("run: --resume on " + std::to_string(ranks.size()) +
-                    " ranks: checkpoints are not carried across ranks yet; resume on one rank");
   }
 
   // run.ranks is what a server gives the run; here mpirun decides, and the result is the same.
@@ -272,20 +281,28 @@ int runCommand(const Args& args) {
     // a checkpoint of an interrupted one.
     const std::string checkpoint = io::checkpointPathFor(output);
     if (resume) {
+      // Each rank continues from its own checkpoint (docs/distributed.md); all go on, or none.
+      const std::string mine = io::rankCheckpointPath(checkpoint, ranks.rank());
+      std::string refused;
       try {
-        const io::CheckpointHeader header = io::readCheckpointHeader(checkpoint);
-        io::checkCheckpointFits(header, checkpoint, parsed.scenarioName(), spec);
-        if (header.threads != threads)
+        const io::CheckpointHeader header = io::readCheckpointHeader(mine);
+        io::checkCheckpointFits(header, mine, parsed.scenarioName(), spec);
+        if (header.ranks != ranks.size())
+          throw CheckpointError("it was written by a run on " + std::to_string(header.ranks) + " rank(s), this one has " +
+                                std::to_string(ranks.size()) + " (each rank saved its own part): resume it with mpirun -np " +
+                                std::to_string(header.ranks));
+        if (header.threads != threads && firstRank)
           std::cerr << "rupture run: the checkpoint was written with " << header.threads << " thread(s), this run has "
                     << threads << ": the result may differ from an uninterrupted run in the last digits\n";
       } catch (const CheckpointError& e) {
-        return usageError(std::string("run: cannot resume: ") + e.what() +
-                          "; run without --resume (and with --force) to start afresh");
+        refused = std::string("run: cannot resume: ") + e.what() + "; run without --resume (and with --force) to start afresh";
       }
+      if (ranks.max(refused.empty() ? 0.0 : 1.0) > 0) return refused.empty() ? 2 : usageError(refused);
     } else if (std::filesystem::exists(checkpoint, ec)) {
       if (!force)
-        return usageError("run: '" + checkpoint + "' holds an interrupted run; pass --resume to continue it, or --force to start afresh");
-      std::filesystem::remove(checkpoint, ec);
+        return firstRank ? usageError("run: '" + checkpoint + "' holds an interrupted run; pass --resume to continue it, or --force to start afresh") : 2;
+      ranks.barrier();  // every rank has looked before the first removes it
+      std::filesystem::remove(io::rankCheckpointPath(checkpoint, ranks.rank()), ec);
     } else if (!force && std::filesystem::exists(std::filesystem::symlink_status(output, ec))) {
       return usageError("run: '" + output + "' exists; pass --force to overwrite it, or name another -o");
     }
@@ -294,10 +311,7 @@ int runCommand(const Args& args) {
   RunControl control;
   control.resume = resume;
   control.checkpointOnCancel = true;  // Ctrl-C, SIGTERM: keep the work for --resume
-  if (ranks.size() > 1) {  // no checkpoints across ranks yet
-    control.checkpointOnCancel = false;
-    control.checkpointInterval = 0;
-  }
+  control.stopAtStep = stopAtStep;
   if (!firstRank) return runQuietRank(parsed, specPath, output, control, static_cast<int>(threads), ranks.rank());
   ProgressView view("rupture run", ::isatty(STDERR_FILENO) == 1, statusInterval);
   io::StatusLine statusLine;

@@ -13,13 +13,14 @@ constexpr const char* kUsage = R"(usage: rupture <command> [options]
 
 commands:
   run SPEC.json -o RUN.h5 [--threads N] [--progress-file FILE] [--json] [--force] [--resume]
-      [--status-interval S]
+      [--status-interval S] [--stop-at-step N]
                                           run a scenario, write one HDF5 file (+ .xdmf2 sidecar) and
                                           print its summary: a table, or with --json the JSON;
                                           --progress-file keeps FILE up to date with the progress as
                                           JSON; an existing RUN.h5 is replaced only with --force;
                                           --resume continues a run stopped by Ctrl-C or SIGTERM
-                                          from RUN.h5.checkpoint; off a terminal, a status line
+                                          from RUN.h5.checkpoint (--stop-at-step N stops after step
+                                          N with one); off a terminal, a status line
                                           every --status-interval S seconds (default 10) and a
                                           timing breakdown at the end (rupture run --help says more);
                                           under mpirun -np N, one impact run over N processes

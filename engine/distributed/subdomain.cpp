@@ -186,4 +186,10 @@ double Subdomain::kineticEnergy() const {
   });
 }
 
+void Subdomain::exchangeState(StateArchive& archive) {
+  StateGroup group(archive, "subdomain");
+  system.exchangeState(archive);
+  archive.array("gathered_intact", m_gatheredIntact);
+}
+
 }  // namespace rupture

@@ -19,6 +19,7 @@
 #include "bonded/bonded_system.hpp"
 #include "distributed/communicator.hpp"
 #include "distributed/halo.hpp"
+#include "rupture/state_archive.hpp"
 
 namespace rupture {
 
@@ -63,6 +64,9 @@ public:
   /// over its particles in index order, bit for bit (an external body's reaction). Collective.
   std::array<double, 3> sumInWholeOrder(const std::vector<std::int64_t>& ids, const std::vector<double>& terms) const;
 
+  /// Saves or loads the sub-domain's state (its system, and what the whole system last took from
+  /// it): a rank's checkpoint (docs/checkpoints.md).
+  void exchangeState(StateArchive& archive);
   /// Bonds broken so far in the whole sample (each counted once: by the owner of its end i).
   std::uint64_t brokenBonds() const;
   /// Translational and rotational kinetic energy of the whole sample (J).

@@ -47,6 +47,10 @@ std::string checkpointPathFor(const std::string& resultPath) {
   return base + ".checkpoint";
 }
 
+std::string rankCheckpointPath(const std::string& checkpoint, int rank) {
+  return rank == 0 ? checkpoint : checkpoint + ".rank-" + std::to_string(rank);
+}
+
 nlohmann::json checkpointSpecIdentity(const nlohmann::json& spec) {
   nlohmann::json identity = spec;
   if (identity.is_object() && identity.contains("run") && identity["run"].is_object()) {
@@ -61,8 +65,10 @@ std::uintmax_t writeCheckpoint(ResultFile& partial, const std::string& path, con
                                const std::function<void(StateArchive&)>& save) {
   const std::string temporary = path + ".tmp";
   try {
-    partial.copyTo(temporary);
-    Hdf5File copy = Hdf5File::openReadWrite(temporary);
+    // A discarded result (a rank of a decomposed run but the first) is the first rank's result,
+    // which the first rank's checkpoint holds: this one holds the rank's state alone.
+    if (!partial.discarded()) partial.copyTo(temporary);
+    Hdf5File copy = partial.discarded() ? Hdf5File::create(temporary) : Hdf5File::openReadWrite(temporary);
     copy.remove(kCheckpointGroup);
     copy.createGroup(kCheckpointGroup);
     copy.setAttribute(kCheckpointGroup, "format", kCheckpointFormat);
@@ -72,6 +78,7 @@ std::uintmax_t writeCheckpoint(ResultFile& partial, const std::string& path, con
     copy.setAttribute(kCheckpointGroup, "step", header.step);
     copy.setAttribute(kCheckpointGroup, "time", header.time);
     copy.setAttribute(kCheckpointGroup, "threads", header.threads);
+    copy.setAttribute(kCheckpointGroup, "ranks", header.ranks);
     copy.setAttribute(kCheckpointGroup, "resumes", header.resumes);
     copy.setAttribute(kCheckpointGroup, "wall_time_s", header.wallTime);
     copy.setAttribute(kCheckpointGroup, "written", utcNow());
@@ -108,6 +115,7 @@ CheckpointHeader readCheckpointHeader(const std::string& path) {
     h.step = file.readAttributeInt(kCheckpointGroup, "step");
     h.time = file.readAttributeDouble(kCheckpointGroup, "time");
     h.threads = file.readAttributeInt(kCheckpointGroup, "threads");
+    if (file.hasAttribute(kCheckpointGroup, "ranks")) h.ranks = file.readAttributeInt(kCheckpointGroup, "ranks");
     h.resumes = file.readAttributeInt(kCheckpointGroup, "resumes");
     h.wallTime = file.readAttributeDouble(kCheckpointGroup, "wall_time_s");
     h.written = file.readAttributeString(kCheckpointGroup, "written");
@@ -143,6 +151,18 @@ void loadCheckpointState(ResultFile& partial, const std::function<void(StateArch
     throw CheckpointError(std::string("the checkpoint's state cannot be read (") + e.what() + ")");
   }
   if (!more) endCheckpointLoading(partial);
+}
+
+void loadCheckpointState(const std::string& path, const std::function<void(StateArchive&)>& load) {
+  try {
+    Hdf5File file = Hdf5File::openReadOnly(path);
+    Hdf5StateArchive archive(file, kStateGroup, Hdf5StateArchive::Mode::Load);
+    load(archive);
+  } catch (const CheckpointError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CheckpointError("the checkpoint " + path + " cannot be read (" + e.what() + ")");
+  }
 }
 
 void endCheckpointLoading(ResultFile& partial) {

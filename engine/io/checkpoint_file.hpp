@@ -32,10 +32,15 @@ struct CheckpointHeader {
   std::int64_t step = 0;     ///< steps done
   double time = 0;           ///< simulated time (s)
   std::int64_t threads = 1;  ///< OpenMP threads of the run that wrote it
+  std::int64_t ranks = 1;    ///< MPI ranks of the run that wrote it: each wrote its own (rankCheckpointPath)
   std::int64_t resumes = 0;  ///< how many times the run had been resumed when it wrote it
   double wallTime = 0;       ///< wall time of the run so far, every attempt (s)
   std::string written;       ///< UTC, ISO 8601
 };
+
+/// Where rank `rank` of a decomposed run keeps its checkpoint beside the first rank's `checkpoint`
+/// (checkpointPathFor): each rank saves its own sub-domain and its own copy of the result.
+std::string rankCheckpointPath(const std::string& checkpoint, int rank);
 
 /// The part of a spec that must match for a checkpoint to continue a run: all of it but
 /// run.checkpoint_interval_s and run.ranks (how often to checkpoint, and on how many processes the
@@ -63,5 +68,8 @@ void checkCheckpointFits(const CheckpointHeader& found, const std::string& path,
 void loadCheckpointState(ResultFile& partial, const std::function<void(StateArchive&)>& load, bool more = false);
 /// Removes /checkpoint from the partial result once its state is loaded.
 void endCheckpointLoading(ResultFile& partial);
+/// Loads the state of a checkpoint that holds no result (a rank's but the first's, of a decomposed
+/// run) from its own file. Throws CheckpointError.
+void loadCheckpointState(const std::string& path, const std::function<void(StateArchive&)>& load);
 
 }  // namespace rupture::io

@@ -30,6 +30,15 @@ Hdf5File openPartial(const std::string& partPath, const std::string& continueFro
   }
 }
 
+/// A rank's checkpoint read into memory, for a discarded result that continues it.
+Hdf5File openInMemory(const std::string& checkpoint) {
+  try {
+    return Hdf5File::openInMemory(checkpoint);
+  } catch (const std::exception& e) {
+    throw CheckpointError("the checkpoint " + checkpoint + " cannot be read (" + e.what() + ")");
+  }
+}
+
 }  // namespace
 
 ResultFile::ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom)
@@ -44,13 +53,17 @@ ResultFile::ResultFile(std::string resultPath, const std::string& scenario, cons
   writeStartProvenance(m_file);
 }
 
-ResultFile::ResultFile(std::string resultPath, const std::string& scenario, Destination destination)
+ResultFile::ResultFile(std::string resultPath, const std::string& scenario, Destination destination,
+                       const std::string& continueFrom)
     : m_resultPath(std::move(resultPath)),
       m_partPath(destination == Destination::kDisk && !isCallersTemporary(m_resultPath) ? m_resultPath + ".part"
                                                                                        : m_resultPath),
-      m_file(destination == Destination::kDisk ? openPartial(m_partPath, "")
-                                               : Hdf5File::createInMemory(m_resultPath + " (in memory)")),
+      m_file(destination == Destination::kDisk ? openPartial(m_partPath, continueFrom)
+             : continueFrom.empty()            ? Hdf5File::createInMemory(m_resultPath + " (in memory)")
+                                               : openInMemory(continueFrom)),
+      m_continued(!continueFrom.empty()),
       m_discarded(destination == Destination::kDiscarded) {
+  if (m_continued) return;
   m_file.setAttribute("/", "scenario", scenario);
   m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
   m_file.setAttribute("/", "completed", std::int64_t{0});

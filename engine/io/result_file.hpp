@@ -28,7 +28,10 @@ public:
   /// Where the file goes: on disk, or (kDiscarded) in memory only, never written: the ranks of a
   /// decomposed run but the first run the same output code on the same gathered state.
   enum class Destination { kDisk, kDiscarded };
-  ResultFile(std::string resultPath, const std::string& scenario, Destination destination);
+  /// continueFrom: for kDiscarded, the first rank's checkpoint, whose copy of the result (the same
+  /// as every rank's) is read into memory and continued there; "" starts a new one.
+  ResultFile(std::string resultPath, const std::string& scenario, Destination destination,
+             const std::string& continueFrom = "");
   ~ResultFile();
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
@@ -44,6 +47,8 @@ public:
   const std::string& partPath() const { return m_partPath; }
   /// True when the file continues a checkpoint's partial result.
   bool continued() const { return m_continued; }
+  /// True for a result held in memory only and dropped (Destination::kDiscarded).
+  bool discarded() const { return m_discarded; }
   /// Records on "/" that the run continued from `step` (checkpoint_resumes, resumed_from_steps: the
   /// steps of every resume so far, a JSON list).
   void recordResume(std::int64_t step);

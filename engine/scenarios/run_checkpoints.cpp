@@ -36,7 +36,8 @@ std::uintmax_t fileSize(const std::string& path) {
 RunCheckpoints::RunCheckpoints(RunControl& control, const std::string& resultPath, std::string scenario,
                                const nlohmann::json& inputSpec, double specInterval, Clock::time_point& wallStart)
     : m_control(control),
-      m_path(io::checkpointPathFor(resultPath)),
+      m_path(io::rankCheckpointPath(io::checkpointPathFor(resultPath), Communicator::world().rank())),
+      m_firstRankPath(io::checkpointPathFor(resultPath)),
       m_partialPath(isCallersTemporary(resultPath) ? resultPath : resultPath + ".part"),
       m_scenario(std::move(scenario)),
       m_callerCommits(isCallersTemporary(resultPath)),
@@ -54,7 +55,21 @@ void RunCheckpoints::attach(io::ResultFile& result, State state) {
 void RunCheckpoints::restore(bool partsFollow) {
   if (!m_result || !m_state) throw std::logic_error("RunCheckpoints::restore before attach");
   const io::CheckpointHeader header = io::readCheckpointHeader(m_path);
-  io::loadCheckpointState(*m_result, m_state, partsFollow);
+  if (header.ranks != m_comm.size())
+    throw CheckpointError("the checkpoint " + m_path + " was written by a run on " + std::to_string(header.ranks) +
+                          " rank(s), this one has " + std::to_string(m_comm.size()) + ": each rank saved its own part; resume it with mpirun -np " +
+                          std::to_string(header.ranks));
+  // Every rank's checkpoint of the same step, or none is taken up (a rank may have had no room).
+  const double step = static_cast<double>(header.step);
+  if (m_comm.size() > 1 && (m_comm.max(step) != step || -m_comm.max(-step) != step))
+    throw CheckpointError("the ranks' checkpoints (" + m_path + " and its siblings) are of different steps; start the run afresh");
+  if (m_path == m_firstRankPath) {
+    io::loadCheckpointState(*m_result, m_state, partsFollow);
+  } else {  // the state in the rank's own file; the result continues the first rank's copy
+    if (partsFollow) throw std::logic_error("RunCheckpoints::restore: parts of a state on several ranks");
+    io::loadCheckpointState(m_path, m_state);
+    io::endCheckpointLoading(*m_result);
+  }
   m_partsFollow = partsFollow;
   m_resumes = header.resumes + 1;
   m_wallStart -= std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(header.wallTime));
@@ -90,6 +105,7 @@ void RunCheckpoints::write(std::uint64_t step, double time) {
   header.step = static_cast<std::int64_t>(step);
   header.time = time;
   header.threads = m_control.threads;
+  header.ranks = m_comm.size();
   header.resumes = m_resumes;
   header.wallTime = std::chrono::duration<double>(began - m_wallStart).count();
   const std::uintmax_t bytes = io::writeCheckpoint(*m_result, m_path, header, m_state);
@@ -147,22 +163,28 @@ bool RunCheckpoints::tryWrite(std::uint64_t step, double time) {
 }
 
 RunCheckpoints::Action RunCheckpoints::poll(std::uint64_t step, double time) {
+  // This rank's wish: kWrite a checkpoint, kStop, or both.
+  constexpr int kWrite = 1, kStop = 2;
+  int wish = 0;
   if (m_control.cancel.load(std::memory_order_relaxed)) {
-    if (m_control.checkpointOnCancel.load() && m_interval > 0) tryWrite(step, time);
-    return Action::Stop;
+    wish = kStop | (m_control.checkpointOnCancel.load() && m_interval > 0 ? kWrite : 0);
+  } else if (m_control.stopAtStep >= 0 && static_cast<std::int64_t>(step) >= m_control.stopAtStep) {
+    wish = kStop | kWrite;
+  } else if (m_interval > 0 && (step & 15) == 0 && Clock::now() - m_last >= std::chrono::duration<double>(m_interval)) {
+    // The clock is read every 16 steps: a step is microseconds to seconds, an interval minutes.
+    wish = kWrite;
   }
-  if (m_control.stopAtStep >= 0 && static_cast<std::int64_t>(step) >= m_control.stopAtStep) {
-    tryWrite(step, time);
-    return Action::Stop;
-  }
-  // The clock is read every 16 steps: a step is microseconds to seconds, an interval minutes.
-  if (m_interval > 0 && (step & 15) == 0 && Clock::now() - m_last >= std::chrono::duration<double>(m_interval))
-    tryWrite(step, time);
-  return Action::Continue;
+  // Every rank does what the most any rank wishes: a stop wins over a checkpoint of the interval
+  // alone (3 > 2 > 1), so the ranks' checkpoints are always of the same step.
+  if (m_comm.size() > 1) wish = static_cast<int>(m_comm.max(static_cast<double>(wish)));
+  if (wish & kWrite) tryWrite(step, time);
+  return (wish & kStop) ? Action::Stop : Action::Continue;
 }
 
 void RunCheckpoints::finished(bool completed) {
-  if (!completed || m_callerCommits) return;
+  // A caller that commits the result removes the first rank's checkpoint; the other ranks' are
+  // theirs to remove.
+  if (!completed || (m_callerCommits && m_comm.rank() == 0)) return;
   std::error_code ec;
   std::filesystem::remove(m_path, ec);
 }

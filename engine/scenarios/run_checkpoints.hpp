@@ -7,6 +7,10 @@
 // the caller's own ".part" (io::ResultFile): that caller removes it once it has committed the
 // result (renamed it and its summary into place), so a kill between the engine's end and that
 // commit still finds the checkpoint and loses at most one interval (docs/checkpoints.md).
+//
+// On several ranks (docs/distributed.md) each rank keeps its own checkpoint, of its own copy of the
+// result and its own state (io::rankCheckpointPath), and every decision is taken by all of them at
+// once: poll() is collective, and a rank's wish to checkpoint or to stop is every rank's.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -14,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "distributed/communicator.hpp"
 #include "io/result_file.hpp"
 #include "rupture/run.hpp"
 #include "rupture/state_archive.hpp"
@@ -32,7 +37,8 @@ public:
 
   bool resuming() const { return m_control.resume; }
   /// The checkpoint the result file continues from (ResultFile's continueFrom), "" for a new run.
-  std::string continueFrom() const { return resuming() ? m_path : std::string(); }
+  /// On several ranks, every rank continues the first rank's copy (the result is the same on all).
+  std::string continueFrom() const { return resuming() ? m_firstRankPath : std::string(); }
 
   /// The result file and the function naming the run's state; call before restore() and poll().
   void attach(io::ResultFile& result, State state);
@@ -47,7 +53,7 @@ public:
   void endRestore();
 
   enum class Action { Continue, Stop };
-  /// At the top of every step: Stop when cancelled (after a checkpoint when RunControl asks for
+  /// At the top of every step (collective on several ranks): Stop when cancelled (after a checkpoint when RunControl asks for
   /// one and the interval is not 0) or at RunControl::stopAtStep (after a checkpoint); a checkpoint
   /// when the interval is up. A checkpoint that cannot be written is logged, not thrown.
   Action poll(std::uint64_t step, double time);
@@ -64,7 +70,8 @@ private:
   std::uintmax_t bytesForNextCheckpoint() const;
 
   RunControl& m_control;
-  std::string m_path, m_partialPath, m_scenario;
+  Communicator m_comm = Communicator::world();
+  std::string m_path, m_firstRankPath, m_partialPath, m_scenario;
   bool m_callerCommits;
   nlohmann::json m_specIdentity;
   double m_interval;

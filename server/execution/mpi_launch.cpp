@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 #include <thread>
 
@@ -12,6 +13,7 @@
 
 #include "common/files.hpp"
 #include "execution/command.hpp"
+#include "rupture/state_archive.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
@@ -90,8 +92,10 @@ rupture::RunOutcome MpiLauncher::run(const nlohmann::json& spec, const fs::path&
   if (::geteuid() == 0) argv.push_back("--allow-run-as-root");  // containers and CI run as root
   for (const std::string& a : {cli, std::string("run"), files.spec.string(), std::string("-o"), resultPath.string(),
                                std::string("--threads"), std::to_string(std::max(1, threads)), std::string("--progress-file"),
-                               files.progress.string(), std::string("--json"), std::string("--force")})
+                               files.progress.string(), std::string("--json")})
     argv.push_back(a);
+  // Every rank continues from its own checkpoint (the scheduler found the first rank's).
+  argv.push_back(control.resume ? "--resume" : "--force");
 
   std::string stage;
   auto lastRead = std::chrono::steady_clock::now();
@@ -107,6 +111,9 @@ rupture::RunOutcome MpiLauncher::run(const nlohmann::json& spec, const fs::path&
         if (doc.contains("stage") && doc["stage"].is_string() && doc["stage"].get<std::string>() != stage) {
           stage = doc["stage"].get<std::string>();
           if (control.log && !stage.empty()) control.log(stage);
+          // The ranks continued from their checkpoints: the store records where, as for a run in process.
+          constexpr std::string_view kResumed = "resumed from the checkpoint at step ";
+          if (stage.rfind(kResumed, 0) == 0) control.resumedFromStep = std::atoll(stage.c_str() + kResumed.size());
         }
       }
     } catch (const std::exception&) {  // a watcher's convenience, never a reason to fail the run
@@ -131,6 +138,10 @@ rupture::RunOutcome MpiLauncher::run(const nlohmann::json& spec, const fs::path&
     return outcome;
   }
   const std::string said = lastLine(r.error);
+  // A checkpoint the ranks cannot take up (another rank count, a rank's file missing): the
+  // scheduler removes it, and a retry starts afresh.
+  if (control.resume && r.exitCode == 2 && said.find("cannot resume") != std::string::npos)
+    throw rupture::CheckpointError("rupture run on " + ranksText + ": " + said);
   throw std::runtime_error("rupture run on " + ranksText + " (mpirun) failed" +
                            (r.exitCode >= 0 ? " with exit code " + std::to_string(r.exitCode) : std::string()) +
                            (said.empty() ? std::string() : ": " + said));

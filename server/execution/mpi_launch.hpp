@@ -22,9 +22,10 @@ struct MpiLauncher {
   static std::optional<MpiLauncher> find(const std::string& cli, std::string& why);
 
   /// Runs `spec` on `ranks` ranks of `threads` OpenMP threads each, writing `resultPath` (the
-  /// engine's .part, as runSpec does). The spec is written beside it as <resultPath>.spec.json.
-  /// Throws std::runtime_error with the CLI's error when the run fails; completed = false when
-  /// control.cancel stopped it.
+  /// engine's .part, as runSpec does), continuing from the ranks' checkpoints with control.resume.
+  /// The spec is written beside it as <resultPath>.spec.json. Throws std::runtime_error with the
+  /// CLI's error when the run fails (rupture::CheckpointError when the checkpoints cannot be taken
+  /// up); completed = false when control.cancel stopped it.
   rupture::RunOutcome run(const nlohmann::json& spec, const std::filesystem::path& resultPath,
                           rupture::RunControl& control, int ranks, int threads) const;
 };

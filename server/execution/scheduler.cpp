@@ -48,6 +48,15 @@ void removeQuietly(const fs::path& p) {
   fs::remove(p, ec);
 }
 
+/// A run's checkpoint, and those of the other ranks of a run on several (io::rankCheckpointPath).
+void removeCheckpoint(const fs::path& checkpoint) {
+  removeQuietly(checkpoint);
+  const std::string siblings = checkpoint.filename().string() + ".rank-";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(checkpoint.parent_path(), ec))
+    if (entry.path().filename().string().rfind(siblings, 0) == 0) removeQuietly(entry.path());
+}
+
 /// The directory's entries on the disk (a removal or rename that must survive a power cut).
 void syncDirectory(const fs::path& dir) {
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -173,7 +182,7 @@ void Scheduler::recoverFinishedFiles() {
     }
     const fs::path checkpoint = rupture::io::checkpointPathFor(partial.string());
     if (fs::exists(checkpoint)) {
-      removeQuietly(checkpoint);
+      removeCheckpoint(checkpoint);
       syncDirectory(file.parent_path());
     }
     m_store.finishSuccessful(key, summary, fs::relative(file, m_dataDir).string());
@@ -400,7 +409,7 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
                          : m_executor(spec, partial.string(), *control, m_threadsPerRun);
     } catch (const rupture::CheckpointError& e) {
       // Never mixed into another run, never kept to fail again: a retry starts afresh.
-      removeQuietly(checkpoint);
+      removeCheckpoint(checkpoint);
       throw std::runtime_error(std::string("cannot continue from the run's checkpoint (") + e.what() +
                                "); it was removed: retry the run to start it afresh");
     }
@@ -419,7 +428,7 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
       killPointForTests(kill_point::kAfterSummaryRename);
       renameDurable(partial, file);
       killPointForTests(kill_point::kAfterResultRename);
-      removeQuietly(checkpoint);
+      removeCheckpoint(checkpoint);
       syncDirectory(file.parent_path());
       killPointForTests(kill_point::kAfterCheckpointRemoval);
       // From here the files say the run succeeded, whatever happens to the store.
@@ -432,7 +441,7 @@ void Scheduler::execute(RunKey key, const std::shared_ptr<rupture::RunControl>& 
         logLine(describe(key) + " interrupted by shutdown; re-queued");
       } else if (control->cancel) {
         outcome.kind = Outcome::Kind::Dismissed;
-        removeQuietly(rupture::io::checkpointPathFor(partial.string()));  // nothing will continue it
+        removeCheckpoint(rupture::io::checkpointPathFor(partial.string()));  // nothing will continue it
         logLine(describe(key) + " cancelled after " + elapsed() + " s");
       } else {
         outcome.message = "the run ended without completing (nobody cancelled it)";

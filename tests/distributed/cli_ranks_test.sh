@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `mpiexec -np N rupture run SPEC` against `rupture run SPEC` (docs/distributed.md): the impact
 # scenario on N ranks writes the one-process file bit for bit (series, snapshots, sample; h5diff)
-# and prints the same summary (all but the wall time); what is not decomposed yet is refused with
-# exit 2, naming the field or the scenario.
+# and prints the same summary (all but the wall time); a run stopped with a checkpoint on N ranks
+# and resumed on N ranks writes the uninterrupted file, and its resume on another rank count is
+# refused; what is not decomposed yet is refused with exit 2, naming the field or the scenario.
 #   cli_ranks_test.sh RUPTURE MPIEXEC RANKS [MPIEXEC FLAGS...]
 set -euo pipefail
 rupture=$1 mpiexec=$2 ranks=$3
@@ -57,4 +58,34 @@ json.dump(spec, open(sys.argv[2], "w"))
 PY
 expect_refusal "$work/with_contact.json" "material.contact.enabled"
 expect_refusal "$here/../../examples/dynamic-tension-pmb.json" "scenario runs on one rank"
-expect_refusal "$here/impact_pmb_projectile.json" "checkpoints are not carried across ranks" --resume
+
+# Checkpoint on N ranks, stop, resume on N ranks: the uninterrupted file bit for bit. Each rank keeps
+# its own checkpoint; a resume on another rank count is refused, naming the count to use.
+spec="$here/impact_pmb_projectile.json"
+"$rupture" run "$spec" -o "$work/whole.h5" --json > "$work/whole.json" 2> "$work/whole.err" \
+  || { cat "$work/whole.err" >&2; fail "uninterrupted run on one process"; }
+set +e
+"$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --stop-at-step 100 \
+  > /dev/null 2> "$work/stop.err"
+code=$?
+set -e
+[ "$code" -eq 130 ] || { cat "$work/stop.err" >&2; fail "--stop-at-step on $ranks ranks: exit $code, expected 130"; }
+[ -f "$work/split.h5.checkpoint" ] || fail "no checkpoint of the first rank"
+for ((r = 1; r < ranks; ++r)); do
+  [ -f "$work/split.h5.checkpoint.rank-$r" ] || fail "no checkpoint of rank $r"
+done
+set +e
+"$rupture" run "$spec" -o "$work/split.h5" --resume > /dev/null 2> "$work/wrong.err"
+code=$?
+set -e
+[ "$code" -eq 2 ] || { cat "$work/wrong.err" >&2; fail "resume on one process of a $ranks-rank checkpoint: exit $code, expected 2"; }
+grep -q "resume it with mpirun -np $ranks" "$work/wrong.err" || { cat "$work/wrong.err" >&2; fail "the refusal does not name the rank count"; }
+"$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --resume --json \
+  > "$work/split.json" 2> "$work/resume.err" || { cat "$work/resume.err" >&2; fail "resume on $ranks ranks"; }
+grep -q "resumed from the checkpoint at step 100" "$work/resume.err" || { cat "$work/resume.err" >&2; fail "the run did not resume at step 100"; }
+for group in /series /snapshots /sample; do
+  h5diff -r "$work/whole.h5" "$work/split.h5" "$group" > "$work/diff.txt" \
+    || { tail -n 20 "$work/diff.txt" >&2; fail "$group differs between the uninterrupted run and the one resumed on $ranks ranks"; }
+done
+ls "$work"/split.h5.checkpoint* > /dev/null 2>&1 && fail "checkpoints left after the resumed run completed: $(ls "$work"/split.h5.checkpoint*)"
+echo "stopped at step 100 and resumed on $ranks ranks: the uninterrupted file; another rank count refused"

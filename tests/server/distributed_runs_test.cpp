@@ -1,7 +1,10 @@
 // Runs of several MPI ranks through the local executor (docs/distributed.md): a spec's run.ranks
 // makes the server start `mpirun -np N rupture run`, holding N of its workers; the file is the
-// one-rank file bit for bit; a cancel ends every rank; a spec asking for more ranks than the
+// one-rank file bit for bit; a cancel ends every rank; a server stopped half way continues the run
+// from its ranks' checkpoints to the uninterrupted file; a spec asking for more ranks than the
 // server has workers, or for ranks with what is not decomposed yet, gets a 400 naming run.ranks.
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "execution/command.hpp"
@@ -83,6 +86,45 @@ TEST(DistributedRuns, CancelEndsEveryRank) {
   EXPECT_EQ(run["status"], "dismissed");
   EXPECT_FALSE(fs::exists(runFile(server, id, 0)));
   EXPECT_NE(runCommand({"pgrep", "-f", launchedSpec}).exitCode, 0) << "a rank or mpirun outlived the cancel";
+}
+
+TEST(DistributedRuns, AStoppedServerContinuesATwoRankRunFromItsRanksCheckpoints) {
+  Json spec = pmbImpact();
+  spec["run"]["end_time"] = 2e-4;  // about 2,400 steps: long enough to stop it half way
+  spec["run"]["ranks"] = 2;
+  test::TempDir data;
+  std::int64_t id = -1;
+  {
+    test::LiveServer server({}, data.path());
+    auto client = server.client();
+    id = test::submit(*client, {{"inputs", spec}}, {}, "impact");
+    ASSERT_GT(id, 0);
+    ASSERT_TRUE(test::waitFor([&] { return test::getJson(*client, "/jobs/" + std::to_string(id)).value("progress", 0) >= 20; }, 120))
+        << "the 2-rank run never got to 20 %";
+  }  // the server stops: the ranks write their checkpoints and the run goes back to the queue
+  const fs::path checkpoint = data.path() / "jobs" / std::to_string(id) / "run-0.h5.checkpoint";
+  ASSERT_TRUE(fs::exists(checkpoint)) << "no checkpoint of the first rank after the stop";
+  ASSERT_TRUE(fs::exists(checkpoint.string() + ".rank-1")) << "no checkpoint of the second rank after the stop";
+  test::LiveServer server({}, data.path());
+  auto client = server.client();
+  const Json done = test::waitForJob(*client, id, {"successful", "failed"}, 300);
+  ASSERT_EQ(done["status"], "successful") << done.dump(2);
+  const Json run = test::getJson(*client, "/jobs/" + std::to_string(id) + "/runs/0");
+  EXPECT_EQ(run.value("resumes", 0), 1) << run.dump(2);
+  EXPECT_GT(run.value("resumed_from_step", 0), 0) << run.dump(2);
+  EXPECT_FALSE(fs::exists(checkpoint));
+  EXPECT_FALSE(fs::exists(checkpoint.string() + ".rank-1"));
+  // The uninterrupted run on one process: the same series, snapshots and sample.
+  const fs::path whole = data.path() / "whole.h5";
+  const fs::path specFile = data.path() / "whole.json";
+  std::ofstream(specFile) << spec.dump();
+  const std::string cli = (fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "engine" / "rupture").string();
+  const CommandResult one = runCommand({cli, "run", specFile.string(), "-o", whole.string(), "--threads", "1"}, std::chrono::minutes(5));
+  ASSERT_EQ(one.exitCode, 0) << one.error;
+  for (const char* group : {"/series", "/snapshots", "/sample"}) {
+    const CommandResult diff = runCommand({"h5diff", "-r", whole.string(), runFile(server, id, 0).string(), group});
+    EXPECT_EQ(diff.exitCode, 0) << group << " differs from the uninterrupted run:\n" << diff.output.substr(0, 4000);
+  }
 }
 
 #endif  // RUPTURE_HAVE_MPI

@@ -249,10 +249,12 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   };
 
   // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
-  // Every rank writes the same file from the same gathered state; only the first keeps it.
+  // Every rank writes the same file from the same gathered state; only the first keeps it (each
+  // rank's checkpoint holds its own copy).
   io::ResultFile result = comm.rank() == 0
                               ? io::ResultFile(resultPath, "impact", checkpoints.continueFrom())
-                              : io::ResultFile(resultPath, "impact", io::ResultFile::Destination::kDiscarded);
+                              : io::ResultFile(resultPath, "impact", io::ResultFile::Destination::kDiscarded,
+                                               checkpoints.continueFrom());
   io::Hdf5File& file = result.file();
   const std::size_t n = p.size();
   if (!checkpoints.resuming()) {
@@ -316,6 +318,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   // Everything the loop below changes (docs/checkpoints.md).
   checkpoints.attach(result, [&](StateArchive& a) {
     system.exchangeState(a);
+    if (part) part->exchangeState(a);
     tracker.exchangeState(a);
     StateGroup loop(a, "loop");
     if (projectile) {
@@ -362,9 +365,8 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
       while (nextSnapshot < spec.snapshotTimes.size() && system.time >= spec.snapshotTimes[nextSnapshot]) ++nextSnapshot;
     }
     if (system.time >= spec.endTime * (1 - 1e-12)) break;
-    bool stop = checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop;
-    if (part) stop = comm.max(stop ? 1.0 : 0.0) > 0;  // a cancel on any rank stops every rank
-    if (stop) {
+    // Collective on several ranks: a cancel on any rank stops every rank at this step.
+    if (checkpoints.poll(system.steps, system.time) == RunCheckpoints::Action::Stop) {
       stopReason = "cancelled";
       break;
     }
