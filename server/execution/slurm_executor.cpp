@@ -133,7 +133,10 @@ std::string SlurmExecutor::batchScript(std::int64_t jobId, int ranks) const {
     << m_settings.cpusPerRun << " --progress-file \"run-$k.progress.json\" --json $resume > \"run-$k.summary.tmp\" 2> \"run-$k.log\" &\n"
     << "pid=$!\n"
     << "# SIGTERM before the time limit (--signal): rupture run writes a checkpoint and exits 130.\n"
-    << "trap 'kill -TERM \"$pid\" 2>/dev/null' TERM\n"
+    // srun answers a SIGTERM by killing its tasks (SIGKILL after KillWait): the ranks of a run of
+    // several get it from scancel instead, as a signal to the step, and write their checkpoints.
+    << (ranks > 1 ? "trap 'scancel --signal=TERM \"${SLURM_JOB_ID}.0\" 2>/dev/null' TERM\n"
+                  : "trap 'kill -TERM \"$pid\" 2>/dev/null' TERM\n")
     << "wait \"$pid\"\n"
     << "code=$?\n"
     << "while kill -0 \"$pid\" 2>/dev/null; do wait \"$pid\"; code=$?; done\n"
