@@ -56,7 +56,7 @@ struct LaunchFiles {
 int requestedRanks(const nlohmann::json& spec) {
   const nlohmann::json::json_pointer at("/run/ranks");
   if (!spec.is_object() || !spec.contains(at) || !spec.at(at).is_number_integer()) return 1;
-  return static_cast<int>(std::clamp<long long>(spec.at(at).get<long long>(), 1, 1 << 20));
+  return static_cast<int>(std::clamp<long long>(spec.at(at).get<long long>(), 1, rupture::kMaxRanks));
 }
 
 std::optional<MpiLauncher> MpiLauncher::find(const std::string& cli, std::string& why) {
@@ -82,9 +82,10 @@ std::optional<MpiLauncher> MpiLauncher::find(const std::string& cli, std::string
 
 rupture::RunOutcome MpiLauncher::run(const nlohmann::json& spec, const fs::path& resultPath, rupture::RunControl& control,
                                      int ranks, int threads) const {
-  LaunchFiles files{resultPath.string() + ".spec.json", resultPath.string() + ".progress.json",
-                    fs::path(resultPath).replace_extension(".xdmf2")};
-  if (resultPath.extension() != ".h5") files.sidecar = resultPath.string() + ".xdmf2";
+  // The CLI's ParaView sidecar: RUN.xdmf2 beside RUN.h5, RESULT.xdmf2 beside any other name (a .part).
+  const fs::path sidecar = resultPath.extension() == ".h5" ? fs::path(resultPath).replace_extension(".xdmf2")
+                                                           : fs::path(resultPath.string() + ".xdmf2");
+  LaunchFiles files{resultPath.string() + ".spec.json", resultPath.string() + ".progress.json", sidecar};
   writeFileAtomic(files.spec, spec.dump(2) + "\n");
   std::vector<std::string> argv{mpirun, "-np", std::to_string(ranks), "--bind-to", "none"};
   // The server's workers, not mpirun's count of cores, decide how many ranks this machine runs.
