@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "core/parallel.hpp"
@@ -322,6 +324,17 @@ void BondedSystem::adoptGatheredState(double atTime, std::size_t atSteps) {
   steps = atSteps;
   m_loadTime = atTime;
   m_loadsStale = true;
+}
+
+void BondedSystem::setParticleCount(std::size_t n, std::size_t bondedCount) {
+  if (n < bondedCount || bonds.incidenceStart.size() < bondedCount + 1)
+    throw std::logic_error("BondedSystem::setParticleCount: " + std::to_string(n) + " particles would drop bonded ones");
+  particles.resize(n);
+  // The added particles have no bond: an empty incidence range each.
+  const std::int32_t end = bonds.incidenceStart[bondedCount];
+  bonds.incidenceStart.resize(n + 1, end);
+  for (auto* v : {&m_damage, &m_brokenVolume, &m_bondedVolume, &m_minStretch, &m_minStretchNext})
+    if (!v->empty()) v->resize(n, 0.0);
 }
 
 void BondedSystem::step(double dt) {

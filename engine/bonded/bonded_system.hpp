@@ -73,6 +73,11 @@ public:
   /// evaluated again when next read (bondLoads). The system is not stepped itself.
   void adoptGatheredState(double atTime, std::size_t atSteps);
 
+  /// Grows or shrinks the particles to n, keeping the first `bondedCount` (every particle a bond
+  /// names): a sub-domain's ghosts by distance (distributed/contact_halo.hpp) come and go after
+  /// them, without bonds; their per-particle arrays follow (zero, identity orientation).
+  void setParticleCount(std::size_t n, std::size_t bondedCount);
+
   /// One velocity-Verlet step of length dt (translation and rotation).
   void step(double dt);
 

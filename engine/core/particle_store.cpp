@@ -1,5 +1,6 @@
 #include "core/particle_store.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 
@@ -31,6 +32,14 @@ std::vector<std::int32_t> ParticleStore::compact(const std::vector<std::uint8_t>
   };
   forEachArray(squeeze);
   return newIndex;
+}
+
+void ParticleStore::resize(std::size_t n) {
+  const std::size_t before = size();
+  forEachArray([&](auto& field) {
+    if (field.size() == before) field.resize(n);
+  });
+  if (n > before) std::fill(qw.begin() + static_cast<std::ptrdiff_t>(before), qw.end(), 1.0);
 }
 
 std::vector<std::int32_t> ParticleStore::permute(const std::vector<std::size_t>& order) {

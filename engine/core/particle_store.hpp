@@ -42,6 +42,11 @@ struct ParticleStore {
   /// Keeps only the particles with keep[k] != 0, in order; returns old index -> new index (-1 if removed).
   std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
 
+  /// Grows or shrinks every per-particle array to n (the arrays still empty stay empty); new
+  /// particles are zero, with identity orientation. For a sub-domain's ghosts by distance, which
+  /// come and go after the particles its bonds know (distributed/contact_halo.hpp).
+  void resize(std::size_t n);
+
   /// Renumbers the particles: new particle k is old particle order[k] (a permutation of 0..size-1).
   /// Only while a sample is built (samples/spatial_order.hpp). Returns old index -> new index.
   std::vector<std::int32_t> permute(const std::vector<std::size_t>& order);

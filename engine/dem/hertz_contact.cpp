@@ -143,17 +143,26 @@ void HertzContact::selectActive(double level) {
 }
 
 void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
-  const std::size_t n = p.size();
   double maxRadius = 0, meanRadius = 0;
-  for (double r : p.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
-  meanRadius /= std::max<std::size_t>(n, 1);
+  if (m_domain) {
+    maxRadius = m_domain->wholeMaxRadius();
+    meanRadius = m_domain->wholeMeanRadius();
+  } else {
+    for (double r : p.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
+    meanRadius /= std::max<std::size_t>(p.size(), 1);
+  }
   m_skin = 0.3 * meanRadius;
+  if (m_domain) m_domain->gatherCandidates(m_skin, maxRadius);  // may change p's size
+  const std::size_t n = p.size();
   m_cells.build(p, 2.0 * maxRadius + m_skin);
 
   const CutLengths cut = cutLengths(bonds);
+  const std::uint8_t* evaluated = m_domain ? m_domain->evaluated().data() : nullptr;
+  const std::int32_t* whole = m_domain ? m_domain->wholeIndex().data() : nullptr;
   std::vector<std::vector<std::pair<std::int32_t, double>>> perParticle(n);
 #pragma omp parallel for schedule(dynamic, 256) if (worthParallel(n))
   for (std::size_t a = 0; a < n; ++a) {
+    if (evaluated && !evaluated[a]) continue;  // a ghost: its owner evaluates its contacts
     const auto i = static_cast<std::int32_t>(a);
     m_cells.forEachNear(p.x[a], p.y[a], p.z[a], [&](std::int32_t k) {
       if (k == i) return;
@@ -163,7 +172,12 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
       const double reach = contactReach(p, bonds, cut, i, k);
       if (reach > 0) perParticle[a].push_back({k, reach});
     });
-    std::sort(perParticle[a].begin(), perParticle[a].end());  // fixed order: determinism
+    // Fixed order, the whole sample's (a sub-domain's ghosts by distance follow its own particles).
+    if (whole)
+      std::sort(perParticle[a].begin(), perParticle[a].end(),
+                [whole](const auto& u, const auto& v) { return whole[u.first] < whole[v.first]; });
+    else
+      std::sort(perParticle[a].begin(), perParticle[a].end());
   }
   m_start.assign(n + 1, 0);
   for (std::size_t a = 0; a < n; ++a) m_start[a + 1] = m_start[a] + perParticle[a].size();
@@ -188,11 +202,16 @@ void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
 }
 
 void HertzContact::addForces(ParticleStore& p, const BondStore& bonds, bool inPlane) {
-  if (!m_params.enabled || p.size() == 0) return;
+  if (!m_params.enabled || (p.size() == 0 && !m_domain)) return;
+  m_gatheredEnergy.reset();
+  // A sub-domain's size changes only in a rebuild, which every rank takes at once.
+  const bool current = m_listValid && (m_domain || m_x0.size() == p.size());
   double moved = 0;
-  if (m_listValid && m_x0.size() == p.size())
+  if (current) {
     moved = inPlane ? largestDisplacement<true>(p) : largestDisplacement<false>(p);
-  if (!m_listValid || m_x0.size() != p.size() || moved > 0.5 * m_skin) {
+    if (m_domain) moved = m_domain->largestOverRanks(moved);
+  }
+  if (!current || moved > 0.5 * m_skin) {
     rebuild(p, bonds);
     moved = 0;
   }
@@ -223,22 +242,44 @@ void HertzContact::addForces(ParticleStore& p, const BondStore& bonds, bool inPl
 }
 
 double HertzContact::energy(const ParticleStore& p) const {
-  if (!m_params.enabled || !m_listValid) return 0.0;
+  if (m_gatheredEnergy) return *m_gatheredEnergy;
+  return sumEnergy(energyTerms(p));
+}
+
+std::vector<HertzContact::EnergyTerm> HertzContact::energyTerms(const ParticleStore& p) const {
+  std::vector<EnergyTerm> terms;
+  if (!m_params.enabled || !m_listValid) return terms;
   const double eStar = m_params.youngModulus / (2.0 * (1.0 - m_params.poissonRatio * m_params.poissonRatio));
-  auto pairEnergy = [&](std::int32_t i, std::int32_t k, double reach) {
+  const std::uint8_t* evaluated = m_domain ? m_domain->evaluated().data() : nullptr;
+  const std::int32_t* whole = m_domain ? m_domain->wholeIndex().data() : nullptr;
+  auto key = [whole](std::int32_t k) { return static_cast<std::int64_t>(whole ? whole[k] : k); };
+  // Each touching pair once, by the owner of its end of lower whole index.
+  auto add = [&](std::int32_t i, std::int32_t k, double reach) {
+    const std::int32_t first = key(i) < key(k) ? i : k;
+    if (evaluated && !evaluated[first]) return;
     const double dx = p.x[k] - p.x[i], dy = p.y[k] - p.y[i], dz = p.z[k] - p.z[i];
     const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
     const double overlap = reach - d;
-    if (overlap <= 0) return 0.0;
+    if (overlap <= 0) return;
     const double rStar = p.radius[i] * p.radius[k] / (p.radius[i] + p.radius[k]);
-    return 8.0 / 15.0 * eStar * std::sqrt(rStar) * std::pow(overlap, 2.5);
+    terms.push_back({std::min(key(i), key(k)), std::max(key(i), key(k)),
+                     8.0 / 15.0 * eStar * std::sqrt(rStar) * std::pow(overlap, 2.5)});
   };
-  double e = 0;
-  for (std::size_t a = 0; a < p.size(); ++a)
+  const std::size_t rows = m_start.empty() ? 0 : m_start.size() - 1;
+  for (std::size_t a = 0; a < rows; ++a)
     for (std::int32_t s = m_start[a]; s < m_start[a + 1]; ++s)
-      if (static_cast<std::int32_t>(a) < m_neighbors[s]) e += pairEnergy(static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
+      if (key(static_cast<std::int32_t>(a)) < key(m_neighbors[s])) add(static_cast<std::int32_t>(a), m_neighbors[s], m_reach[s]);
   for (const Pair& pair : m_brokenPairs)
-    e += pairEnergy(pair.i, pair.j, std::min(p.radius[pair.i] + p.radius[pair.j], pair.restLength));
+    add(pair.i, pair.j, std::min(p.radius[pair.i] + p.radius[pair.j], pair.restLength));
+  return terms;
+}
+
+double HertzContact::sumEnergy(std::vector<EnergyTerm> terms) {
+  std::stable_sort(terms.begin(), terms.end(), [](const EnergyTerm& u, const EnergyTerm& v) {
+    return u.first != v.first ? u.first < v.first : u.second < v.second;
+  });
+  double e = 0;
+  for (const EnergyTerm& t : terms) e += t.energy;
   return e;
 }
 

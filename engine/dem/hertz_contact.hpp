@@ -13,6 +13,8 @@
 // than half the skin; pairs whose bond breaks between rebuilds join the list at once. Each step
 // visits only the listed pairs that the displacements since the rebuild could have brought into touch.
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/bond_store.hpp"
@@ -29,6 +31,26 @@ struct ContactParameters {
   bool enabled = true;
 };
 
+/// What a decomposed run adds to the contact search (distributed/contact_halo.hpp): only the owned
+/// particles' contacts are evaluated, the lists keep the whole sample's order, every rank decides a
+/// rebuild at once from the largest displacement over the ranks, and before a rebuild the particles
+/// of other ranks that could come into reach are brought in as ghosts.
+class ContactDomain {
+public:
+  virtual ~ContactDomain() = default;
+  /// 1 for each particle whose contacts are evaluated here (the owned ones), 0 for the ghosts.
+  virtual const std::vector<std::uint8_t>& evaluated() const = 0;
+  /// Each particle's index in the whole sample: the order of the neighbour lists and of the energy.
+  virtual const std::vector<std::int32_t>& wholeIndex() const = 0;
+  virtual double largestOverRanks(double value) const = 0;
+  /// The whole sample's mean and largest radius (m): the skin and the reach of the search.
+  virtual double wholeMeanRadius() const = 0;
+  virtual double wholeMaxRadius() const = 0;
+  /// Collective, before a rebuild: brings in, with their current kinematics, the particles of other
+  /// ranks that lie within R_k + maxRadius + skin of this rank's owned ones.
+  virtual void gatherCandidates(double skin, double maxRadius) = 0;
+};
+
 class HertzContact {
 public:
   explicit HertzContact(ContactParameters p = {}) : m_params(p) {}
@@ -43,8 +65,25 @@ public:
   /// min(R_i + R_j, restLength).
   void onBondBroken(std::int32_t i, std::int32_t j, double restLength) { m_brokenPairs.push_back({i, j, restLength}); }
 
-  /// Elastic energy stored in the current contacts (J).
+  /// Elastic energy stored in the current contacts (J): the touching pairs' terms added in the
+  /// order of their whole-sample indices (first, second), so that any decomposition sums the same
+  /// terms in the same order.
   double energy(const ParticleStore& p) const;
+
+  /// One touching pair's stored energy, keyed by its ends' whole-sample indices (first < second).
+  struct EnergyTerm {
+    std::int64_t first, second;
+    double energy;
+  };
+  /// The terms of `energy` this system holds: on a sub-domain, the pairs whose first end it owns.
+  std::vector<EnergyTerm> energyTerms(const ParticleStore& p) const;
+  /// Σ of terms in the order of (first, second).
+  static double sumEnergy(std::vector<EnergyTerm> terms);
+  /// A decomposed run's whole system, which is not stepped, takes the ranks' energy (until its next evaluation).
+  void adoptGatheredEnergy(double e) { m_gatheredEnergy = e; }
+
+  /// Makes this the contact of one rank's sub-domain (nullptr: of the whole sample, as on one process).
+  void setDomain(std::shared_ptr<ContactDomain> domain) { m_domain = std::move(domain); m_listValid = false; }
 
   /// The neighbour list and what decides its next rebuild (the cell grid is rebuilt with it).
   void exchangeState(StateArchive& archive);
@@ -57,6 +96,8 @@ private:
   void selectActive(double level);
 
   ContactParameters m_params;
+  std::shared_ptr<ContactDomain> m_domain;
+  std::optional<double> m_gatheredEnergy;
   bool m_listValid = false;
   double m_skin = 0;
   CellList m_cells;

@@ -4,9 +4,9 @@
 // built once from the reference configuration: bonds only break, so the set never grows). Before
 // each force evaluation every ghost gets what a bond law reads of it from its owner: its position,
 // its orientation when the law has rotations (beams), and the node's smallest measure of the last
-// evaluation (the nodal shift of PMB's compression term). No law reads a partner's velocity (the
-// velocity-dependent terms, contact and Silling's damping, are not decomposed yet), so velocities
-// stay home: 4 doubles a ghost, 8 with rotations. A bond between an owned particle and a
+// evaluation (the nodal shift of PMB's compression term). No bond law reads a partner's velocity
+// (contact does: its ghosts by distance take velocities, contact_halo.hpp; Silling's damping is not
+// decomposed yet), so velocities stay home: 4 doubles a ghost, 8 with rotations. A bond between an owned particle and a
 // ghost is then evaluated on both ranks from the same numbers, so both take the same decision in
 // the same step and neither needs to tell the other (LAMMPS's `newton_bond off`).
 #include <cstdint>

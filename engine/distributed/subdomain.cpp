@@ -24,10 +24,6 @@ Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, C
   if (owner.size() != n)
     throw std::invalid_argument("Subdomain: " + std::to_string(owner.size()) + " owners for " + std::to_string(n) +
                                 " particles");
-  if (whole.contact.parameters().enabled && comm.size() > 1)
-    throw std::invalid_argument(
-        "material.contact.enabled: true is not supported on more than one rank yet (contact candidates move "
-        "between sub-domains); set it to false or run on one rank");
   if (whole.bondDamping > 0 && comm.size() > 1)
     throw std::invalid_argument("material.local_damping: " + std::to_string(whole.bondDamping) +
                                 " is not supported on more than one rank yet (it reads the partners' damage "
@@ -89,8 +85,25 @@ Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, C
   const bool rotations =
       whole.visitModel([](const auto& law, const auto&) { return std::decay_t<decltype(law)>::kRotational; });
   m_halo = std::make_shared<Halo>(comm, std::move(neighbours), rotations);
-  system.refreshGhosts = [halo = m_halo](ParticleStore& p, std::vector<double>& nodalMinimum) {
+  if (!whole.contact.parameters().enabled) {
+    system.refreshGhosts = [halo = m_halo](ParticleStore& p, std::vector<double>& nodalMinimum) {
+      halo->refresh(p, nodalMinimum);
+    };
+    return;
+  }
+  // Contact: the pre-cracked pairs with an owned end, in the whole sample's indices (their other end
+  // may come and go as a ghost by distance), and the radii the one-process search takes its skin from.
+  std::vector<BondStore::CutPair> cutPairs;
+  for (const BondStore::CutPair& c : wb.cutPairs)
+    if (owner[c.i] == me || owner[c.j] == me) cutPairs.push_back(c);
+  double maxRadius = 0, meanRadius = 0;
+  for (double r : whole.particles.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
+  meanRadius /= std::max<std::size_t>(n, 1);
+  m_contactHalo = std::make_shared<ContactHalo>(comm, system, m_global, m_owned, std::move(cutPairs), meanRadius, maxRadius);
+  system.contact.setDomain(m_contactHalo);
+  system.refreshGhosts = [halo = m_halo, contact = m_contactHalo](ParticleStore& p, std::vector<double>& nodalMinimum) {
     halo->refresh(p, nodalMinimum);
+    contact->refresh(p);
   };
 }
 
@@ -155,6 +168,20 @@ void Subdomain::gatherInto(BondedSystem& whole) const {
   for (std::size_t t = 0; t < allBonds.size(); ++t) whole.bonds.intact[allBonds[t]] = allIntact[t];
   whole.brokenLastStep = 0;
   whole.adoptGatheredState(system.time, system.steps);
+  if (!m_contactHalo) return;
+  // The contact energy: every rank's touching pairs, summed in the order one process sums them.
+  const std::vector<HertzContact::EnergyTerm> mine = system.contact.energyTerms(system.particles);
+  std::vector<std::int64_t> pairs;
+  std::vector<double> energies;
+  for (const HertzContact::EnergyTerm& t : mine) {
+    pairs.insert(pairs.end(), {t.first, t.second});
+    energies.push_back(t.energy);
+  }
+  const std::vector<std::int64_t> allPairs = m_comm.allGather(pairs);
+  const std::vector<double> allEnergies = m_comm.allGather(energies);
+  std::vector<HertzContact::EnergyTerm> terms(allEnergies.size());
+  for (std::size_t t = 0; t < terms.size(); ++t) terms[t] = {allPairs[2 * t], allPairs[2 * t + 1], allEnergies[t]};
+  whole.contact.adoptGatheredEnergy(HertzContact::sumEnergy(std::move(terms)));
 }
 
 std::array<double, 3> Subdomain::sumInWholeOrder(const std::vector<std::int64_t>& ids,
@@ -188,6 +215,7 @@ double Subdomain::kineticEnergy() const {
 
 void Subdomain::exchangeState(StateArchive& archive) {
   StateGroup group(archive, "subdomain");
+  if (m_contactHalo) m_contactHalo->exchangeState(archive);  // first: it sets the particle count
   system.exchangeState(archive);
   archive.array("gathered_intact", m_gatheredIntact);
 }

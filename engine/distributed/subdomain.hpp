@@ -7,10 +7,12 @@
 // particles (energies, momentum) sum each rank's share and then the ranks: round-off apart from
 // the one-rank sum.
 //
+// Contact between fragments takes a second set of ghosts, chosen by distance at each rebuild of the
+// contact list (contact_halo.hpp), appended after the particles the bonds know.
+//
 // Set up on every rank from the same whole sample (every rank builds it: the sample builders are
 // deterministic), then only the sub-domain is kept. What the decomposition does not carry yet, it
-// refuses by name: contact (its candidates move, so its ghosts would too), Silling's bond damping
-// (it reads the partners' damage index).
+// refuses by name: Silling's bond damping (it reads the partners' damage index).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -18,6 +20,7 @@
 
 #include "bonded/bonded_system.hpp"
 #include "distributed/communicator.hpp"
+#include "distributed/contact_halo.hpp"
 #include "distributed/halo.hpp"
 #include "rupture/state_archive.hpp"
 
@@ -30,17 +33,24 @@ public:
   /// initialised or not; the sub-domain's system is not: set its `prescribe` and `externalLoads` in
   /// local indices (globalIndex, localOf) and call system.initialize() on every rank.
   Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm);
+  // The contact's ghosts refer to `system` in place.
+  Subdomain(const Subdomain&) = delete;
+  Subdomain& operator=(const Subdomain&) = delete;
 
+  /// Its particles: the owned ones and the bond ghosts, in the whole sample's order (globalIndex),
+  /// then, with contact, the ghosts by distance of the last rebuild of the contact list.
   BondedSystem system;
 
   std::size_t wholeSize() const { return m_wholeSize; }
-  /// Global index of each local particle (ascending).
+  /// Global index of each owned particle and bond ghost (ascending; the ghosts by distance follow them).
   const std::vector<std::int32_t>& globalIndex() const { return m_global; }
   /// Local index of a global particle, -1 when this rank holds it neither as owned nor as ghost.
   std::int32_t localOf(std::int32_t global) const;
-  bool owns(std::size_t local) const { return m_owned[local] != 0; }
+  bool owns(std::size_t local) const { return local < m_owned.size() && m_owned[local] != 0; }
   std::size_t ownedCount() const { return m_ownedCount; }
   const Halo& halo() const { return *m_halo; }
+  /// The contact's ghosts by distance; nullptr without contact.
+  const ContactHalo* contactHalo() const { return m_contactHalo.get(); }
   const Communicator& communicator() const { return m_comm; }
 
   /// A per-particle field of the owned particles, in the whole sample's order, on every rank.
@@ -49,13 +59,14 @@ public:
   template <class F>
   double sumOwned(F&& f) const {
     double s = 0;
-    for (std::size_t k = 0; k < system.particles.size(); ++k)
+    for (std::size_t k = 0; k < m_owned.size(); ++k)
       if (m_owned[k]) s += f(k);
     return m_comm.sum(s);
   }
   /// Writes every rank's owned particles (kinematics and orientations) and the bonds whose end i it
   /// owns and whose integrity changed since the last gather into `whole` (the sample this sub-domain was cut from, on every rank),
   /// which then reads as the one-process system would at this step (BondedSystem::adoptGatheredState).
+  /// With contact, `whole` takes the contact energy of the ranks, summed in the one-process order.
   /// Collective. Scenarios call it before each output and compute their observables on `whole`.
   void gatherInto(BondedSystem& whole) const;
 
@@ -82,6 +93,7 @@ private:
   // that changed since (bonds are many, and few break between two outputs).
   mutable std::vector<double> m_gatheredIntact;
   std::shared_ptr<Halo> m_halo;  // shared with system.refreshGhosts
+  std::shared_ptr<ContactHalo> m_contactHalo;  // shared with system.contact and system.refreshGhosts
 };
 
 }  // namespace rupture

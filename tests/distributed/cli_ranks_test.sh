@@ -4,6 +4,7 @@
 # and prints the same summary (all but the wall time); a run stopped with a checkpoint on N ranks
 # and resumed on N ranks writes the uninterrupted file, and its resume on another rank count is
 # refused; what is not decomposed yet is refused with exit 2, naming the field or the scenario.
+# Both specs have contact between fragments on (the impact scenario's default).
 #   cli_ranks_test.sh RUPTURE MPIEXEC RANKS [MPIEXEC FLAGS...]
 set -euo pipefail
 rupture=$1 mpiexec=$2 ranks=$3
@@ -50,13 +51,6 @@ expect_refusal() {  # SPEC PATTERN [run options...]
   echo "refused as expected: $pattern"
 }
 mpi_flags=("$@")
-python3 - "$here/impact_pmb_projectile.json" "$work/with_contact.json" <<'PY'
-import json, sys
-spec = json.load(open(sys.argv[1]))
-spec["material"]["contact"] = {"enabled": True}
-json.dump(spec, open(sys.argv[2], "w"))
-PY
-expect_refusal "$work/with_contact.json" "material.contact.enabled"
 expect_refusal "$here/../../examples/dynamic-tension-pmb.json" "scenario runs on one rank"
 
 # Checkpoint on N ranks, stop, resume on N ranks: the uninterrupted file bit for bit. Each rank keeps

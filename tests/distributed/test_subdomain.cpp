@@ -2,8 +2,10 @@
 // same sample on one process: a PMB block torn apart (with the compression term's nodal shift), a
 // spring lattice with a pre-crack opened by a velocity field, and porous ceramic beam samples in
 // tension (several microstructures) give the one-process trajectories, damage and broken bonds bit
-// for bit; a bond across the partition breaks on both of its ranks in the same step; momentum is
-// conserved to round-off. Run by ctest on one rank and under mpiexec on two and three.
+// for bit; a bond across the partition breaks on both of its ranks in the same step; two halves
+// driven into each other across the partition touch through the contact's ghosts by distance, bit
+// for bit, with the one-process contact energy; momentum is conserved to round-off. Run by ctest on
+// one rank and under mpiexec on two and three.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -33,6 +35,8 @@ struct Outcome {
   std::uint64_t broken = 0;
   double kinetic = 0;
   std::array<double, 3> momentum{0, 0, 0};
+  double contactEnergy = 0;
+  std::size_t contactGhosts = 0;  // on every rank together
 };
 
 Outcome runWhole(BondedSystem s, const Loading& load, int steps, double dt) {
@@ -42,6 +46,7 @@ Outcome runWhole(BondedSystem s, const Loading& load, int steps, double dt) {
   const ParticleStore& p = s.particles;
   Outcome o{p.x, p.y, p.z, p.vx, p.vy, p.vz, s.damageIndex(), 0, s.kineticEnergy(), {}};
   o.broken = s.bonds.size() - s.bonds.intactCount();
+  o.contactEnergy = s.contact.energy(p);
   for (std::size_t k = 0; k < p.size(); ++k) {
     o.momentum[0] += p.mass[k] * p.vx[k]; o.momentum[1] += p.mass[k] * p.vy[k]; o.momentum[2] += p.mass[k] * p.vz[k];
   }
@@ -75,6 +80,14 @@ Outcome runDecomposed(const BondedSystem& whole, const Loading& load, int steps,
   o.momentum = {d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vx[k]; }),
                 d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vy[k]; }),
                 d.sumOwned([&](std::size_t k) { return p.mass[k] * p.vz[k]; })};
+  if (whole.contact.parameters().enabled) {  // the ranks' contact energy, as a scenario's outputs read it
+    BondedSystem gathered = whole;
+    load(gathered);
+    gathered.initialize();
+    d.gatherInto(gathered);
+    o.contactEnergy = gathered.contact.energy(gathered.particles);
+    o.contactGhosts = static_cast<std::size_t>(comm.sum(static_cast<std::uint64_t>(d.contactHalo()->ghostCount())));
+  }
   return o;
 }
 
@@ -98,6 +111,9 @@ void expectSameRun(const Outcome& one, const Outcome& many, double kineticScale)
   EXPECT_EQ(one.broken, many.broken) << ranks << " ranks";
   // Reductions: each rank's share, then the ranks: round-off apart from the one-process sum.
   EXPECT_NEAR(many.kinetic, one.kinetic, 1e-12 * kineticScale) << ranks << " ranks";
+  // The contact energy is summed in the whole sample's pair order on any rank count.
+  EXPECT_EQ(firstDifference({one.contactEnergy}, {many.contactEnergy}), -1)
+      << ranks << " ranks: " << one.contactEnergy << " against " << many.contactEnergy;
 }
 
 /// Stretches the block along x (v from −2 to 2 m/s): it tears apart in the middle, across the cut
@@ -162,7 +178,7 @@ TEST(Subdomain, ASpringLatticeWithAPreCrackFollowsTheOneProcessRunBitForBit) {
   m.springs.poissonRatio = 0.25;
   m.springs.criterion = "critical_stretch";
   m.springs.criticalValue = 2e-3;
-  m.contact.enabled = false;
+  m.contact.enabled = true;  // the pre-crack's faces touch at their cut bonds' rest length
   BondedSystem whole;
   buildSample(s, m, whole);
   // Opens the crack: v_y from −15 to 15 m/s across the height.
@@ -177,11 +193,11 @@ TEST(Subdomain, ASpringLatticeWithAPreCrackFollowsTheOneProcessRunBitForBit) {
 }
 
 /// The seed's porous ceramic (Table 3 beams) on a small 2D square (the sample-builder tests'),
-/// its microstructure drawn from `seed`, without contact.
-BondedSystem ceramicSample(std::uint64_t seed, double& size) {
+/// its microstructure drawn from `seed`, with or without contact between fragments.
+BondedSystem ceramicSample(std::uint64_t seed, double& size, bool contact = false) {
   const SampleSpec s = testing::porousSpec(2, seed);
   MaterialSpec m = testing::ceramic();
-  m.contact.enabled = false;
+  m.contact.enabled = contact;
   BondedSystem system;
   buildSample(s, m, system);
   size = s.size[0];
@@ -191,7 +207,7 @@ BondedSystem ceramicSample(std::uint64_t seed, double& size) {
 TEST(Subdomain, PorousBeamSamplesInTensionFollowTheOneProcessRunBitForBit) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     double size = 0;
-    const BondedSystem whole = ceramicSample(seed, size);
+    const BondedSystem whole = ceramicSample(seed, size, /*contact=*/seed != 1);
     const double band = 2 * 3.3e-9, speed = 20.0;
     const Loading pull = [=](BondedSystem& sys) {
       ParticleStore& p = sys.particles;
@@ -212,21 +228,47 @@ TEST(Subdomain, PorousBeamSamplesInTensionFollowTheOneProcessRunBitForBit) {
   }
 }
 
-TEST(Subdomain, ContactOnMoreThanOneRankIsRefusedNamingTheField) {
-  BondedSystem whole = testing::pmbBlock(0.25);  // the nodal shift: ghosts take their owners' s_min
+/// The PMB block cut in two across x = 7 mm (every bond across the plane broken) and its halves
+/// driven into each other at 5 m/s each: they touch at once, along a plane the partition cuts or
+/// follows, so contacts join particles of different ranks.
+BondedSystem halvesInContact() {
+  BondedSystem whole = testing::pmbBlock(0.25);
   whole.contact.setParameters({22e9, 0.25, 0.3, 0.1, true});
-  const Communicator comm = Communicator::world();
-  const std::vector<int> owner = bisectCoordinates(whole.particles, whole.bonds, comm.size());
-  if (comm.size() == 1) {
-    EXPECT_NO_THROW(Subdomain(whole, owner, comm));
-    return;
+  BondStore& b = whole.bonds;
+  const ParticleStore& p = whole.particles;
+  for (std::size_t t = 0; t < b.size(); ++t)
+    if ((p.x[b.i[t]] < 7e-3) != (p.x[b.j[t]] < 7e-3)) b.intact[t] = 0.0;
+  return whole;
+}
+
+const Loading kHalvesTogether = [](BondedSystem& s) {
+  for (std::size_t k = 0; k < s.particles.size(); ++k) s.particles.vx[k] = s.particles.x[k] < 7e-3 ? 5.0 : -5.0;
+};
+
+TEST(Subdomain, HalvesInContactAcrossTheRanksFollowTheOneProcessRunBitForBit) {
+  const BondedSystem whole = halvesInContact();
+  const double dt = 0.5 * whole.criticalTimeStep();
+  for (int steps : {1, 40, 300}) {
+    SCOPED_TRACE(std::to_string(steps) + " steps");
+    const Outcome one = runWhole(whole, kHalvesTogether, steps, dt);
+    const Outcome many = runDecomposed(whole, kHalvesTogether, steps, dt);
+    ASSERT_GT(one.contactEnergy, 0.0);  // they touch
+    expectSameRun(one, many, one.kinetic);
+    // While the halves press on each other, contacts join particles of different ranks (by 300
+    // steps they have rebounded apart; the contacts left are between fragments of one half).
+    if (Communicator::world().size() > 1 && steps <= 40) {
+      EXPECT_GT(many.contactGhosts, 0u);
+    }
   }
-  try {
-    Subdomain d(whole, owner, comm);
-    FAIL() << "no error";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("material.contact.enabled"), std::string::npos) << e.what();
-  }
+}
+
+TEST(Subdomain, MomentumIsConservedToRoundOffThroughContactsAcrossTheRanks) {
+  const BondedSystem whole = halvesInContact();
+  const double dt = 0.5 * whole.criticalTimeStep();
+  double scale = 0;  // Σ m |v| at the start; the total is 0
+  for (std::size_t k = 0; k < whole.particles.size(); ++k) scale += whole.particles.mass[k] * 5.0;
+  const Outcome many = runDecomposed(whole, kHalvesTogether, 300, dt);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(many.momentum[a], 0.0, 1e-13 * scale) << "axis " << a;
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The 3D PMB block under a projectile that the distributed engine tests run (contact off).
+/// The 3D PMB block under a projectile that the distributed engine tests run (contact on).
 Json pmbImpact() {
   return Json::parse(test::readText(fs::path(RUPTURE_SOURCE_DIR) / "tests" / "distributed" / "impact_pmb_projectile.json"));
 }
@@ -139,14 +139,14 @@ TEST(DistributedRuns, MoreRanksThanWorkersIs400NamingRunRanks) {
   EXPECT_EQ(test::getJson(*client, "/jobs")["numberMatched"], 0) << "no job for a refused submission";
 }
 
-TEST(DistributedRuns, RanksWithContactIs400NamingRunRanks) {
+TEST(DistributedRuns, RanksWithBondDampingIs400NamingRunRanks) {
   test::LiveServer server;
   auto client = server.client();
   Json spec = pmbImpact();
-  spec["material"]["contact"]["enabled"] = true;
+  spec["material"]["local_damping"] = 0.1;
   spec["run"]["ranks"] = 2;
   const Json problem = test::expectProblem(test::postJson(*client, "/processes/impact/execution", {{"inputs", spec}}), 400, "run.ranks");
-  EXPECT_NE(problem.value("detail", "").find("material.contact.enabled"), std::string::npos) << problem.dump(2);
+  EXPECT_NE(problem.value("detail", "").find("material.local_damping"), std::string::npos) << problem.dump(2);
 }
 
 TEST(DistributedRuns, RanksOnAScenarioThatRunsOnOneRankIs400) {

@@ -149,10 +149,6 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   const Communicator comm = Communicator::world();
   std::optional<Subdomain> part;
   if (comm.size() > 1) {
-    if (spec.material.contact.enabled)
-      throw SpecError("material.contact.enabled", "true",
-                      "false on more than one rank (mpirun -np " + std::to_string(comm.size()) +
-                          "): contact between fragments is not decomposed yet; run on one rank for contact");
     if (spec.material.localDamping > 0)
       throw SpecError("material.local_damping", formatNumber(spec.material.localDamping),
                       "0 on more than one rank (mpirun -np " + std::to_string(comm.size()) +

@@ -107,9 +107,6 @@ ImpactSpec parseImpactSpec(const nlohmann::json& json) {
   s.ranks = static_cast<int>(run.integer("ranks", 1, kMaxRanks, s.ranks));
   // What a sub-domain cannot do yet (docs/distributed.md): refused here, where the field is named,
   // not after the sample is built on every rank.
-  if (s.ranks > 1 && s.material.contact.enabled)
-    run.fail("ranks", "1 while material.contact.enabled is true: contact between fragments is not decomposed "
-                      "yet; set material.contact.enabled to false to run on several ranks");
   if (s.ranks > 1 && s.material.localDamping > 0)
     run.fail("ranks", "1 while material.local_damping is above 0: Silling's bond damping is not decomposed yet");
   if (s.endTime / s.interval() > 1e6) run.fail("output_interval", "an interval giving at most 1e6 series rows for end_time (s)");
