@@ -110,6 +110,7 @@ std::size_t BondedSystem::recordDamagedBonds(const std::vector<std::size_t>& dam
     m_recordedIntegrity[b] = bonds.intact[b];
     if (bonds.intact[b] > 0.0) continue;  // partly damaged: still bonded
     ++broken;
+    m_brokenNow.push_back(b);
     contact.onBondBroken(bonds.i[b], bonds.j[b], bonds.restLength[b]);
   }
   return broken;
@@ -125,6 +126,7 @@ const BondStore& BondedSystem::bondLoads() const {
 
 void BondedSystem::computeLoads() {
   bool planarPass = false;
+  m_brokenNow.clear();
   visitModel([&](const auto& law, const auto& criterion) {
     using Law = std::decay_t<decltype(law)>;
     using Criterion = std::decay_t<decltype(criterion)>;

@@ -59,6 +59,8 @@ public:
   double time = 0.0;          ///< s
   std::size_t steps = 0;
   std::size_t brokenLastStep = 0;
+  /// The bonds that broke in the last force evaluation (brokenLastStep of them), in bond order.
+  const std::vector<std::size_t>& bondsBrokenLastStep() const { return m_brokenNow; }
 
   /// Prepares the per-step arrays and evaluates the loads at t = 0. Call once the sample is built.
   void initialize();
@@ -145,7 +147,8 @@ private:
   CentralBondList m_central;            ///< full partner list of the central-force loop
   bool m_centralCurrent = false;        ///< m_central agrees with bonds (no other loop ran since it was built)
   mutable bool m_loadsStale = false;    ///< bonds.fjx/failureMeasure are older than the last evaluation
-  std::vector<std::size_t> m_broken;    ///< bonds broken in the last evaluation (central loop)
+  std::vector<std::size_t> m_broken;    ///< bonds damaged in the last evaluation (central loop)
+  std::vector<std::size_t> m_brokenNow; ///< bonds broken in the last evaluation
   bool m_planar = false;                ///< see planarMotion()
 };
 

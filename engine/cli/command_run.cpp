@@ -70,8 +70,6 @@ void printReadableSummary(std::ostream& out, const nlohmann::json& spec, const n
   }
 }
 
-constexpr int kExitInterrupted = 130;  // 128 + SIGINT, the shell convention
-
 /// A rank of a decomposed run other than the first: the same run on this thread, in silence (the
 /// first rank shows the progress and writes the file); only a failure of its own is told.
 int runQuietRank(const ParsedSpec& parsed, const std::string& specPath, const std::string& output,
@@ -247,10 +245,10 @@ int runCommand(const Args& args) {
   }
   if (ranks.size() > 1) {
     const auto refuse = [&](const std::string& message) { return firstRank ? usageError(message) : 2; };
-    if (parsed.scenarioName() != "impact")
+    if (parsed.scenarioName() != "impact" && parsed.scenarioName() != "dynamic-tension")
       return refuse("run: the " + parsed.scenarioName() + " scenario runs on one rank; " +
                     std::to_string(ranks.size()) + " ranks (mpirun -np " + std::to_string(ranks.size()) +
-                    ") run the impact scenario only, so far (docs/distributed.md)");
+                    ") run the impact and dynamic-tension scenarios only, so far (docs/distributed.md)");
   }
 
   // run.ranks is what a server gives the run; here mpirun decides, and the result is the same.

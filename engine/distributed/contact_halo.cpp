@@ -105,7 +105,9 @@ void ContactHalo::gatherCandidates(double skin, double maxRadius) {
         const double out = std::max({0.0, lo[a] - at[a], at[a] - hi[a]});
         d2 += out * out;
       }
-      const double reach = p.radius[k] + maxRadius + skin;
+      // A relative slack of 1e-9: the box distance and a pair's distance round differently, and
+      // a candidate too many costs nothing (the lists test every pair's own distance).
+      const double reach = (p.radius[k] + maxRadius + skin) * (1.0 + 1e-9);
       if (d2 < reach * reach) send.push_back(static_cast<std::int32_t>(k));
     }
   }

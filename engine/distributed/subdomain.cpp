@@ -112,6 +112,13 @@ std::int32_t Subdomain::localOf(std::int32_t global) const {
   return it != m_global.end() && *it == global ? static_cast<std::int32_t>(it - m_global.begin()) : -1;
 }
 
+std::vector<std::int32_t> Subdomain::localMembers(const std::vector<std::int32_t>& members) const {
+  std::vector<std::int32_t> out;
+  for (std::int32_t k : members)
+    if (const std::int32_t local = localOf(k); local >= 0) out.push_back(local);
+  return out;
+}
+
 std::vector<double> Subdomain::gather(const std::vector<double>& local) const {
   std::vector<std::int64_t> ids;
   std::vector<double> values;
@@ -153,21 +160,7 @@ void Subdomain::gatherInto(BondedSystem& whole) const {
   const std::vector<double> allValues = m_comm.allGather(values);
   for (std::size_t t = 0; t < allIds.size(); ++t)
     for (std::size_t a = 0; a < kArrays; ++a) (*wholeArrays[a])[allIds[t]] = allValues[kArrays * t + a];
-
-  std::vector<std::int64_t> bondIds;
-  std::vector<double> intact;
-  const BondStore& b = system.bonds;
-  for (std::size_t t = 0; t < b.size(); ++t)
-    if (m_owned[b.i[t]] && b.intact[t] != m_gatheredIntact[t]) {
-      bondIds.push_back(m_globalBond[t]);
-      intact.push_back(b.intact[t]);
-      m_gatheredIntact[t] = b.intact[t];
-    }
-  const std::vector<std::int64_t> allBonds = m_comm.allGather(bondIds);
-  const std::vector<double> allIntact = m_comm.allGather(intact);
-  for (std::size_t t = 0; t < allBonds.size(); ++t) whole.bonds.intact[allBonds[t]] = allIntact[t];
-  whole.brokenLastStep = 0;
-  whole.adoptGatheredState(system.time, system.steps);
+  gatherBondsInto(whole);
   if (!m_contactHalo) return;
   // The contact energy: every rank's touching pairs, summed in the order one process sums them.
   const std::vector<HertzContact::EnergyTerm> mine = system.contact.energyTerms(system.particles);
@@ -182,6 +175,25 @@ void Subdomain::gatherInto(BondedSystem& whole) const {
   std::vector<HertzContact::EnergyTerm> terms(allEnergies.size());
   for (std::size_t t = 0; t < terms.size(); ++t) terms[t] = {allPairs[2 * t], allPairs[2 * t + 1], allEnergies[t]};
   whole.contact.adoptGatheredEnergy(HertzContact::sumEnergy(std::move(terms)));
+}
+
+void Subdomain::gatherBondsInto(BondedSystem& whole) const {
+  if (whole.bonds.size() < m_globalBond.size())
+    throw std::logic_error("Subdomain::gatherBondsInto: not the sample this sub-domain was cut from");
+  std::vector<std::int64_t> bondIds;
+  std::vector<double> intact;
+  const BondStore& b = system.bonds;
+  for (std::size_t t = 0; t < b.size(); ++t)
+    if (m_owned[b.i[t]] && b.intact[t] != m_gatheredIntact[t]) {
+      bondIds.push_back(m_globalBond[t]);
+      intact.push_back(b.intact[t]);
+      m_gatheredIntact[t] = b.intact[t];
+    }
+  const std::vector<std::int64_t> allBonds = m_comm.allGather(bondIds);
+  const std::vector<double> allIntact = m_comm.allGather(intact);
+  for (std::size_t t = 0; t < allBonds.size(); ++t) whole.bonds.intact[allBonds[t]] = allIntact[t];
+  whole.brokenLastStep = 0;
+  whole.adoptGatheredState(system.time, system.steps);
 }
 
 std::array<double, 3> Subdomain::sumInWholeOrder(const std::vector<std::int64_t>& ids,
@@ -203,6 +215,13 @@ std::uint64_t Subdomain::brokenBonds() const {
   for (std::size_t t = 0; t < b.size(); ++t)
     if (m_owned[b.i[t]] && b.intact[t] <= 0.0) ++broken;
   return m_comm.sum(broken);
+}
+
+std::uint64_t Subdomain::brokenLastStepHere() const {
+  std::uint64_t broken = 0;
+  for (std::size_t b : system.bondsBrokenLastStep())
+    if (m_owned[system.bonds.i[b]]) ++broken;
+  return broken;
 }
 
 double Subdomain::kineticEnergy() const {

@@ -46,6 +46,9 @@ public:
   const std::vector<std::int32_t>& globalIndex() const { return m_global; }
   /// Local index of a global particle, -1 when this rank holds it neither as owned nor as ghost.
   std::int32_t localOf(std::int32_t global) const;
+  /// The members of a particle set (whole-sample indices) this rank holds, in its numbering, in
+  /// the set's order: a loaded face or region, for a prescription on the sub-domain.
+  std::vector<std::int32_t> localMembers(const std::vector<std::int32_t>& members) const;
   bool owns(std::size_t local) const { return local < m_owned.size() && m_owned[local] != 0; }
   std::size_t ownedCount() const { return m_ownedCount; }
   const Halo& halo() const { return *m_halo; }
@@ -69,6 +72,9 @@ public:
   /// With contact, `whole` takes the contact energy of the ranks, summed in the one-process order.
   /// Collective. Scenarios call it before each output and compute their observables on `whole`.
   void gatherInto(BondedSystem& whole) const;
+  /// Only the bonds' part of gatherInto: the integrity of the bonds that changed since the last
+  /// gather (for a connectivity check between outputs; the kinematics are not sent). Collective.
+  void gatherBondsInto(BondedSystem& whole) const;
 
   /// Σ of per-particle terms (three each: terms[3t..3t+2] of the owned particle with global index
   /// ids[t]) over every rank, added in the whole sample's order from 0: the sum one process takes
@@ -80,6 +86,9 @@ public:
   void exchangeState(StateArchive& archive);
   /// Bonds broken so far in the whole sample (each counted once: by the owner of its end i).
   std::uint64_t brokenBonds() const;
+  /// Of the bonds that broke in the last step, those this rank counts (it owns their end i): their
+  /// sum over the ranks is the whole sample's count. Not collective.
+  std::uint64_t brokenLastStepHere() const;
   /// Translational and rotational kinetic energy of the whole sample (J).
   double kineticEnergy() const;
 

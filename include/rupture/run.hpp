@@ -107,6 +107,10 @@ inline constexpr double kDefaultMaxRunSteps = 1e8;
 /// refuse what their own site allows less of (docs/distributed.md).
 inline constexpr int kMaxRanks = 4096;
 
+/// `rupture run`'s exit code when a run stopped before its end (Ctrl-C, SIGTERM, --stop-at-step),
+/// after writing its checkpoint: 128 + SIGINT, the shell's convention. The executors read it.
+inline constexpr int kExitInterrupted = 130;
+
 struct Scenario;
 
 /// A spec parsed and validated once: its scenario, unknown keys rejected, every value checked and

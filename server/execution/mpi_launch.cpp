@@ -13,13 +13,12 @@
 
 #include "common/files.hpp"
 #include "execution/command.hpp"
+#include "rupture/run.hpp"
 #include "rupture/state_archive.hpp"
 
 namespace rupture::server {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr int kExitInterrupted = 130;  // rupture run's exit code for a cancelled run
 
 /// The first executable `name` on PATH, or empty.
 std::string onPath(const std::string& name) {

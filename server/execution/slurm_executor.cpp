@@ -10,6 +10,7 @@
 #include "execution/mpi_launch.hpp"
 #include "common/files.hpp"
 #include "io/checkpoint_file.hpp"
+#include "rupture/run.hpp"
 #include "common/log.hpp"
 
 namespace rupture::server {
@@ -324,11 +325,10 @@ bool SlurmExecutor::continueInNextAllocation(RunKey key, std::string& why) {
 
 void SlurmExecutor::recordFinished(RunKey key, int exitCode, const std::string& slurmState) {
   const fs::path file = runPath(key, ".h5");
-  constexpr int kStoppedWithCheckpoint = 130;  // rupture run's exit code when a signal stopped it
   // Stopped by its time limit's warning or a preemption, not cancelled by hand (scancel: failed,
   // with Slurm's reason; a retry continues from the checkpoint).
   std::string why;  // why a stopped run cannot continue
-  if (exitCode == kStoppedWithCheckpoint && slurmState.rfind("CANCELLED", 0) != 0 && continueInNextAllocation(key, why))
+  if (exitCode == kExitInterrupted && slurmState.rfind("CANCELLED", 0) != 0 && continueInNextAllocation(key, why))
     return;
   if (exitCode == 0 && regularFileSize(file)) {
     Json summary;

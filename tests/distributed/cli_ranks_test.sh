@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `mpiexec -np N rupture run SPEC` against `rupture run SPEC` (docs/distributed.md): the impact
-# scenario on N ranks writes the one-process file bit for bit (series, snapshots, sample; h5diff)
+# and dynamic-tension scenarios on N ranks write the one-process file bit for bit (series,
+# snapshots, sample; h5diff)
 # and prints the same summary (all but the wall time); a run stopped with a checkpoint on N ranks
 # and resumed on N ranks writes the uninterrupted file, and its resume on another rank count is
 # refused; what is not decomposed yet is refused with exit 2, naming the field or the scenario.
@@ -14,10 +15,20 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-for spec in impact_pmb_projectile impact_springs_precrack; do
-  "$rupture" run "$here/$spec.json" -o "$work/one.h5" --json > "$work/one.json" 2> "$work/one.err" \
+# The seed's beams in dynamic tension (the small example: VH field, its preliminary run, contact),
+# without the caches, so that each run builds its sample and preliminary run itself.
+python3 - "$here/../../examples/dynamic-tension-small.json" "$work/tension_small.json" <<'PY'
+import json, sys
+spec = json.load(open(sys.argv[1]))
+spec.setdefault("output", {}).update({"cache_sample": False, "cache_preliminary": False})
+json.dump(spec, open(sys.argv[2], "w"))
+PY
+
+for path in "$here/impact_pmb_projectile.json" "$here/impact_springs_precrack.json" "$work/tension_small.json"; do
+  spec=$(basename "$path" .json)
+  "$rupture" run "$path" -o "$work/one.h5" --json > "$work/one.json" 2> "$work/one.err" \
     || { cat "$work/one.err" >&2; fail "$spec on one process"; }
-  "$mpiexec" -np "$ranks" "$@" "$rupture" run "$here/$spec.json" -o "$work/many.h5" --json \
+  "$mpiexec" -np "$ranks" "$@" "$rupture" run "$path" -o "$work/many.h5" --json \
     > "$work/many.json" 2> "$work/many.err" || { cat "$work/many.err" >&2; fail "$spec on $ranks ranks"; }
   for group in /series /snapshots /sample; do
     h5diff -r "$work/one.h5" "$work/many.h5" "$group" > "$work/diff.txt" \
@@ -51,35 +62,37 @@ expect_refusal() {  # SPEC PATTERN [run options...]
   echo "refused as expected: $pattern"
 }
 mpi_flags=("$@")
-expect_refusal "$here/../../examples/dynamic-tension-pmb.json" "scenario runs on one rank"
+expect_refusal "$here/../../examples/dam-break-2d.json" "scenario runs on one rank"
 
 # Checkpoint on N ranks, stop, resume on N ranks: the uninterrupted file bit for bit. Each rank keeps
 # its own checkpoint; a resume on another rank count is refused, naming the count to use.
-spec="$here/impact_pmb_projectile.json"
-"$rupture" run "$spec" -o "$work/whole.h5" --json > "$work/whole.json" 2> "$work/whole.err" \
-  || { cat "$work/whole.err" >&2; fail "uninterrupted run on one process"; }
-set +e
-"$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --stop-at-step 100 \
-  > /dev/null 2> "$work/stop.err"
-code=$?
-set -e
-[ "$code" -eq 130 ] || { cat "$work/stop.err" >&2; fail "--stop-at-step on $ranks ranks: exit $code, expected 130"; }
-[ -f "$work/split.h5.checkpoint" ] || fail "no checkpoint of the first rank"
-for ((r = 1; r < ranks; ++r)); do
-  [ -f "$work/split.h5.checkpoint.rank-$r" ] || fail "no checkpoint of rank $r"
+for spec in "$here/impact_pmb_projectile.json" "$work/tension_small.json"; do
+  "$rupture" run "$spec" -o "$work/whole.h5" --json > "$work/whole.json" 2> "$work/whole.err" \
+    || { cat "$work/whole.err" >&2; fail "uninterrupted run on one process"; }
+  set +e
+  "$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --stop-at-step 100 \
+    > /dev/null 2> "$work/stop.err"
+  code=$?
+  set -e
+  [ "$code" -eq 130 ] || { cat "$work/stop.err" >&2; fail "--stop-at-step on $ranks ranks: exit $code, expected 130"; }
+  [ -f "$work/split.h5.checkpoint" ] || fail "no checkpoint of the first rank"
+  for ((r = 1; r < ranks; ++r)); do
+    [ -f "$work/split.h5.checkpoint.rank-$r" ] || fail "no checkpoint of rank $r"
+  done
+  set +e
+  "$rupture" run "$spec" -o "$work/split.h5" --resume > /dev/null 2> "$work/wrong.err"
+  code=$?
+  set -e
+  [ "$code" -eq 2 ] || { cat "$work/wrong.err" >&2; fail "resume on one process of a $ranks-rank checkpoint: exit $code, expected 2"; }
+  grep -q "resume it with mpirun -np $ranks" "$work/wrong.err" || { cat "$work/wrong.err" >&2; fail "the refusal does not name the rank count"; }
+  "$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --resume --json \
+    > "$work/split.json" 2> "$work/resume.err" || { cat "$work/resume.err" >&2; fail "resume on $ranks ranks"; }
+  grep -q "resumed from the checkpoint at step 100" "$work/resume.err" || { cat "$work/resume.err" >&2; fail "the run did not resume at step 100"; }
+  for group in /series /snapshots /sample; do
+    h5diff -r "$work/whole.h5" "$work/split.h5" "$group" > "$work/diff.txt" \
+      || { tail -n 20 "$work/diff.txt" >&2; fail "$group differs between the uninterrupted run and the one resumed on $ranks ranks"; }
+  done
+  ls "$work"/split.h5.checkpoint* > /dev/null 2>&1 && fail "checkpoints left after the resumed run completed: $(ls "$work"/split.h5.checkpoint*)"
+  echo "$(basename "$spec" .json): stopped at step 100 and resumed on $ranks ranks: the uninterrupted file; another rank count refused"
+  rm -f "$work"/whole.* "$work"/split.*
 done
-set +e
-"$rupture" run "$spec" -o "$work/split.h5" --resume > /dev/null 2> "$work/wrong.err"
-code=$?
-set -e
-[ "$code" -eq 2 ] || { cat "$work/wrong.err" >&2; fail "resume on one process of a $ranks-rank checkpoint: exit $code, expected 2"; }
-grep -q "resume it with mpirun -np $ranks" "$work/wrong.err" || { cat "$work/wrong.err" >&2; fail "the refusal does not name the rank count"; }
-"$mpiexec" -np "$ranks" "${mpi_flags[@]}" "$rupture" run "$spec" -o "$work/split.h5" --resume --json \
-  > "$work/split.json" 2> "$work/resume.err" || { cat "$work/resume.err" >&2; fail "resume on $ranks ranks"; }
-grep -q "resumed from the checkpoint at step 100" "$work/resume.err" || { cat "$work/resume.err" >&2; fail "the run did not resume at step 100"; }
-for group in /series /snapshots /sample; do
-  h5diff -r "$work/whole.h5" "$work/split.h5" "$group" > "$work/diff.txt" \
-    || { tail -n 20 "$work/diff.txt" >&2; fail "$group differs between the uninterrupted run and the one resumed on $ranks ranks"; }
-done
-ls "$work"/split.h5.checkpoint* > /dev/null 2>&1 && fail "checkpoints left after the resumed run completed: $(ls "$work"/split.h5.checkpoint*)"
-echo "stopped at step 100 and resumed on $ranks ranks: the uninterrupted file; another rank count refused"

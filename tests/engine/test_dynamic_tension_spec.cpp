@@ -50,6 +50,15 @@ TEST(DynamicTensionSpec, ErrorsNameTheField) {
   EXPECT_EQ(with([](auto& s) { s["sample"]["porosity"] = 0.9; }), "sample.porosity");
   EXPECT_EQ(with([](auto& s) { s["material"]["beam"]["failure_stress"] = -4e9; }), "material.beam.failure_stress");
   EXPECT_EQ(with([](auto& s) { s["material"]["local_damping"] = -0.5; }), "material.local_damping");
+  EXPECT_EQ(with([](auto& s) { s["run"]["ranks"] = 0; }), "run.ranks");
+  EXPECT_EQ(with([](auto& s) { s["run"]["ranks"] = 5000; }), "run.ranks");
+  EXPECT_EQ(with([](auto& s) { s["run"]["ranks"] = 2; }), "");
+  // Silling's damping is not decomposed: refused on several ranks, naming run.ranks.
+  EXPECT_EQ(with([](auto& s) {
+              s["run"]["ranks"] = 2;
+              s["material"]["local_damping"] = 0.5;
+            }),
+            "run.ranks");
   EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 1}}; }), "sample.grains.count");
   EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"boundary_factor", 0.5}}; }), "sample.grains.count");
   EXPECT_EQ(with([](auto& s) { s["sample"]["grains"] = {{"count", 8}, {"boundary_factor", 0}}; }),

@@ -152,9 +152,20 @@ TEST(DistributedRuns, RanksWithBondDampingIs400NamingRunRanks) {
 TEST(DistributedRuns, RanksOnAScenarioThatRunsOnOneRankIs400) {
   test::LiveServer server;
   auto client = server.client();
-  Json spec = test::smallInputs();
+  Json spec = Json::parse(test::readText(fs::path(RUPTURE_SOURCE_DIR) / "examples" / "dam-break-2d.json"));
   spec["run"]["ranks"] = 2;
-  test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", spec}}), 400, "run.ranks");
+  test::expectProblem(test::postJson(*client, "/processes/" + spec["scenario"].get<std::string>() + "/execution",
+                                     {{"inputs", spec}}),
+                      400, "run.ranks");
+}
+
+TEST(DistributedRuns, ADynamicTensionSpecAsksForRanksLikeAnImpactSpec) {
+  test::LiveServer server;  // two workers
+  auto client = server.client();
+  Json spec = test::smallInputs();
+  spec["run"]["ranks"] = 3;
+  const Json problem = test::expectProblem(test::postJson(*client, test::kExecutePath, {{"inputs", spec}}), 400, "run.ranks");
+  EXPECT_NE(problem.value("detail", "").find("run.ranks"), std::string::npos) << problem.dump(2);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,10 @@
 
 #include "samples/sample_builder.hpp"
 #include "bonded/bonded_spec.hpp"
+#include "core/format_number.hpp"
+#include "distributed/coordinate_bisection.hpp"
+#include "distributed/subdomain.hpp"
+#include "rupture/spec_error.hpp"
 #include "scenarios/bonded/intact_network.hpp"
 #include "scenarios/dynamic_tension/dynamic_tension_spec.hpp"
 #include "scenarios/dynamic_tension/preliminary_field_cache.hpp"
@@ -238,7 +243,10 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
                    " bonds, time step " + formatQuantity(dt, "s"));
 
   // A resumed run continues the checkpoint's copy of the file, which holds all of this already.
-  TensionRecorder recorder(resultPath, checkpoints.continueFrom());
+  // Every rank writes the same file from the same gathered state; only the first keeps it.
+  const Communicator comm = Communicator::world();
+  TensionRecorder recorder(resultPath, checkpoints.continueFrom(),
+                           comm.rank() == 0 ? io::ResultFile::Destination::kDisk : io::ResultFile::Destination::kDiscarded);
   if (!checkpoints.resuming()) {
     recorder.writeSpec(toJson(spec), json);
     recorder.writeSample(system, report, geometry);
@@ -246,7 +254,9 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 
   // Preliminary run (VH field; the sample's wave speed for a V0 ramp without ramp_time).
   const InitialVelocityField field = spec.loading.initialVelocity;
-  const PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control);
+  PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control);
+  // A cancel reaches the ranks at different moments: one rank's cancelled preliminary is every rank's.
+  if (comm.size() > 1) pre.cancelled = comm.max(pre.cancelled ? 1.0 : 0.0) > 0;
   const PreliminaryResult* preliminary = pre.result ? &*pre.result : nullptr;
   if (!checkpoints.resuming())
     recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),
@@ -260,8 +270,42 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
                                      : spec.loading.rampWaveRoundTrips * 2.0 * geometry.gaugeLength / waveSpeed;
   TensionLoading loading(geometry, spec.loading.strainRate, rampTime);
   const double maxVelocity = loading.ramp().maxVelocity;
+
+  // On several ranks (mpirun -np N, engine/distributed): each rank steps its sub-domain, cut from
+  // the sample at rest, whose loads at t = 0 it evaluates as the builder evaluated the whole
+  // sample's (at rest); then both take the initial field and the faces' prescription. The whole
+  // system, on every rank, takes the ranks' gathered state before each output, and each step's
+  // observables are gathered in the whole sample's order (stepObservables below): everything that
+  // reads `system` reads it as on one process, bit for bit (docs/distributed.md).
+  std::optional<Subdomain> part;
+  if (comm.size() > 1 && !pre.cancelled) {
+    if (spec.material.localDamping > 0)
+      throw SpecError("material.local_damping", formatNumber(spec.material.localDamping),
+                      "0 on more than one rank (mpirun -np " + std::to_string(comm.size()) +
+                          "): Silling's bond damping is not decomposed yet");
+    part.emplace(system, bisectCoordinates(system.particles, system.bonds, comm.size()), comm);
+    part->system.initialize();
+  }
   if (!pre.cancelled) applyInitialField(system, field, geometry, maxVelocity, preliminary);
   loading.install(system);
+  if (part) {
+    ParticleStore& local = part->system.particles;
+    const ParticleStore& w = system.particles;
+    const std::vector<std::int32_t>& global = part->globalIndex();
+    for (std::size_t k = 0; k < global.size(); ++k) {
+      const auto g = static_cast<std::size_t>(global[k]);
+      local.vx[k] = w.vx[g]; local.vy[k] = w.vy[g]; local.vz[k] = w.vz[g];
+      local.wx[k] = w.wx[g]; local.wy[k] = w.wy[g]; local.wz[k] = w.wz[g];
+    }
+    loading.prescribeFaces(part->system, part->localMembers(geometry.xmin), part->localMembers(geometry.xmax));
+  }
+  BondedSystem& stepped = part ? part->system : system;
+  std::size_t gatheredAtStep = system.steps;
+  auto gatherWhole = [&] {
+    if (!part || gatheredAtStep == part->system.steps) return;
+    part->gatherInto(system);
+    gatheredAtStep = system.steps;
+  };
 
   // Main run: one step, the face stresses, the observables, rows and snapshots when due, the stop rules.
   TensionObservables observed(system.bonds.size());
@@ -281,7 +325,54 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   std::string stopReason = pre.cancelled ? "cancelled" : "";
   FaceStresses stress = loading.stresses(system.particles);
   double strain = 0;
+  // The step's strain, face stresses and bonds broken. On several ranks, from one gather of the
+  // owned face elements' x-loads, the probe's x and each rank's count (bonds whose end i it owns):
+  // each face's load is added over its elements in index order, the one-process sum.
+  std::vector<std::int32_t> facesHere, facesWhole;  // owned face elements: local, whole-sample indices
+  std::vector<double> faceOf;                       // 0: X_min, 1: X_max
+  std::int32_t probeHere = -1;
+  if (part) {
+    for (int face = 0; face < 2; ++face)
+      for (std::int32_t g : face == 0 ? geometry.xmin : geometry.xmax)
+        if (const std::int32_t k = part->localOf(g); k >= 0 && part->owns(static_cast<std::size_t>(k))) {
+          facesHere.push_back(k);
+          facesWhole.push_back(g);
+          faceOf.push_back(face);
+        }
+    if (const std::int32_t k = part->localOf(loading.probe()); k >= 0 && part->owns(static_cast<std::size_t>(k)))
+      probeHere = k;
+  }
+  auto stepObservables = [&]() -> std::size_t {
+    if (!part) {
+      strain = loading.strain(system.particles);
+      stress = loading.stresses(system.particles);
+      return system.brokenLastStep;
+    }
+    const ParticleStore& p = part->system.particles;
+    // Records of three: (face, whole index, x-load), (2, probe, x), (3, 0, bonds broken here).
+    std::vector<double> mine;
+    mine.reserve(3 * facesHere.size() + 6);
+    for (std::size_t t = 0; t < facesHere.size(); ++t) mine.insert(mine.end(), {faceOf[t], static_cast<double>(facesWhole[t]), p.fx[facesHere[t]]});
+    if (probeHere >= 0) mine.insert(mine.end(), {2.0, static_cast<double>(loading.probe()), p.x[probeHere]});
+    mine.insert(mine.end(), {3.0, 0.0, static_cast<double>(part->brokenLastStepHere())});
+    const std::vector<double> all = comm.allGather(mine);
+    std::vector<std::array<double, 3>> records(all.size() / 3);
+    for (std::size_t r = 0; r < records.size(); ++r) records[r] = {all[3 * r], all[3 * r + 1], all[3 * r + 2]};
+    std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
+      return a[0] != b[0] ? a[0] < b[0] : a[1] < b[1];
+    });
+    double load[2] = {0.0, 0.0}, probeX = kNaN, broken = 0;
+    for (const auto& r : records) {
+      if (r[0] < 2) load[static_cast<int>(r[0])] += r[2];
+      else if (r[0] == 2) probeX = r[2];
+      else broken += r[2];
+    }
+    strain = loading.strainAt(probeX);
+    stress = loading.stressesFrom(load[0], load[1]);
+    return static_cast<std::size_t>(broken);
+  };
   auto record = [&] {
+    gatherWhole();
     lastRowStep = system.steps;
     recorder.appendRow({system.time, strain, stress.xmin, stress.xmax, stress.mean, observed.brokenFraction(),
                         system.kineticEnergy(), system.elasticEnergy(), system.particles.vx[geometry.xmax.front()]});
@@ -289,6 +380,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   auto snapshotsDue = [&] {  // one snapshot per step even if it crosses several requested strains
     if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
     const auto began = Clock::now();
+    gatherWhole();
     recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
                            "strain " + formatNumber(snapshotStrains[nextSnapshot]));
     control.phases.charge("writing snapshots", seconds(began));
@@ -315,6 +407,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   // Everything the loop below changes (docs/checkpoints.md).
   checkpoints.attach(recorder.result(), [&](StateArchive& a) {
     system.exchangeState(a);
+    if (part) part->exchangeState(a);
     observed.exchangeState(a);
     recorder.exchangeState(a);
     StateGroup loop(a, "loop");
@@ -345,10 +438,11 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
         break;
       }
       if (static_cast<std::int64_t>(system.steps) >= spec.run.maxSteps) { stopReason = "max_steps"; break; }
-      system.step(dt);
-      strain = loading.strain(system.particles);
-      stress = loading.stresses(system.particles);
-      observed.observe(system.time, strain, stress, system.brokenLastStep);
+      stepped.step(dt);
+      system.time = stepped.time;
+      system.steps = stepped.steps;
+      const std::size_t brokenNow = stepObservables();
+      observed.observe(system.time, strain, stress, brokenNow);
       if (system.time >= nextOutput) {
         record();
         nextOutput = nextOutputTime(nextOutput, system.time, outputInterval);
@@ -358,6 +452,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
           system.steps - lastCheckStep >= kSeparationCheckSteps) {
         brokenAtLastCheck = observed.broken();
         lastCheckStep = system.steps;
+        if (part) part->gatherBondsInto(system);
         if (!groupsConnected(system.bonds, system.particles.size(), geometry.xmin, geometry.xmax)) {
           observed.markSeparated(system.time, strain);
           logStage(control, "faces separated at strain " + formatQuantity(strain, "1"));
@@ -380,7 +475,8 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       if ((system.steps & 63) == 0 && Clock::now() - lastReport > std::chrono::milliseconds(100)) {
         lastReport = Clock::now();
         // The worst bond's stress over its strength grows about linearly with ε: where it reaches 1.
-        const double worstRatio = system.maxFailureRatio();
+        // (On several ranks, of this rank's bonds: an estimate, and no rank waits for another.)
+        const double worstRatio = stepped.maxFailureRatio();
         const double onsetEstimate =
             worstRatio > 1e-3 ? loading.ramp().timeToReach(strain / worstRatio * geometry.gaugeLength) : kNaN;
         const double stop = forecastStopTime(system.time, observed, stopRules, onsetEstimate);
@@ -392,6 +488,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     publishStatus();
   }
   enterPhase(control, "final snapshot and fragments");
+  gatherWhole();
   recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
   const bool completed = stopReason != "cancelled";
 

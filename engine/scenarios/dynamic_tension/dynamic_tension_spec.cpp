@@ -7,6 +7,7 @@
 #include "io/physical_ranges.hpp"
 #include "io/run_length.hpp"
 #include "io/spec_reader.hpp"
+#include "rupture/run.hpp"
 
 namespace rupture {
 
@@ -52,6 +53,7 @@ TensionRunSpec parseRun(const SpecReader& root) {
   r.timeStepSafety = run->number("time_step_safety", {0.0, 1.0, true, false}, "1", r.timeStepSafety);
   r.maxSteps = run->integer("max_steps", 1, std::int64_t{1} << 40, r.maxSteps);
   r.checkpointInterval = run->number("checkpoint_interval_s", Range::closed(0.0, 1e7), "s", r.checkpointInterval);
+  r.ranks = static_cast<int>(run->integer("ranks", 1, kMaxRanks, r.ranks));
   run->finish();
   return r;
 }
@@ -104,11 +106,18 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
   if (s.loading.vhCaptureStrain && *s.loading.vhCaptureStrain >= s.run.maxStrain)
     throw SpecError("loading.vh_capture_strain", io::describeValue(*s.loading.vhCaptureStrain),
                     "a strain below run.max_strain (" + io::describeValue(s.run.maxStrain) + ")");
+  // What a sub-domain cannot do yet (docs/distributed.md), refused where the field is named.
+  if (s.run.ranks > 1 && s.material.localDamping > 0)
+    throw SpecError("run.ranks", std::to_string(s.run.ranks),
+                    "1 while material.local_damping is above 0: Silling's bond damping is not decomposed yet");
   return s;
 }
 
 RunEstimate estimateDynamicTension(const DynamicTensionSpec& s) {
   RunEstimate e = io::estimateBondedSpec(s);
+  e.ranks = s.run.ranks;
+  // Each rank builds the whole sample, then its sub-domain (docs/distributed.md), as impact's.
+  if (s.run.ranks > 1) e.memoryBytes *= 2.0 * s.run.ranks;
   const double dt = s.run.timeStepSafety * io::estimatedCriticalStep(s.sample, s.material);
   const double gauge = s.sample.size[0];
   const double waveSpeed = s.loading.waveSpeed ? *s.loading.waveSpeed : s.material.dampingWaveSpeed;
@@ -147,7 +156,8 @@ nlohmann::json toJson(const DynamicTensionSpec& s) {
               {"snapshot_strains", s.run.snapshotStrains},
               {"time_step_safety", s.run.timeStepSafety},
               {"max_steps", s.run.maxSteps},
-              {"checkpoint_interval_s", s.run.checkpointInterval}};
+              {"checkpoint_interval_s", s.run.checkpointInterval},
+              {"ranks", s.run.ranks}};
   if (s.run.stopFraction) j["run"]["stop_fraction"] = *s.run.stopFraction;
   j["output"] = {{"cache_preliminary", s.output.cachePreliminary},
                  {"cache_sample", s.output.cacheSample},

@@ -44,6 +44,7 @@ struct TensionRunSpec {
   double timeStepSafety = 0.15;              ///< dt = safety × critical step (1)
   std::int64_t maxSteps = 50'000'000;        ///< guard on the number of steps of one run
   double checkpointInterval = 300;           ///< wall time between checkpoints (s; 0: none)
+  int ranks = 1;                             ///< MPI ranks a server runs it on (docs/distributed.md)
 };
 
 struct TensionOutputSpec {

@@ -80,12 +80,17 @@ TensionLoading::TensionLoading(TensionGeometry geometry, double strainRate, doub
 }
 
 void TensionLoading::install(BondedSystem& system) {
+  m_probeX0 = system.particles.x[m_probe];
+  prescribeFaces(system, m_geometry.xmin, m_geometry.xmax);
+}
+
+void TensionLoading::prescribeFaces(BondedSystem& system, std::vector<std::int32_t> xmin,
+                                    std::vector<std::int32_t> xmax) const {
   ParticleStore& p = system.particles;
-  for (std::int32_t k : m_geometry.xmin) p.fixedDofs[k] |= kFixX;
-  for (std::int32_t k : m_geometry.xmax) p.fixedDofs[k] |= kFixX;
-  m_probeX0 = p.x[m_probe];
+  for (std::int32_t k : xmin) p.fixedDofs[k] |= kFixX;
+  for (std::int32_t k : xmax) p.fixedDofs[k] |= kFixX;
   // The callback owns copies: it must outlive neither this object nor the caller's scope.
-  system.prescribe = [xmin = m_geometry.xmin, xmax = m_geometry.xmax, ramp = m_ramp](ParticleStore& s, double t) {
+  system.prescribe = [xmin = std::move(xmin), xmax = std::move(xmax), ramp = m_ramp](ParticleStore& s, double t) {
     const double v = ramp.velocity(t);
     for (std::int32_t k : xmin) s.vx[k] = 0.0;  // U_x = 0 on X_min
     for (std::int32_t k : xmax) s.vx[k] = v;    // V_x(t) on X_max
@@ -93,14 +98,14 @@ void TensionLoading::install(BondedSystem& system) {
   system.prescribe(p, system.time);
 }
 
-double TensionLoading::strain(const ParticleStore& p) const {
-  return (p.x[m_probe] - m_probeX0) / m_geometry.gaugeLength;
-}
-
 FaceStresses TensionLoading::stresses(const ParticleStore& p) const {
   double fMin = 0, fMax = 0;
   for (std::int32_t k : m_geometry.xmin) fMin += p.fx[k];
   for (std::int32_t k : m_geometry.xmax) fMax += p.fx[k];
+  return stressesFrom(fMin, fMax);
+}
+
+FaceStresses TensionLoading::stressesFrom(double fMin, double fMax) const {
   FaceStresses s;
   s.xmin = fMin / m_geometry.section;
   s.xmax = -fMax / m_geometry.section;

@@ -66,11 +66,19 @@ public:
   /// Marks the x-velocity of the face elements as prescribed and installs system.prescribe.
   /// Call with the positions of the reference (undeformed) state: strain() is measured from them.
   void install(BondedSystem& system);
+  /// The same prescription on a sub-domain, whose face elements are `xmin` and `xmax` in its own
+  /// numbering (distributed/subdomain.hpp): install() on the whole sample first.
+  void prescribeFaces(BondedSystem& part, std::vector<std::int32_t> xmin, std::vector<std::int32_t> xmax) const;
 
   /// ε from the X_max face displacement (1).
-  double strain(const ParticleStore& p) const;
+  double strain(const ParticleStore& p) const { return strainAt(p.x[m_probe]); }
+  /// ε when the probe element (probe(): an X_max element) is at x = probeX (m).
+  double strainAt(double probeX) const { return (probeX - m_probeX0) / m_geometry.gaugeLength; }
+  std::int32_t probe() const { return m_probe; }
   /// σ_Xmin, σ_Xmax, σ̄ from the loads of the last step: O(face elements).
   FaceStresses stresses(const ParticleStore& p) const;
+  /// The same from the faces' summed x-loads (N), each added over its elements in index order.
+  FaceStresses stressesFrom(double forceXmin, double forceXmax) const;
 
   const TensionGeometry& geometry() const { return m_geometry; }
   const VelocityRamp& ramp() const { return m_ramp; }

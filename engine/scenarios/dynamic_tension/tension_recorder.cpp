@@ -25,8 +25,9 @@ const std::vector<std::pair<std::string, std::string>>& seriesNamesAndUnits() {
   return names;
 }
 
-TensionRecorder::TensionRecorder(std::string resultPath, const std::string& continueFrom)
-    : m_result(std::move(resultPath), "dynamic-tension", continueFrom), m_file(m_result.file()) {
+TensionRecorder::TensionRecorder(std::string resultPath, const std::string& continueFrom,
+                                 io::ResultFile::Destination destination)
+    : m_result(std::move(resultPath), "dynamic-tension", destination, continueFrom), m_file(m_result.file()) {
   if (!m_result.continued()) m_file.createGroup("/snapshots");
 }
 

@@ -39,7 +39,9 @@ struct SeriesRow {
 class TensionRecorder {
 public:
   /// continueFrom: a checkpoint whose partial result this run continues (io::ResultFile).
-  explicit TensionRecorder(std::string resultPath, const std::string& continueFrom = "");
+  /// kDiscarded: the same file in memory, dropped (the ranks of a decomposed run after the first).
+  explicit TensionRecorder(std::string resultPath, const std::string& continueFrom = "",
+                           io::ResultFile::Destination destination = io::ResultFile::Destination::kDisk);
   io::ResultFile& result() { return m_result; }
   /// The rows so far and the snapshot count (docs/checkpoints.md).
   void exchangeState(StateArchive& archive) {

@@ -81,14 +81,6 @@ std::vector<double> particleStress(const BondedSystem& s) {
   return sigma;
 }
 
-/// The members of a particle set (whole sample's indices) that a sub-domain holds, in its numbering.
-std::vector<std::int32_t> localMembers(const Subdomain& part, const std::vector<std::int32_t>& members) {
-  std::vector<std::int32_t> out;
-  for (std::int32_t k : members)
-    if (const std::int32_t local = part.localOf(k); local >= 0) out.push_back(local);
-  return out;
-}
-
 struct Projectile {
   ProjectileSpec spec;
   double x[3], v[3], f[3] = {0, 0, 0};
@@ -161,8 +153,8 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   auto drivenHere = driven;
   auto pushedHere = pushed;
   if (part) {
-    for (auto& entry : drivenHere) entry.first = localMembers(*part, entry.first);
-    for (auto& entry : pushedHere) entry.first = localMembers(*part, entry.first);
+    for (auto& entry : drivenHere) entry.first = part->localMembers(entry.first);
+    for (auto& entry : pushedHere) entry.first = part->localMembers(entry.first);
   }
   auto prescriber = [](const decltype(driven)& sets) {
     return [&sets](ParticleStore& ps, double t) {
