@@ -118,7 +118,17 @@ std::size_t BondedSystem::recordDamagedBonds(const std::vector<std::size_t>& dam
 
 const BondStore& BondedSystem::bondLoads() const {
   if (m_loadsStale) {
-    visitModel([&](const auto& law, const auto& criterion) { storeBondLoads(law, criterion, particles, bonds); });
+    visitModel([&](const auto& law, const auto& criterion) {
+      using Law = std::decay_t<decltype(law)>;
+      using Criterion = std::decay_t<decltype(criterion)>;
+      if constexpr (requires(const Law& l, const BondGeometry& g) { l.planarResponse(g); }) {
+        if (m_planar) {  // as the step's loop evaluates them (computeLoads)
+          storeBondLoads<Law, Criterion, true>(law, criterion, particles, bonds);
+          return;
+        }
+      }
+      storeBondLoads(law, criterion, particles, bonds);
+    });
     m_loadsStale = false;
   }
   return bonds;

@@ -192,13 +192,17 @@ void gatherBondLoads(const BondStore& bonds, ParticleStore& p, double* minStretc
 
 /// Stores each bond's loads on the current configuration without breaking any: the force on j of
 /// the intact ones (0 for broken bonds) and every bond's failure measure, as evaluateBonds leaves
-/// them. For paths that do not store per-bond loads each step (core/central_bond_loop.hpp).
-template <class Law, class Criterion>
+/// them. For paths that do not store per-bond loads each step (core/central_bond_loop.hpp), and for
+/// a decomposed run's gathered whole system. kPlanar: the law's planarResponse, as evaluateBonds
+/// takes it in planar motion, so that the numbers are the loop's own to the last bit.
+template <class Law, class Criterion, bool kPlanar = false>
 void storeBondLoads(const Law& law, const Criterion& criterion, const ParticleStore& p, const BondStore& bonds) {
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(bonds.size());
 #pragma omp parallel for schedule(static) if (worthParallel(bonds.size()))
   for (std::ptrdiff_t b = 0; b < n; ++b) {
-    const BondResponse r = law.response(bondGeometry<Law>(p, bonds, b));
+    BondResponse r;
+    if constexpr (kPlanar) r = law.planarResponse(bondGeometry<Law>(p, bonds, b));
+    else r = law.response(bondGeometry<Law>(p, bonds, b));
     const double now = bonds.intact[b];
     bonds.fjx[b] = now * r.fjx; bonds.fjy[b] = now * r.fjy; bonds.fjz[b] = now * r.fjz;
     bonds.failureMeasure[b] = criterion.measure(r);

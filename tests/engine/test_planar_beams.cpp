@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "dem/beam_bond.hpp"
@@ -114,4 +115,45 @@ TEST(PlanarBeam, TwoDimensionalSampleFollowsTheThreeDimensionalStep) {
   // displacements of the run (about 0.5 % of 0.15 µm).
   EXPECT_LT(worstPosition, 1e-9 * spec.elementRadius);
   EXPECT_LT(worstAngle, 1e-9);
+}
+
+TEST(PlanarBeam, LoadsEvaluatedAgainFromTheStateAreTheStepsOwnBitForBit) {
+  // A decomposed run's whole system evaluates its bond loads again from the gathered positions
+  // and orientations (BondedSystem::bondLoads after adoptGatheredState) for its snapshots: in
+  // planar motion they must be the step's own planar loads to the last bit, breaks included.
+  SampleSpec spec;
+  spec.dimension = 2;
+  spec.size = {0.15e-6, 0.15e-6, 0};
+  spec.elementRadius = 3.3e-9;
+  spec.seed = 5;
+  MaterialSpec m;
+  m.density = 6060;
+  m.beam = {2865e9, 0.3, 0.3, 4e9};
+  m.contact.youngModulus = 2865e9;
+  BondedSystem s;
+  buildSample(spec, m, s);
+  ParticleStore& p = s.particles;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double rate = 1.5e8, dt = 0.5 * s.criticalTimeStep();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    p.vx[k] = rate * (p.x[k] - 0.5 * spec.size[0]);
+    p.wz[k] = 0.5 * rate * u(rng);
+  }
+  s.initialize();
+  ASSERT_TRUE(s.planarMotion());
+  std::size_t broken = 0;
+  for (int step = 0; step < 1500; ++step) {
+    s.step(dt);
+    broken += s.brokenLastStep;
+  }
+  ASSERT_GT(broken, 0u);
+  const BondStore stepped = s.bondLoads();
+  s.adoptGatheredState(s.time, s.steps);  // the loads are now stale: bondLoads evaluates them again
+  const BondStore& again = s.bondLoads();
+  for (std::size_t b = 0; b < stepped.size(); ++b) {
+    ASSERT_EQ(std::memcmp(&again.fjx[b], &stepped.fjx[b], sizeof(double)), 0) << "bond " << b;
+    ASSERT_EQ(std::memcmp(&again.fjy[b], &stepped.fjy[b], sizeof(double)), 0) << "bond " << b;
+    ASSERT_EQ(std::memcmp(&again.failureMeasure[b], &stepped.failureMeasure[b], sizeof(double)), 0) << "bond " << b;
+  }
 }

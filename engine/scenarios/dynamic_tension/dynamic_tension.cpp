@@ -3,7 +3,6 @@
 #include "scenarios/dynamic_tension/dynamic_tension_results.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +24,7 @@
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 #include "scenarios/dynamic_tension/tension_observables.hpp"
 #include "scenarios/dynamic_tension/tension_recorder.hpp"
+#include "scenarios/dynamic_tension/tension_step_observables.hpp"
 #include "scenarios/dynamic_tension/tension_stop_forecast.hpp"
 #include "scenarios/dynamic_tension/preliminary_velocity_field.hpp"
 #include "scenarios/run_checkpoints.hpp"
@@ -275,8 +275,8 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   // the sample at rest, whose loads at t = 0 it evaluates as the builder evaluated the whole
   // sample's (at rest); then both take the initial field and the faces' prescription. The whole
   // system, on every rank, takes the ranks' gathered state before each output, and each step's
-  // observables are gathered in the whole sample's order (stepObservables below): everything that
-  // reads `system` reads it as on one process, bit for bit (docs/distributed.md).
+  // observables are gathered in the whole sample's order (tension_step_observables.hpp):
+  // everything that reads `system` reads it as on one process, bit for bit (docs/distributed.md).
   std::optional<Subdomain> part;
   if (comm.size() > 1 && !pre.cancelled) {
     if (spec.material.localDamping > 0)
@@ -325,52 +325,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   std::string stopReason = pre.cancelled ? "cancelled" : "";
   FaceStresses stress = loading.stresses(system.particles);
   double strain = 0;
-  // The step's strain, face stresses and bonds broken. On several ranks, from one gather of the
-  // owned face elements' x-loads, the probe's x and each rank's count (bonds whose end i it owns):
-  // each face's load is added over its elements in index order, the one-process sum.
-  std::vector<std::int32_t> facesHere, facesWhole;  // owned face elements: local, whole-sample indices
-  std::vector<double> faceOf;                       // 0: X_min, 1: X_max
-  std::int32_t probeHere = -1;
-  if (part) {
-    for (int face = 0; face < 2; ++face)
-      for (std::int32_t g : face == 0 ? geometry.xmin : geometry.xmax)
-        if (const std::int32_t k = part->localOf(g); k >= 0 && part->owns(static_cast<std::size_t>(k))) {
-          facesHere.push_back(k);
-          facesWhole.push_back(g);
-          faceOf.push_back(face);
-        }
-    if (const std::int32_t k = part->localOf(loading.probe()); k >= 0 && part->owns(static_cast<std::size_t>(k)))
-      probeHere = k;
-  }
-  auto stepObservables = [&]() -> std::size_t {
-    if (!part) {
-      strain = loading.strain(system.particles);
-      stress = loading.stresses(system.particles);
-      return system.brokenLastStep;
-    }
-    const ParticleStore& p = part->system.particles;
-    // Records of three: (face, whole index, x-load), (2, probe, x), (3, 0, bonds broken here).
-    std::vector<double> mine;
-    mine.reserve(3 * facesHere.size() + 6);
-    for (std::size_t t = 0; t < facesHere.size(); ++t) mine.insert(mine.end(), {faceOf[t], static_cast<double>(facesWhole[t]), p.fx[facesHere[t]]});
-    if (probeHere >= 0) mine.insert(mine.end(), {2.0, static_cast<double>(loading.probe()), p.x[probeHere]});
-    mine.insert(mine.end(), {3.0, 0.0, static_cast<double>(part->brokenLastStepHere())});
-    const std::vector<double> all = comm.allGather(mine);
-    std::vector<std::array<double, 3>> records(all.size() / 3);
-    for (std::size_t r = 0; r < records.size(); ++r) records[r] = {all[3 * r], all[3 * r + 1], all[3 * r + 2]};
-    std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
-      return a[0] != b[0] ? a[0] < b[0] : a[1] < b[1];
-    });
-    double load[2] = {0.0, 0.0}, probeX = kNaN, broken = 0;
-    for (const auto& r : records) {
-      if (r[0] < 2) load[static_cast<int>(r[0])] += r[2];
-      else if (r[0] == 2) probeX = r[2];
-      else broken += r[2];
-    }
-    strain = loading.strainAt(probeX);
-    stress = loading.stressesFrom(load[0], load[1]);
-    return static_cast<std::size_t>(broken);
-  };
+  const TensionStepObservables stepObservables(loading, part ? &*part : nullptr);
   auto record = [&] {
     gatherWhole();
     lastRowStep = system.steps;
@@ -441,8 +396,10 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
       stepped.step(dt);
       system.time = stepped.time;
       system.steps = stepped.steps;
-      const std::size_t brokenNow = stepObservables();
-      observed.observe(system.time, strain, stress, brokenNow);
+      const TensionStep now = stepObservables.measure(stepped);
+      strain = now.strain;
+      stress = now.stress;
+      observed.observe(system.time, strain, stress, now.brokenBonds);
       if (system.time >= nextOutput) {
         record();
         nextOutput = nextOutputTime(nextOutput, system.time, outputInterval);
