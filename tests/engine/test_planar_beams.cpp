@@ -15,6 +15,26 @@ using namespace rupture;
 
 namespace {
 
+/// A 0.15 µm square of the seed's elements (R_DE = 3.3 nm) and Table 3 beams.
+SampleSpec smallSquare() {
+  SampleSpec spec;
+  spec.dimension = 2;
+  spec.size = {0.15e-6, 0.15e-6, 0};
+  spec.elementRadius = 3.3e-9;
+  spec.seed = 5;
+  return spec;
+}
+
+BondedSystem smallBeamSample() {
+  MaterialSpec m;
+  m.density = 6060;
+  m.beam = {2865e9, 0.3, 0.3, 4e9};
+  m.contact.youngModulus = 2865e9;
+  BondedSystem system;
+  buildSample(smallSquare(), m, system);
+  return system;
+}
+
 /// |a − b| relative to the scale of the quantity (its largest magnitude over the cases).
 void expectClose(double a, double b, double scale, const char* what) {
   EXPECT_LE(std::fabs(a - b), 1e-13 * scale) << what << ": planar " << a << ", 3D " << b;
@@ -61,17 +81,8 @@ TEST(PlanarBeam, SameLoadsAsTheThreeDimensionalLawOnInPlaneData) {
 }
 
 TEST(PlanarBeam, TwoDimensionalSampleFollowsTheThreeDimensionalStep) {
-  SampleSpec spec;
-  spec.dimension = 2;
-  spec.size = {0.15e-6, 0.15e-6, 0};
-  spec.elementRadius = 3.3e-9;
-  spec.seed = 5;
-  MaterialSpec m;
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9;
-  BondedSystem planar;
-  buildSample(spec, m, planar);
+  const SampleSpec spec = smallSquare();
+  BondedSystem planar = smallBeamSample();
   ASSERT_TRUE(planar.planarMotion());
 
   // A stretching in-plane velocity field with random spins: beams bend, then break (the
@@ -121,17 +132,8 @@ TEST(PlanarBeam, LoadsEvaluatedAgainFromTheStateAreTheStepsOwnBitForBit) {
   // A decomposed run's whole system evaluates its bond loads again from the gathered positions
   // and orientations (BondedSystem::bondLoads after adoptGatheredState) for its snapshots: in
   // planar motion they must be the step's own planar loads to the last bit, breaks included.
-  SampleSpec spec;
-  spec.dimension = 2;
-  spec.size = {0.15e-6, 0.15e-6, 0};
-  spec.elementRadius = 3.3e-9;
-  spec.seed = 5;
-  MaterialSpec m;
-  m.density = 6060;
-  m.beam = {2865e9, 0.3, 0.3, 4e9};
-  m.contact.youngModulus = 2865e9;
-  BondedSystem s;
-  buildSample(spec, m, s);
+  const SampleSpec spec = smallSquare();
+  BondedSystem s = smallBeamSample();
   ParticleStore& p = s.particles;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
