@@ -142,15 +142,16 @@ void HertzContact::selectActive(double level) {
   m_activeLevel = level;
 }
 
+HertzContact::Radii HertzContact::radiiOf(const ParticleStore& p) {
+  Radii r;
+  for (double radius : p.radius) { r.max = std::max(r.max, radius); r.mean += radius; }
+  r.mean /= static_cast<double>(std::max<std::size_t>(p.size(), 1));
+  return r;
+}
+
 void HertzContact::rebuild(const ParticleStore& p, const BondStore& bonds) {
-  double maxRadius = 0, meanRadius = 0;
-  if (m_domain) {
-    maxRadius = m_domain->wholeMaxRadius();
-    meanRadius = m_domain->wholeMeanRadius();
-  } else {
-    for (double r : p.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
-    meanRadius /= std::max<std::size_t>(p.size(), 1);
-  }
+  const Radii radii = m_domain ? Radii{m_domain->wholeMeanRadius(), m_domain->wholeMaxRadius()} : radiiOf(p);
+  const double maxRadius = radii.max, meanRadius = radii.mean;
   m_skin = 0.3 * meanRadius;
   if (m_domain) m_domain->gatherCandidates(m_skin, maxRadius);  // may change p's size
   const std::size_t n = p.size();

@@ -82,6 +82,13 @@ public:
   /// A decomposed run's whole system, which is not stepped, takes the ranks' energy (until its next evaluation).
   void adoptGatheredEnergy(double e) { m_gatheredEnergy = e; }
 
+  /// The mean and the largest radius of a sample (m), from which a rebuild takes its skin and its
+  /// reach: a sub-domain takes its whole sample's, summed as one process sums them.
+  struct Radii {
+    double mean = 0, max = 0;
+  };
+  static Radii radiiOf(const ParticleStore& p);
+
   /// Makes this the contact of one rank's sub-domain (nullptr: of the whole sample, as on one process).
   void setDomain(std::shared_ptr<ContactDomain> domain) { m_domain = std::move(domain); m_listValid = false; }
 

@@ -96,10 +96,8 @@ Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, C
   std::vector<BondStore::CutPair> cutPairs;
   for (const BondStore::CutPair& c : wb.cutPairs)
     if (owner[c.i] == me || owner[c.j] == me) cutPairs.push_back(c);
-  double maxRadius = 0, meanRadius = 0;
-  for (double r : whole.particles.radius) { maxRadius = std::max(maxRadius, r); meanRadius += r; }
-  meanRadius /= std::max<std::size_t>(n, 1);
-  m_contactHalo = std::make_shared<ContactHalo>(comm, system, m_global, m_owned, std::move(cutPairs), meanRadius, maxRadius);
+  const HertzContact::Radii radii = HertzContact::radiiOf(whole.particles);
+  m_contactHalo = std::make_shared<ContactHalo>(comm, system, m_global, m_owned, std::move(cutPairs), radii.mean, radii.max);
   system.contact.setDomain(m_contactHalo);
   system.refreshGhosts = [halo = m_halo, contact = m_contactHalo](ParticleStore& p, std::vector<double>& nodalMinimum) {
     halo->refresh(p, nodalMinimum);
