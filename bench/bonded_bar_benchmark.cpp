@@ -42,19 +42,16 @@ void buildFcc(BondedSystem& s, int nx, int ny, int nz) {
 
 }  // namespace
 
-nlohmann::json runW1(const W1Options& options) {
-  const double scale = std::cbrt(static_cast<double>(options.particles) / 102400.0);
+void buildW1Bar(BondedSystem& s, std::size_t particles, double stiffnessWeibullModulus) {
+  const double scale = std::cbrt(static_cast<double>(particles) / 102400.0);
   const int nx = std::max(2, static_cast<int>(std::lround(64 * scale)));
   const int ny = std::max(2, static_cast<int>(std::lround(20 * scale)));
   const int nz = ny;
-  omp_set_num_threads(std::max(1, options.threads));
 
-  BondedSystem s;
   s.beam = {kYoungModulus, kPoissonRatio, kRadiusRatio, kFailureStress};
   s.contact.setParameters({kYoungModulus, kPoissonRatio, 0.3, 0.1, true});
   buildFcc(s, nx, ny, nz);
   ParticleStore& p = s.particles;
-
   // Bonds: every pair closer than 1.1 d (12 per interior sphere), found with a cell list.
   CellList cells;
   cells.build(p, 1.1 * kDiameter);
@@ -85,17 +82,25 @@ nlohmann::json runW1(const W1Options& options) {
       p.vx[k] = kPullVelocity * (p.x[k] - xMin) / (xMax - xMin);
     }
   }
-  if (options.stiffnessWeibullModulus > 0) {
+  if (stiffnessWeibullModulus > 0) {
     BondDisorder disorder;
     disorder.stiffness.kind = FactorDistribution::Kind::Weibull;
-    disorder.stiffness.weibullModulus = options.stiffnessWeibullModulus;
+    disorder.stiffness.weibullModulus = stiffnessWeibullModulus;
     disorder.seed = 20261121;
     applyBondDisorder(disorder, s.bonds);
   }
+}
+
+double w1TimeStep(const BondedSystem& initialisedBar) { return kSafety * initialisedBar.criticalTimeStep(); }
+
+nlohmann::json runW1(const W1Options& options) {
+  omp_set_num_threads(std::max(1, options.threads));
+  BondedSystem s;
+  buildW1Bar(s, options.particles, options.stiffnessWeibullModulus);
   s.initialize();
   const double initialPeakStress =
       *std::max_element(s.bonds.failureMeasure.begin(), s.bonds.failureMeasure.end());
-  const double dt = kSafety * s.criticalTimeStep();
+  const double dt = w1TimeStep(s);
 
   const double cpuStart = processCpuSeconds();
   const auto start = std::chrono::steady_clock::now();

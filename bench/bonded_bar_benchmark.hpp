@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bonded/bonded_system.hpp"
+
 namespace rupture::bench {
 
 struct W1Options {
@@ -15,6 +17,12 @@ struct W1Options {
   /// 0 = off, every factor 1 (the workload as defined). Times the loop with the option on.
   double stiffnessWeibullModulus = 0;
 };
+
+/// W1's bar of about `particles` spheres (the 64 × 20 × 20 cell box scaled in all three
+/// directions) into `s`: sample, beams, contact, jitter, slabs and velocities; not initialised.
+void buildW1Bar(BondedSystem& s, std::size_t particles, double stiffnessWeibullModulus = 0);
+/// W1's time step (s): 0.15 of the beams' critical step of the initialised bar.
+double w1TimeStep(const BondedSystem& initialisedBar);
 
 /// Builds W1, runs it and returns one JSON object: workload, particles, bonds, steps, threads,
 /// seconds, particle_steps_per_s, bond_steps_per_s (+ broken_bonds, time_step).
