@@ -174,8 +174,8 @@ constexpr const char* kRunUsage =
     "  --stop-at-step N        stop after step N with a checkpoint, as an interrupted run (exit 130),\n"
     "                          for --resume to continue (to try a resume, or to split a run)\n"
     "  -h, --help              this text\n"
-    "Under mpirun -np N (N > 1) the N processes step one impact run together and the first writes\n"
-    "RUN.h5, the same file as one process writes (contact off; docs/distributed.md). Each rank\n"
+    "Under mpirun -np N (N > 1) the N processes step one impact or dynamic-tension run together and\n"
+    "the first writes RUN.h5, the same file as one process writes (docs/distributed.md). Each rank\n"
     "keeps its own checkpoint (RUN.h5.checkpoint, RUN.h5.checkpoint.rank-1, ...): --resume on as many ranks.\n";
 
 }  // namespace

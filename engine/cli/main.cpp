@@ -23,7 +23,8 @@ commands:
                                           N with one); off a terminal, a status line
                                           every --status-interval S seconds (default 10) and a
                                           timing breakdown at the end (rupture run --help says more);
-                                          under mpirun -np N, one impact run over N processes
+                                          under mpirun -np N, one impact or dynamic-tension
+                                          run over N processes
   xdmf RESULT.h5 [-o OUT.xdmf2] [--force] write a ParaView sidecar for a run file, or one per run
                                           for a job's merged file (RESULT.run-<k>.xdmf2); an
                                           existing sidecar is replaced only with --force

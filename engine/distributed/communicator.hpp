@@ -13,6 +13,8 @@ class Communicator {
 public:
   /// All the processes of the run (MPI_COMM_WORLD; one rank without MPI or before MpiSession).
   static Communicator world();
+  /// This process alone, with every call the identity (a one-process reference inside an MPI run).
+  static Communicator self() { return Communicator(0, 1); }
 
   int rank() const { return m_rank; }
   int size() const { return m_size; }

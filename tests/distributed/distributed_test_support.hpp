@@ -1,9 +1,21 @@
 #pragma once
-// The sample the distributed tests share: a PMB block on a simple cubic lattice (14 × 10 × 8 mm,
-// 1 mm spacing, horizon 3.015 spacings), glass-like, without contact.
+// What the distributed tests share: a bitwise comparison of fields, and a PMB block on a simple
+// cubic lattice (14 × 10 × 8 mm, 1 mm spacing, horizon 3.015 spacings), glass-like, without contact.
+#include <cstddef>
+#include <cstring>
+#include <vector>
+
 #include "samples/sample_builder.hpp"
 
 namespace rupture::testing {
+
+/// Index of the first element where two fields differ in any bit (-1: none).
+inline std::ptrdiff_t firstDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (std::memcmp(&a[k], &b[k], sizeof(double)) != 0) return static_cast<std::ptrdiff_t>(k);
+  return -1;
+}
 
 inline BondedSystem pmbBlock(double compressionFactor = 0.0) {
   SampleSpec s;

@@ -91,28 +91,20 @@ Outcome runDecomposed(const BondedSystem& whole, const Loading& load, int steps,
   return o;
 }
 
-/// Index of the first element where two fields differ in any bit (-1: none).
-std::ptrdiff_t firstDifference(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return 0;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (std::memcmp(&a[k], &b[k], sizeof(double)) != 0) return static_cast<std::ptrdiff_t>(k);
-  return -1;
-}
-
 void expectSameRun(const Outcome& one, const Outcome& many, double kineticScale) {
   const int ranks = Communicator::world().size();
-  EXPECT_EQ(firstDifference(one.x, many.x), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.y, many.y), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.z, many.z), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.vx, many.vx), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.vy, many.vy), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.vz, many.vz), -1) << ranks << " ranks";
-  EXPECT_EQ(firstDifference(one.damage, many.damage), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.x, many.x), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.y, many.y), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.z, many.z), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.vx, many.vx), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.vy, many.vy), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.vz, many.vz), -1) << ranks << " ranks";
+  EXPECT_EQ(testing::firstDifference(one.damage, many.damage), -1) << ranks << " ranks";
   EXPECT_EQ(one.broken, many.broken) << ranks << " ranks";
   // Reductions: each rank's share, then the ranks: round-off apart from the one-process sum.
   EXPECT_NEAR(many.kinetic, one.kinetic, 1e-12 * kineticScale) << ranks << " ranks";
   // The contact energy is summed in the whole sample's pair order on any rank count.
-  EXPECT_EQ(firstDifference({one.contactEnergy}, {many.contactEnergy}), -1)
+  EXPECT_EQ(testing::firstDifference({one.contactEnergy}, {many.contactEnergy}), -1)
       << ranks << " ranks: " << one.contactEnergy << " against " << many.contactEnergy;
 }
 

@@ -139,41 +139,58 @@ double progressDuringPreliminary(const DynamicTensionSpec& spec, const BondedSys
 }
 
 /// The preliminary run when this spec needs it (VH, or V0 without ramp_time nor wave_speed): read
-/// from the cache, else computed on a copy of the sample and stored.
+/// from the cache, else computed on a copy of the sample and stored. On several ranks it is computed
+/// over the ranks (collective), and the first rank alone takes the cache's lock, reads the entry and
+/// stores it; the others follow what it found.
 PreliminaryOutcome obtainPreliminary(const DynamicTensionSpec& spec, const BondedSystem& system,
                                      const TensionGeometry& geometry, double timeStep,
-                                     const std::string& resultPath, RunControl& control) {
+                                     const std::string& resultPath, RunControl& control, const Communicator& comm) {
   PreliminaryOutcome out;
   const InitialVelocityField field = spec.loading.initialVelocity;
   const bool needed = field == InitialVelocityField::VH ||
                       (field == InitialVelocityField::V0 && !spec.loading.rampTime && !spec.loading.waveSpeed);
   if (!needed) return out;
   const PreliminaryPlan plan = planPreliminary(spec, system, geometry, timeStep);
+  const bool first = comm.rank() == 0;
   std::optional<CacheEntryLock> lock;
   if (spec.output.cachePreliminary) {
     out.cacheFile = preliminaryCacheFile(preliminaryCacheDirectory(control.cacheDirectory, resultPath), plan.key);
     // Held until this function returns: a run that waited here finds the entry computed.
-    lock.emplace(out.cacheFile, control.cancel);
-    if (!lock->held()) {
+    constexpr double kMissing = 0, kFound = 1, kCancelled = 2;  // what the first rank found
+    double found = kMissing;
+    if (first) {
+      lock.emplace(out.cacheFile, control.cancel);
+      if (!lock->held()) {
+        found = kCancelled;
+      } else {
+        out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
+        if (out.result) found = kFound;
+      }
+    }
+    if (comm.size() > 1) found = comm.max(found);
+    if (found == kCancelled) {
       out.cancelled = true;
       return out;
     }
-    out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
-    out.fromCache = out.result.has_value();
-    if (out.fromCache) {
+    // The entry cannot change while the first rank holds its lock: the others read what it read.
+    if (found == kFound && !first) out.result = loadPreliminary(out.cacheFile, plan.key, system.particles.size());
+    const bool everyRankHasIt = found == kFound && (comm.size() == 1 || comm.max(out.result ? 0.0 : 1.0) == 0);
+    if (everyRankHasIt) {
+      out.fromCache = true;
       logStage(control, "preliminary run read from the cache " + out.cacheFile);
       return out;
     }
+    out.result.reset();
   }
   logStage(control, "preliminary run from rest at " + formatQuantity(plan.params.strainRate, "1/s"));
   enterPhase(control, "preliminary run");
   out.result = runPreliminary(system, geometry, plan.params, control, [&](const PreliminaryProgress& p) {
     reportProgress(control, progressDuringPreliminary(spec, system, geometry, plan.params.timeStep, timeStep, p));
-  });
+  }, comm);
   if (out.result) out.steps = static_cast<double>(out.result->steps);
   if (!out.result) {
     out.cancelled = true;
-  } else if (spec.output.cachePreliminary && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
+  } else if (spec.output.cachePreliminary && first && !storePreliminary(out.cacheFile, plan.key, *out.result)) {
     logStage(control, "cannot write the preliminary-run cache " + out.cacheFile + " (continuing without it)");
     out.cacheFile.clear();
   }
@@ -254,9 +271,8 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
 
   // Preliminary run (VH field; the sample's wave speed for a V0 ramp without ramp_time).
   const InitialVelocityField field = spec.loading.initialVelocity;
-  PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control);
-  // A cancel reaches the ranks at different moments: one rank's cancelled preliminary is every rank's.
-  if (comm.size() > 1) pre.cancelled = comm.max(pre.cancelled ? 1.0 : 0.0) > 0;
+  // On several ranks, every rank takes the same outcome (a cancel included) at the same step.
+  PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control, comm);
   const PreliminaryResult* preliminary = pre.result ? &*pre.result : nullptr;
   if (!checkpoints.resuming())
     recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),

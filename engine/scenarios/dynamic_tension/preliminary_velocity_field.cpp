@@ -8,7 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "distributed/coordinate_bisection.hpp"
+#include "distributed/subdomain.hpp"
 #include "scenarios/bonded/intact_network.hpp"
+#include "scenarios/dynamic_tension/tension_step_observables.hpp"
 #include "scenarios/run_support.hpp"
 
 namespace rupture {
@@ -24,19 +27,37 @@ struct SavedField {
   std::int64_t steps;
 };
 
-VelocityField copyVelocities(const ParticleStore& p) {
-  return {p.vx, p.vy, p.vz, p.wx, p.wy, p.wz};
+/// The velocities of every element of the sample: the system's own on one process, gathered from
+/// the ranks' owned elements on several (collective).
+VelocityField copyVelocities(const BondedSystem& stepped, const Subdomain* part) {
+  const ParticleStore& p = stepped.particles;
+  if (!part) return {p.vx, p.vy, p.vz, p.wx, p.wy, p.wz};
+  return {part->gather(p.vx), part->gather(p.vy), part->gather(p.vz),
+          part->gather(p.wx), part->gather(p.wy), part->gather(p.wz)};
 }
 
 }  // namespace
 
 std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, const TensionGeometry& geometry,
                                                 const PreliminaryParameters& params, RunControl& control,
-                                                const std::function<void(const PreliminaryProgress&)>& progress) {
+                                                const std::function<void(const PreliminaryProgress&)>& progress,
+                                                const Communicator& comm) {
   const auto wallStart = std::chrono::steady_clock::now();
+  // On several ranks, each steps its sub-domain, cut from the sample at rest as the main run's is
+  // (its loads at t = 0 evaluated again, as the builder evaluated the whole sample's), and every
+  // step's strain, face stresses and breaks are gathered in the whole sample's order: the run, its
+  // capture and its fit are the one-process ones bit for bit (docs/distributed.md).
+  std::optional<Subdomain> part;
+  if (comm.size() > 1) {
+    part.emplace(initial, bisectCoordinates(initial.particles, initial.bonds, comm.size()), comm);
+    part->system.initialize();
+  }
   BondedSystem system = initial;
   TensionLoading loading(geometry, params.strainRate, params.rampTime);
   loading.install(system);
+  if (part) loading.prescribeFaces(part->system, part->localMembers(geometry.xmin), part->localMembers(geometry.xmax));
+  BondedSystem& stepped = part ? part->system : system;
+  const TensionStepObservables observe(loading, part ? &*part : nullptr);
   const double dt = params.timeStep;
 
   // Per-step record after the ramp, for the modulus fit and the equilibrium check.
@@ -51,11 +72,13 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   auto lastReport = wallStart;
 
   while (true) {
-    if (control.cancel.load(std::memory_order_relaxed)) return std::nullopt;
-    system.step(dt);
-    const double strain = loading.strain(system.particles);
-    broken += system.brokenLastStep;
-    const auto steps = static_cast<std::int64_t>(system.steps);
+    stepped.step(dt);
+    const TensionStep now = observe.measure(stepped, control.cancel.load(std::memory_order_relaxed));
+    if (now.cancelled) return std::nullopt;
+    const double strain = now.strain;
+    const double time = stepped.time;
+    broken += now.brokenBonds;
+    const auto steps = static_cast<std::int64_t>(stepped.steps);
 
     if (broken > 0) {
       onset = strain;
@@ -65,20 +88,17 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
                             formatNumber(strain) + " at " + formatNumber(params.strainRate) + " /s)");
       break;
     }
-    const bool afterRamp = system.time >= params.rampTime;
-    if (afterRamp) {
-      const FaceStresses s = loading.stresses(system.particles);
-      record.push_back({strain, s.xmin, s.xmax, s.mean});
-    }
+    const bool afterRamp = time >= params.rampTime;
+    if (afterRamp) record.push_back({strain, now.stress.xmin, now.stress.xmax, now.stress.mean});
     if (params.captureStrain) {
       if (strain >= *params.captureStrain) {
-        captured = SavedField{copyVelocities(system.particles), strain, system.time,
-                              loading.ramp().velocity(system.time), steps};
+        captured = SavedField{copyVelocities(stepped, part ? &*part : nullptr), strain, time,
+                              loading.ramp().velocity(time), steps};
         break;
       }
     } else if (afterRamp && strain >= nextLevel) {
-      ladder.push_back({copyVelocities(system.particles), strain, system.time,
-                        loading.ramp().velocity(system.time), steps});
+      ladder.push_back({copyVelocities(stepped, part ? &*part : nullptr), strain, time,
+                        loading.ramp().velocity(time), steps});
       nextLevel = strain * kLadder;
       // The target ½ ε_onset is at least ½ ε now: keep the largest field below ½ ε and those above.
       while (ladder.size() > 1 && ladder[1].strain <= 0.5 * strain) ladder.pop_front();
@@ -91,17 +111,18 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
                                std::to_string(params.maxSteps) + " (reached strain " + formatNumber(strain) + ")" +
                                (params.captureStrain ? "" : "; set loading.vh_capture_strain"));
 
-    const auto now = std::chrono::steady_clock::now();
-    if (progress && now - lastReport > std::chrono::milliseconds(100)) {
-      lastReport = now;
+    const auto wallNow = std::chrono::steady_clock::now();
+    if (progress && wallNow - lastReport > std::chrono::milliseconds(100)) {
+      lastReport = wallNow;
       // Target strain: the capture strain, or the first break, extrapolated from the worst bond
       // (its stress grows about linearly with ε); the run ends about when it is reached.
       double target = params.captureStrain ? *params.captureStrain : 0.0;
       if (!params.captureStrain) {
-        const double ratio = system.maxFailureRatio();
+        // (On several ranks, of this rank's bonds: an estimate, and no rank waits for another.)
+        const double ratio = stepped.maxFailureRatio();
         target = ratio > 1e-3 ? strain / ratio : params.maxStrain;
       }
-      progress({system.time, loading.ramp().timeToReach(target * geometry.gaugeLength), target});
+      progress({time, loading.ramp().timeToReach(target * geometry.gaugeLength), target});
     }
   }
 
@@ -131,7 +152,7 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   r.captureStrain = captured->strain;
   r.captureTime = captured->time;
   r.captureSteps = captured->steps;
-  r.steps = static_cast<std::int64_t>(system.steps);
+  r.steps = static_cast<std::int64_t>(stepped.steps);
   r.onsetStrain = onset;
 
   // Modulus: σ̄ = E ε fitted through the origin over [½ ε_c, ε_c]; equilibrium over the same window.
@@ -151,7 +172,7 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   r.waveSpeed = std::sqrt(r.modulus / geometry.bulkDensity);
   r.equilibriumRatio = gap / std::abs(mean);
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  if (progress) progress({system.time, system.time, onset});
+  if (progress) progress({stepped.time, stepped.time, onset});
   return r;
 }
 

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bonded/bonded_system.hpp"
+#include "distributed/communicator.hpp"
 #include "rupture/run.hpp"
 #include "scenarios/dynamic_tension/tension_loading.hpp"
 
@@ -67,14 +68,17 @@ struct PreliminaryProgress {
   double time = 0, endTime = 0, targetStrain = 0;
 };
 
-/// Runs the preliminary test on a copy of `initial` (a freshly built sample at rest). Returns
-/// nullopt if control.cancel was set. `progress` receives where it is about every 0.1 s of wall
+/// Runs the preliminary test on a copy of `initial` (a freshly built sample at rest, initialised),
+/// or, on several ranks, on this rank's sub-domain of it (collective; the same result on every
+/// rank, the one-process result bit for bit). Returns nullopt if control.cancel was set (on any
+/// rank: every rank stops at the same step). `progress` receives where it is about every 0.1 s of wall
 /// time, and once at its end (endTime = time).
 /// Throws SpecError (field loading.vh_capture_strain: a bond broke before it, or it is reached
 /// before the end of the ramp) or std::runtime_error (no bond broke within the guards, or the first
 /// break came before a post-ramp field below half its strain was kept).
 std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, const TensionGeometry& geometry,
                                                 const PreliminaryParameters& params, RunControl& control,
-                                                const std::function<void(const PreliminaryProgress&)>& progress);
+                                                const std::function<void(const PreliminaryProgress&)>& progress,
+                                                const Communicator& comm = Communicator::world());
 
 }  // namespace rupture

@@ -24,28 +24,36 @@ TensionStepObservables::TensionStepObservables(const TensionLoading& loading, co
   m_probeHere = ownedHere(loading.probe());
 }
 
-TensionStep TensionStepObservables::measure(const BondedSystem& stepped) const {
+TensionStep TensionStepObservables::measure(const BondedSystem& stepped, bool cancelHere) const {
   const ParticleStore& p = stepped.particles;
-  if (!m_part) return {m_loading.strain(p), m_loading.stresses(p), stepped.brokenLastStep};
-  // Records of three numbers: (face, whole index, x-load), (2, probe, x), (3, 0, bonds broken here).
+  if (!m_part) return {m_loading.strain(p), m_loading.stresses(p), stepped.brokenLastStep, cancelHere};
+  // Records of three numbers: (face, whole index, x-load), (2, probe, x), (3, cancel here, bonds
+  // broken here).
   std::vector<double> mine;
   mine.reserve(3 * m_facesHere.size() + 6);
   for (std::size_t t = 0; t < m_facesHere.size(); ++t)
     mine.insert(mine.end(), {m_faceOf[t], static_cast<double>(m_facesWhole[t]), p.fx[m_facesHere[t]]});
   if (m_probeHere >= 0) mine.insert(mine.end(), {2.0, static_cast<double>(m_loading.probe()), p.x[m_probeHere]});
-  mine.insert(mine.end(), {3.0, 0.0, static_cast<double>(m_part->brokenLastStepHere())});
+  mine.insert(mine.end(), {3.0, cancelHere ? 1.0 : 0.0, static_cast<double>(m_part->brokenLastStepHere())});
   const std::vector<double> all = m_part->communicator().allGather(mine);
   std::vector<std::array<double, 3>> records(all.size() / 3);
   for (std::size_t r = 0; r < records.size(); ++r) records[r] = {all[3 * r], all[3 * r + 1], all[3 * r + 2]};
   std::sort(records.begin(), records.end(),
             [](const auto& a, const auto& b) { return a[0] != b[0] ? a[0] < b[0] : a[1] < b[1]; });
   double load[2] = {0.0, 0.0}, probeX = std::numeric_limits<double>::quiet_NaN(), broken = 0;
+  bool cancelled = false;
   for (const auto& r : records) {
-    if (r[0] < 2) load[static_cast<int>(r[0])] += r[2];
-    else if (r[0] == 2) probeX = r[2];
-    else broken += r[2];
+    if (r[0] < 2) {
+      load[static_cast<int>(r[0])] += r[2];
+    } else if (r[0] == 2) {
+      probeX = r[2];
+    } else {
+      broken += r[2];
+      cancelled = cancelled || r[1] != 0;
+    }
   }
-  return {m_loading.strainAt(probeX), m_loading.stressesFrom(load[0], load[1]), static_cast<std::size_t>(broken)};
+  return {m_loading.strainAt(probeX), m_loading.stressesFrom(load[0], load[1]), static_cast<std::size_t>(broken),
+          cancelled};
 }
 
 }  // namespace rupture
