@@ -59,7 +59,7 @@ std::optional<double> estimatedRunSeconds(const std::string& scenario, const rup
   if (model->secondsPerElementStep > 0 && stepped) seconds = model->secondsPerElementStep * estimate.particles * estimate.steps;
   else if (model->secondsPerElement > 0) seconds = model->secondsPerElement * estimate.particles;
   else return std::nullopt;
-  return seconds / std::max(threads, 1);
+  return seconds / (std::max(threads, 1) * std::max(estimate.ranks, 1));
 }
 
 }  // namespace rupture::server

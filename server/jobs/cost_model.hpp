@@ -22,9 +22,10 @@ struct CostModel {
 /// The scenario's cost model, or nullptr for one without (validation: its runs are whole cases).
 const CostModel* costModelFor(const std::string& scenario);
 
-/// Seconds one run is expected to take on `threads` OpenMP threads (the measured cost divided by
-/// the threads: ideal scaling, so an underestimate where threads do not pay); nullopt when the
-/// scenario has no cost model or the estimate gives no elements or steps.
+/// Seconds one run is expected to take on `threads` OpenMP threads in each of its `estimate.ranks`
+/// MPI ranks (the measured cost divided by threads × ranks: ideal scaling, so an underestimate
+/// where threads or ranks do not pay; two ranks step 1.5–1.9× one, docs/distributed.md); nullopt
+/// when the scenario has no cost model or the estimate gives no elements or steps.
 std::optional<double> estimatedRunSeconds(const std::string& scenario, const rupture::RunEstimate& estimate,
                                           int threads);
 

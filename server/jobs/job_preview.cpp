@@ -4,21 +4,23 @@
 #include <cmath>
 #include <functional>
 #include <optional>
-#include <queue>
 
 #include "jobs/cost_model.hpp"
 
 namespace rupture::server {
 
-double queueMakespan(const std::vector<double>& seconds, int workers) {
-  std::priority_queue<double, std::vector<double>, std::greater<>> freeAt;
-  for (int w = 0; w < std::max(workers, 1); ++w) freeAt.push(0);
-  double end = 0;
-  for (double s : seconds) {
-    const double start = freeAt.top();
-    freeAt.pop();
-    freeAt.push(start + s);
-    end = std::max(end, start + s);
+double queueMakespan(const std::vector<double>& seconds, int workers, const std::vector<int>& slots) {
+  std::vector<double> freeAt(static_cast<std::size_t>(std::max(workers, 1)), 0.0);  // when each worker comes free
+  double lastStart = 0, end = 0;
+  for (std::size_t k = 0; k < seconds.size(); ++k) {
+    // The scheduler starts only the head of the queue, once as many workers as it has ranks are
+    // free (it holds no more than the server has), so a run never starts before the one ahead of it.
+    const int taken = std::clamp(k < slots.size() ? slots[k] : 1, 1, static_cast<int>(freeAt.size()));
+    std::sort(freeAt.begin(), freeAt.end());
+    const double start = std::max(lastStart, freeAt[static_cast<std::size_t>(taken - 1)]);
+    for (int w = 0; w < taken; ++w) freeAt[static_cast<std::size_t>(w)] = start + seconds[k];
+    lastStart = start;
+    end = std::max(end, start + seconds[k]);
   }
   return end;
 }
@@ -30,6 +32,7 @@ Json jobPreview(const std::string& scenario, const NewJob& job, const std::vecto
   Json runs = Json::array();
   double elementsMin = 0, elementsMax = 0, elementsTotal = 0, memoryMax = 0, stepsMax = 0;
   std::vector<double> seconds;
+  std::vector<int> slots;  // the workers each run holds: its ranks
   bool timed = !forecasts.empty();
   std::string sizeField, memoryBasis, stepsBasis;
   for (std::size_t k = 0; k < forecasts.size(); ++k) {
@@ -40,13 +43,14 @@ Json jobPreview(const std::string& scenario, const NewJob& job, const std::vecto
       swept[job.sweptPaths[a].get<std::string>()] = f.swept[a];
     const std::optional<double> s = estimatedRunSeconds(scenario, e, threads);
     timed = timed && s.has_value();
-    if (s) seconds.push_back(*s);
+    if (s) seconds.push_back(*s), slots.push_back(e.ranks);
     auto estimateOrNull = [](double v) { return v > 0 && std::isfinite(v) ? Json(v) : Json(nullptr); };
     runs.push_back({{"index", k},
                     {"swept", swept},
                     {"replicate", f.replicate},
                     {"elements", e.particles > 0 ? Json(std::llround(e.particles)) : Json(nullptr)},
                     {"memory_bytes", e.memoryBytes > 0 ? Json(std::llround(e.memoryBytes)) : Json(nullptr)},
+                    {"ranks", e.ranks},
                     {"steps", e.steps > 0 && std::isfinite(e.steps) ? Json(std::llround(e.steps)) : Json(nullptr)},
                     {"time_step_s", estimateOrNull(e.timeStep)},
                     {"estimated_run_s", s ? Json(*s) : Json(nullptr)}});
@@ -81,7 +85,8 @@ Json jobPreview(const std::string& scenario, const NewJob& job, const std::vecto
     doc["estimated_run_s"] = *std::max_element(seconds.begin(), seconds.end());  // the longest run
     doc["estimated_total_s"] = total;  // every run one after the other
     // Local workers take the queue first come, first served; on a cluster every run may start at once.
-    doc["estimated_wall_s"] = queueMakespan(seconds, workers > 0 ? workers : static_cast<int>(seconds.size()));
+    // With Slurm each run gets its ranks' tasks, so the longest run is the job's time.
+    doc["estimated_wall_s"] = workers > 0 ? queueMakespan(seconds, workers, slots) : doc["estimated_run_s"].get<double>();
   } else {
     doc["estimated_run_s"] = doc["estimated_total_s"] = doc["estimated_wall_s"] = nullptr;
   }

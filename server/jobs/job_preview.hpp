@@ -28,8 +28,10 @@ struct PreviewContext {
 };
 
 /// The end of the last of runs taking `seconds` each, in queue order, on `workers` workers that take
-/// them first come, first served, as the scheduler does (s).
-double queueMakespan(const std::vector<double>& seconds, int workers);
+/// them first come, first served, as the scheduler does (s): run k holds `slots[k]` workers (its
+/// MPI ranks; 1 where `slots` is shorter, at most `workers`) and starts when that many are free,
+/// never before the run ahead of it.
+double queueMakespan(const std::vector<double>& seconds, int workers, const std::vector<int>& slots = {});
 
 /// The DryRun document of api/openapi.yaml for `job` and its runs' `forecasts`.
 Json jobPreview(const std::string& scenario, const NewJob& job, const std::vector<RunForecast>& forecasts,

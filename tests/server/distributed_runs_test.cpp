@@ -62,7 +62,9 @@ TEST(DistributedRuns, CancelEndsEveryRank) {
   test::LiveServer server;
   auto client = server.client();
   Json spec = pmbImpact();
-  spec["run"]["end_time"] = 2e-2;  // far longer than the test waits
+  // About 24,000 steps, far longer than the test waits; its first 1 % (the progress the test waits
+  // for) in a second or two.
+  spec["run"]["end_time"] = 2e-3;
   spec["run"]["ranks"] = 2;
   const auto id = test::submit(*client, {{"inputs", spec}}, {}, "impact");
   ASSERT_GT(id, 0);
@@ -125,6 +127,27 @@ TEST(DistributedRuns, AStoppedServerContinuesATwoRankRunFromItsRanksCheckpoints)
     const CommandResult diff = runCommand({"h5diff", "-r", whole.string(), runFile(server, id, 0).string(), group});
     EXPECT_EQ(diff.exitCode, 0) << group << " differs from the uninterrupted run:\n" << diff.output.substr(0, 4000);
   }
+}
+
+TEST(DistributedRuns, ADryRunTimesARunOfNRanksOnNWorkers) {
+  test::LiveServer server;  // two workers, one thread each
+  auto client = server.client();
+  const Json body = {{"inputs", pmbImpact()}, {"sweep", {{"run.ranks", {1, 2}}}}};
+  auto res = test::postJson(*client, "/processes/impact/execution?dry_run=true", body);
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const Json d = Json::parse(res->body);
+  ASSERT_EQ(d["run_estimates"].size(), 2u);
+  const Json one = d["run_estimates"][0], two = d["run_estimates"][1];
+  EXPECT_EQ(one["ranks"], 1);
+  EXPECT_EQ(two["ranks"], 2);
+  EXPECT_EQ(one["elements"], two["elements"]);
+  EXPECT_EQ(one["steps"], two["steps"]);
+  // Ideal scaling over the ranks, as over threads (docs/server.md, "Preview and cost").
+  const double seconds = one["estimated_run_s"].get<double>();
+  EXPECT_NEAR(two["estimated_run_s"].get<double>(), seconds / 2, 1e-12 * seconds);
+  // The 1-rank run holds one worker, then the 2-rank run both: one after the other.
+  EXPECT_NEAR(d["estimated_wall_s"].get<double>(), 1.5 * seconds, 1e-12 * seconds);
 }
 
 #endif  // RUPTURE_HAVE_MPI

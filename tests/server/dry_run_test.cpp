@@ -146,6 +146,13 @@ TEST(DryRun, TheJobsTimeTakesTheQueueFirstComeFirstServed) {
   EXPECT_DOUBLE_EQ(queueMakespan({2, 2, 2}, 2), 4);
   EXPECT_DOUBLE_EQ(queueMakespan({2, 2, 2}, 0), 6) << "no worker count: one at a time";
   EXPECT_DOUBLE_EQ(queueMakespan({}, 4), 0);
+  // Runs of several ranks hold as many workers, and the queue's head waits for them.
+  EXPECT_DOUBLE_EQ(queueMakespan({2, 2}, 2, {2, 2}), 4) << "each 2-rank run holds both workers";
+  EXPECT_DOUBLE_EQ(queueMakespan({1, 2, 1}, 2, {1, 2, 1}), 4)
+      << "the 2-rank run waits for the first to end (1 s), holds both to 3 s; the last starts then";
+  EXPECT_DOUBLE_EQ(queueMakespan({3, 1, 1}, 2, {1, 2, 1}), 5)
+      << "the 2-rank head waits 3 s for both workers, and the run behind it does not overtake it";
+  EXPECT_DOUBLE_EQ(queueMakespan({2}, 2, {8}), 2) << "a run asking for more ranks than workers holds them all";
 }
 
 TEST(DryRun, TheFormPreviewsBeforeItSubmits) {
