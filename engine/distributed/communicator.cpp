@@ -100,6 +100,23 @@ std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t
   return gatherConcatenated(mine, MPI_INT64_T, m_size);
 }
 
+std::vector<double> Communicator::allGather(const std::vector<double>& mine, const std::vector<int>& counts) const {
+  if (m_size == 1) return mine;
+  if (counts.size() != static_cast<std::size_t>(m_size) || counts[static_cast<std::size_t>(m_rank)] != static_cast<int>(mine.size()))
+    throw std::logic_error("Communicator::allGather: the counts do not match the ranks' vectors");
+  std::vector<int> offsets(counts.size());
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<double> all(total);
+  check(MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                       MPI_DOUBLE, MPI_COMM_WORLD),
+        "MPI_Allgatherv");
+  return all;
+}
+
 void Communicator::barrier() const {
   if (m_size > 1) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
@@ -132,6 +149,7 @@ double Communicator::sum(double value) const { return value; }
 std::uint64_t Communicator::sum(std::uint64_t value) const { return value; }
 double Communicator::max(double value) const { return value; }
 std::vector<double> Communicator::allGather(const std::vector<double>& mine) const { return mine; }
+std::vector<double> Communicator::allGather(const std::vector<double>& mine, const std::vector<int>&) const { return mine; }
 std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t>& mine) const { return mine; }
 void Communicator::barrier() const {}
 MpiSession::MpiSession(int&, char**&) {

@@ -38,6 +38,9 @@ public:
   /// Every rank's vector, concatenated in rank order, on every rank.
   std::vector<double> allGather(const std::vector<double>& mine) const;
   std::vector<std::int64_t> allGather(const std::vector<std::int64_t>& mine) const;
+  /// The same when every rank's count is known beforehand (counts[r] of rank r, the same vector on
+  /// every rank): one collective instead of two.
+  std::vector<double> allGather(const std::vector<double>& mine, const std::vector<int>& counts) const;
 
   /// Waits until every rank has come here.
   void barrier() const;

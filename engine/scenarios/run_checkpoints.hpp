@@ -10,7 +10,8 @@
 //
 // On several ranks (docs/distributed.md) each rank keeps its own checkpoint, of its own copy of the
 // result and its own state (io::rankCheckpointPath), and every decision is taken by all of them at
-// once: poll() is collective, and a rank's wish to checkpoint or to stop is every rank's.
+// once: poll() is collective every 16th step, and a rank's wish to checkpoint or to stop is every
+// rank's.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -53,7 +54,8 @@ public:
   void endRestore();
 
   enum class Action { Continue, Stop };
-  /// At the top of every step (collective on several ranks): Stop when cancelled (after a checkpoint when RunControl asks for
+  /// At the top of every step (collective on several ranks at every 16th step, when their wishes are
+  /// agreed; a cancel waits for it): Stop when cancelled (after a checkpoint when RunControl asks for
   /// one and the interval is not 0) or at RunControl::stopAtStep (after a checkpoint); a checkpoint
   /// when the interval is up. A checkpoint that cannot be written is logged, not thrown.
   Action poll(std::uint64_t step, double time);

@@ -22,6 +22,10 @@ TensionStepObservables::TensionStepObservables(const TensionLoading& loading, co
         m_faceOf.push_back(face);
       }
   m_probeHere = ownedHere(loading.probe());
+  // The records a rank sends never change in number (below), so each step's gather is one collective.
+  const auto mine = static_cast<std::int64_t>(3 * (m_facesHere.size() + (m_probeHere >= 0 ? 1 : 0) + 1));
+  for (std::int64_t count : part->communicator().allGather(std::vector<std::int64_t>{mine}))
+    m_recordCounts.push_back(static_cast<int>(count));
 }
 
 TensionStep TensionStepObservables::measure(const BondedSystem& stepped, bool cancelHere) const {
@@ -35,7 +39,7 @@ TensionStep TensionStepObservables::measure(const BondedSystem& stepped, bool ca
     mine.insert(mine.end(), {m_faceOf[t], static_cast<double>(m_facesWhole[t]), p.fx[m_facesHere[t]]});
   if (m_probeHere >= 0) mine.insert(mine.end(), {2.0, static_cast<double>(m_loading.probe()), p.x[m_probeHere]});
   mine.insert(mine.end(), {3.0, cancelHere ? 1.0 : 0.0, static_cast<double>(m_part->brokenLastStepHere())});
-  const std::vector<double> all = m_part->communicator().allGather(mine);
+  const std::vector<double> all = m_part->communicator().allGather(mine, m_recordCounts);
   std::vector<std::array<double, 3>> records(all.size() / 3);
   for (std::size_t r = 0; r < records.size(); ++r) records[r] = {all[3 * r], all[3 * r + 1], all[3 * r + 2]};
   std::sort(records.begin(), records.end(),

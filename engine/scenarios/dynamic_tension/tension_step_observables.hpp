@@ -26,6 +26,7 @@ struct TensionStep {
 class TensionStepObservables {
 public:
   /// part: the sub-domain this rank steps, or nullptr on one process. Both must outlive this.
+  /// Collective on several ranks (each rank's record count, gathered once).
   TensionStepObservables(const TensionLoading& loading, const Subdomain* part);
 
   /// After a step of `stepped` (the whole system, or part's). Collective on several ranks.
@@ -39,6 +40,7 @@ private:
   std::vector<std::int32_t> m_facesHere, m_facesWhole;  // owned face elements: local, whole-sample indices
   std::vector<double> m_faceOf;                         // 0: X_min, 1: X_max
   std::int32_t m_probeHere = -1;                        // local index of the probe when owned here
+  std::vector<int> m_recordCounts;                      // doubles each rank gathers a step (fixed)
 };
 
 }  // namespace rupture
