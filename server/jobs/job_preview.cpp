@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <optional>
 
 #include "jobs/cost_model.hpp"
@@ -43,7 +42,10 @@ Json jobPreview(const std::string& scenario, const NewJob& job, const std::vecto
       swept[job.sweptPaths[a].get<std::string>()] = f.swept[a];
     const std::optional<double> s = estimatedRunSeconds(scenario, e, threads);
     timed = timed && s.has_value();
-    if (s) seconds.push_back(*s), slots.push_back(e.ranks);
+    if (s) {
+      seconds.push_back(*s);
+      slots.push_back(e.ranks);
+    }
     auto estimateOrNull = [](double v) { return v > 0 && std::isfinite(v) ? Json(v) : Json(nullptr); };
     runs.push_back({{"index", k},
                     {"swept", swept},

@@ -71,8 +71,8 @@ struct PreliminaryProgress {
 /// Runs the preliminary test on a copy of `initial` (a freshly built sample at rest, initialised),
 /// or, on several ranks, on this rank's sub-domain of it (collective; the same result on every
 /// rank, the one-process result bit for bit). Returns nullopt if control.cancel was set (on any
-/// rank: every rank stops at the same step). `progress` receives where it is about every 0.1 s of wall
-/// time, and once at its end (endTime = time).
+/// rank: every rank stops at the same step). `progress` receives where it is about every 0.1 s of
+/// wall time, and once at its end (endTime = time).
 /// Throws SpecError (field loading.vh_capture_strain: a bond broke before it, or it is reached
 /// before the end of the ramp) or std::runtime_error (no bond broke within the guards, or the first
 /// break came before a post-ramp field below half its strain was kept).
