@@ -47,16 +47,20 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
   // (its loads at t = 0 evaluated again, as the builder evaluated the whole sample's), and every
   // step's strain, face stresses and breaks are gathered in the whole sample's order: the run, its
   // capture and its fit are the one-process ones bit for bit (docs/distributed.md).
+  // (No copy of the whole sample there: a rank holds its part beside `initial`.)
+  TensionLoading loading(geometry, params.strainRate, params.rampTime);
   std::optional<Subdomain> part;
+  std::optional<BondedSystem> copy;  // one process: the sample pulled
   if (comm.size() > 1) {
     part.emplace(initial, bisectCoordinates(initial.particles, initial.bonds, comm.size()), comm);
     part->system.initialize();
+    loading.setReference(initial.particles);
+    loading.prescribeFaces(part->system, part->localMembers(geometry.xmin), part->localMembers(geometry.xmax));
+  } else {
+    copy.emplace(initial);
+    loading.install(*copy);
   }
-  BondedSystem system = initial;
-  TensionLoading loading(geometry, params.strainRate, params.rampTime);
-  loading.install(system);
-  if (part) loading.prescribeFaces(part->system, part->localMembers(geometry.xmin), part->localMembers(geometry.xmax));
-  BondedSystem& stepped = part ? part->system : system;
+  BondedSystem& stepped = part ? part->system : *copy;
   const TensionStepObservables observe(loading, part ? &*part : nullptr);
   const double dt = params.timeStep;
 

@@ -80,9 +80,11 @@ TensionLoading::TensionLoading(TensionGeometry geometry, double strainRate, doub
 }
 
 void TensionLoading::install(BondedSystem& system) {
-  m_probeX0 = system.particles.x[m_probe];
+  setReference(system.particles);
   prescribeFaces(system, m_geometry.xmin, m_geometry.xmax);
 }
+
+void TensionLoading::setReference(const ParticleStore& reference) { m_probeX0 = reference.x[m_probe]; }
 
 void TensionLoading::prescribeFaces(BondedSystem& system, std::vector<std::int32_t> xmin,
                                     std::vector<std::int32_t> xmax) const {

@@ -66,8 +66,12 @@ public:
   /// Marks the x-velocity of the face elements as prescribed and installs system.prescribe.
   /// Call with the positions of the reference (undeformed) state: strain() is measured from them.
   void install(BondedSystem& system);
+  /// Only the reference of strain(): the probe's abscissa in `reference` (the whole sample,
+  /// undeformed), for a caller that prescribes the faces on a sub-domain (prescribeFaces) and
+  /// never installs the loading on the whole sample.
+  void setReference(const ParticleStore& reference);
   /// The same prescription on a sub-domain, whose face elements are `xmin` and `xmax` in its own
-  /// numbering (distributed/subdomain.hpp): install() on the whole sample first.
+  /// numbering (distributed/subdomain.hpp): install() on the whole sample, or setReference(), first.
   void prescribeFaces(BondedSystem& part, std::vector<std::int32_t> xmin, std::vector<std::int32_t> xmax) const;
 
   /// ε from the X_max face displacement (1).
