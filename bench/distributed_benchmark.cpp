@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   int steps = 1000;
   std::string workload = "W2";
   long long particles = 102400;  // W1's size; W2's block is fixed
+  bool particlesGiven = false;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--steps") == 0 && a + 1 < argc) {
       steps = std::atoi(argv[++a]);
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
       workload = argv[++a];
     } else if (std::strcmp(argv[a], "--particles") == 0 && a + 1 < argc) {
       particles = std::atoll(argv[++a]);
+      particlesGiven = true;
     } else {
       std::cerr << "usage: distributed_bench [--workload W1|W2] [--particles N (W1)] [--steps N]   (under mpirun -np RANKS)\n";
       return 2;
@@ -50,6 +52,10 @@ int main(int argc, char** argv) {
   }
   if (workload != "W1" && workload != "W2") {
     std::cerr << "--workload: " << workload << " is not allowed (W1 or W2)\n";
+    return 2;
+  }
+  if (particlesGiven && workload != "W1") {
+    std::cerr << "--particles: not allowed with " << workload << " (its block is fixed; W1 scales)\n";
     return 2;
   }
   if (particles < 1000 || particles > 100'000'000) {

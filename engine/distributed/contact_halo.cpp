@@ -230,18 +230,20 @@ void ContactHalo::exchangeState(StateArchive& archive) {
       radius.size() != appended.size() || mass.size() != appended.size() || inertia.size() != appended.size())
     throw CheckpointError("the checkpoint's contact ghosts were saved for another rank count");
   // A damaged file must not index outside the sub-domain.
-  auto total = [](const std::vector<std::int32_t>& counts) {
-    std::int64_t sum = 0;
-    for (std::int32_t c : counts) sum += c < 0 ? -(std::int64_t{1} << 40) : c;
-    return sum;
+  auto countsAdd = [](const std::vector<std::int32_t>& counts, std::size_t listed) {
+    std::size_t sum = 0;
+    for (std::int32_t c : counts) {
+      if (c < 0) return false;
+      sum += static_cast<std::size_t>(c);
+    }
+    return sum == listed;
   };
   const auto size = static_cast<std::int32_t>(m_base + appended.size());
   auto outside = [size](const std::vector<std::int32_t>& v) {
     return std::any_of(v.begin(), v.end(), [size](std::int32_t k) { return k < 0 || k >= size; });
   };
-  if (total(sendCounts) != static_cast<std::int64_t>(sends.size()) ||
-      total(receiveCounts) != static_cast<std::int64_t>(receivesFlat.size()) || outside(sends) || outside(receivesFlat) ||
-      !std::is_sorted(appended.begin(), appended.end()))
+  if (!countsAdd(sendCounts, sends.size()) || !countsAdd(receiveCounts, receivesFlat.size()) || outside(sends) ||
+      outside(receivesFlat) || !std::is_sorted(appended.begin(), appended.end()))
     throw CheckpointError("the checkpoint's contact ghosts' lists are inconsistent");
   for (std::size_t r = 0, s = 0, t = 0; r < m_send.size(); ++r) {
     m_send[r].assign(sends.begin() + static_cast<std::ptrdiff_t>(s), sends.begin() + static_cast<std::ptrdiff_t>(s + sendCounts[r]));

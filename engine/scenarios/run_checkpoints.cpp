@@ -169,27 +169,20 @@ RunCheckpoints::Action RunCheckpoints::poll(std::uint64_t step, double time) {
   constexpr std::uint64_t kEvery = 16;
   const bool stopStep = m_control.stopAtStep >= 0 && static_cast<std::int64_t>(step) >= m_control.stopAtStep;
   int wish = 0;
-  if (m_control.cancel.load(std::memory_order_relaxed)) {
+  if (stopStep) {
+    wish = kStop | kWrite;  // asked for a checkpoint at that step, cancelled or not
+  } else if (m_control.cancel.load(std::memory_order_relaxed)) {
     wish = kStop | (m_control.checkpointOnCancel.load() && m_interval > 0 ? kWrite : 0);
-  } else if (stopStep) {
-    wish = kStop | kWrite;
   } else if (m_interval > 0 && step % kEvery == 0 && Clock::now() - m_last >= std::chrono::duration<double>(m_interval)) {
     wish = kWrite;
   }
-  if (m_comm.size() > 1) {
-    if (stopStep) {
-      // The same step on every rank (--stop-at-step is every rank's argument): stop and write there,
-      // whatever else a rank wishes, without asking the others.
-      wish = kStop | kWrite;
-    } else if (step % kEvery != 0) {
-      // The ranks agree every 16 steps, not every step: one collective fewer a step, for a cancel
-      // that takes 16 steps more (a cancel flag stays set until then).
-      return Action::Continue;
-    } else {
-      // Every rank does what the most any rank wishes: a stop wins over a checkpoint of the interval
-      // alone (3 > 2 > 1), so the ranks' checkpoints are always of the same step.
-      wish = static_cast<int>(m_comm.max(static_cast<double>(wish)));
-    }
+  // On several ranks --stop-at-step, every rank's argument, is decided by each alone at the same
+  // step. The rest is agreed every 16 steps, not every step (a cancel flag stays set until then):
+  // every rank does what the most any rank wishes, a stop winning over a checkpoint of the interval
+  // alone (3 > 2 > 1), so the ranks' checkpoints are always of the same step.
+  if (m_comm.size() > 1 && !stopStep) {
+    if (step % kEvery != 0) return Action::Continue;
+    wish = static_cast<int>(m_comm.max(static_cast<double>(wish)));
   }
   if (wish & kWrite) tryWrite(step, time);
   return (wish & kStop) ? Action::Stop : Action::Continue;

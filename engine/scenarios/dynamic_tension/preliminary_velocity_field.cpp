@@ -61,7 +61,8 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
     loading.install(*copy);
   }
   BondedSystem& stepped = part ? part->system : *copy;
-  const TensionStepObservables observe(loading, part ? &*part : nullptr);
+  const Subdomain* const partHere = part ? &*part : nullptr;
+  const TensionStepObservables observe(loading, partHere);
   const double dt = params.timeStep;
 
   // Per-step record after the ramp, for the modulus fit and the equilibrium check.
@@ -96,12 +97,12 @@ std::optional<PreliminaryResult> runPreliminary(const BondedSystem& initial, con
     if (afterRamp) record.push_back({strain, now.stress.xmin, now.stress.xmax, now.stress.mean});
     if (params.captureStrain) {
       if (strain >= *params.captureStrain) {
-        captured = SavedField{copyVelocities(stepped, part ? &*part : nullptr), strain, time,
+        captured = SavedField{copyVelocities(stepped, partHere), strain, time,
                               loading.ramp().velocity(time), steps};
         break;
       }
     } else if (afterRamp && strain >= nextLevel) {
-      ladder.push_back({copyVelocities(stepped, part ? &*part : nullptr), strain, time,
+      ladder.push_back({copyVelocities(stepped, partHere), strain, time,
                         loading.ramp().velocity(time), steps});
       nextLevel = strain * kLadder;
       // The target ½ ε_onset is at least ½ ε now: keep the largest field below ½ ε and those above.
