@@ -30,6 +30,26 @@ bool movesInPlane(const ParticleStore& p, const BondStore& bonds) {
 
 }  // namespace
 
+BondedSystem BondedSystem::withoutElements() const {
+  BondedSystem out;
+  out.particles.dimension = particles.dimension;
+  out.model = model;
+  out.beam = beam;
+  out.contact = HertzContact(contact.parameters());
+  out.prescribe = prescribe;
+  out.externalLoads = externalLoads;
+  out.refreshGhosts = refreshGhosts;
+  out.localDamping = localDamping;
+  out.bondDamping = bondDamping;
+  out.dampingWaveSpeed = dampingWaveSpeed;
+  out.centralLoop = centralLoop;
+  out.compactCentralList = compactCentralList;
+  out.time = time;
+  out.steps = steps;
+  out.brokenLastStep = brokenLastStep;
+  return out;  // the rest (the damage index, the loop's lists) is initialize's
+}
+
 void BondedSystem::initialize() {
   m_loadTime = time;
   m_planar = movesInPlane(particles, bonds);

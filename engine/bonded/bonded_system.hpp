@@ -62,6 +62,12 @@ public:
   /// The bonds that broke in the last force evaluation (brokenLastStep of them), in bond order.
   const std::vector<std::size_t>& bondsBrokenLastStep() const { return m_brokenNow; }
 
+  /// A system with this one's model, parameters, callbacks and clock, and no particles, bonds or
+  /// contacts (its contact's parameters only): the start of a sub-domain, which takes its own
+  /// particles and bonds (distributed/subdomain.hpp) without a copy of the whole sample. Call
+  /// initialize on it once it has them.
+  BondedSystem withoutElements() const;
+
   /// Prepares the per-step arrays and evaluates the loads at t = 0. Call once the sample is built.
   void initialize();
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -99,6 +100,33 @@ void BondStore::renumber(const std::vector<std::int32_t>& newIndex) {
     pair.i = newIndex[pair.i];
     pair.j = newIndex[pair.j];
   }
+}
+
+BondStore BondStore::subset(const std::vector<std::uint8_t>& keep, const std::vector<std::int32_t>& newIndex) const {
+  if (keep.size() != size()) throw std::logic_error("BondStore::subset: keep flags of the wrong size");
+  std::vector<std::size_t> kept;
+  for (std::size_t b = 0; b < size(); ++b)
+    if (keep[b] && newIndex[i[b]] >= 0 && newIndex[j[b]] >= 0) kept.push_back(b);
+  BondStore out;
+  out.i.reserve(kept.size());
+  out.j.reserve(kept.size());
+  for (std::size_t b : kept) {
+    out.i.push_back(newIndex[i[b]]);
+    out.j.push_back(newIndex[j[b]]);
+  }
+  std::vector<std::vector<double>> arrays;
+  forEachReferenceArrayOf(*this, hasFibres(), [&](const std::vector<double>& v) {
+    std::vector<double>& copy = arrays.emplace_back();
+    copy.reserve(kept.size());
+    for (std::size_t b : kept) copy.push_back(v[b]);
+  });
+  std::size_t next = 0;
+  forEachReferenceArrayOf(out, hasFibres(), [&](std::vector<double>& v) { v = std::move(arrays[next++]); });
+  for (const CutPair& pair : cutPairs) {
+    const std::int32_t a = newIndex[pair.i], c = newIndex[pair.j];
+    if (a >= 0 && c >= 0) out.cutPairs.push_back({a, c, pair.restLength});
+  }
+  return out;
 }
 
 void BondStore::filter(const std::vector<std::uint8_t>& keep) {

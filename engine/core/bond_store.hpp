@@ -77,6 +77,11 @@ struct BondStore {
   /// bonds are sorted by (i, j). Call before finalize.
   void renumber(const std::vector<std::int32_t>& newIndex);
 
+  /// The bonds with keep[b] != 0 whose two ends newIndex keeps (ParticleStore::subset's numbering:
+  /// old -> new, -1 if removed), renumbered, in order, with their reference state, and the cut
+  /// pairs whose two ends it keeps; this store is unchanged. Call finalize on the result.
+  BondStore subset(const std::vector<std::uint8_t>& keep, const std::vector<std::int32_t>& newIndex) const;
+
   /// Keeps only the bonds with keep[b] != 0, in order (call before finalize).
   void filter(const std::vector<std::uint8_t>& keep);
 
@@ -89,6 +94,19 @@ struct BondStore {
   /// Number of intact bonds per particle.
   std::vector<int> coordination(std::size_t particleCount) const;
 
+  /// Calls f on every per-bond reference array of s (all but i and j), a store or a const store,
+  /// the fibres' arrays with `fibres`: the one list that moveBond, truncate, renumber, subset and a
+  /// sub-domain's transfer share.
+  template <class Store, class F>
+  static void forEachReferenceArrayOf(Store& s, bool fibres, F&& f) {
+    for (auto* v : {&s.restLength, &s.n0x, &s.n0y, &s.n0z, &s.intact, &s.stiffness, &s.threshold, &s.strength}) f(*v);
+    if (fibres)
+      for (std::size_t c = 0; c < s.fibreFactor.size(); ++c) {
+        f(s.fibreFactor[c]);
+        f(s.fibreIntegrity[c]);
+      }
+  }
+
 private:
   /// Copies bond `from`'s reference state (all but i, j) onto slot `to` (to <= from), for remap/filter.
   void moveBond(std::size_t from, std::size_t to);
@@ -98,12 +116,7 @@ private:
   /// renumber share.
   template <class F>
   void forEachReferenceArray(F&& f) {
-    for (auto* v : {&restLength, &n0x, &n0y, &n0z, &intact, &stiffness, &threshold, &strength}) f(*v);
-    if (hasFibres())
-      for (std::size_t c = 0; c < fibreFactor.size(); ++c) {
-        f(fibreFactor[c]);
-        f(fibreIntegrity[c]);
-      }
+    forEachReferenceArrayOf(*this, hasFibres(), f);
   }
 };
 

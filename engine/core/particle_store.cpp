@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 namespace rupture {
 
@@ -32,6 +34,33 @@ std::vector<std::int32_t> ParticleStore::compact(const std::vector<std::uint8_t>
   };
   forEachArray(squeeze);
   return newIndex;
+}
+
+ParticleStore ParticleStore::subset(const std::vector<std::uint8_t>& keep) const {
+  const std::size_t n = size();
+  if (keep.size() != n) throw std::logic_error("ParticleStore::subset: keep flags of the wrong size");
+  const auto count = static_cast<std::size_t>(std::count_if(keep.begin(), keep.end(), [](std::uint8_t k) { return k != 0; }));
+  // Each array's kept entries, in the list's order; then moved into the new store's arrays.
+  std::vector<std::vector<double>> doubles;
+  std::vector<std::uint8_t> dofs;
+  forEachArrayOf(*this, [&](const auto& field) {
+    std::decay_t<decltype(field)> kept;
+    if (!field.empty()) {
+      kept.reserve(count);
+      for (std::size_t k = 0; k < n; ++k)
+        if (keep[k]) kept.push_back(field[k]);
+    }
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::vector<double>>) doubles.push_back(std::move(kept));
+    else dofs = std::move(kept);
+  });
+  ParticleStore out;
+  out.dimension = dimension;
+  std::size_t next = 0;
+  forEachArrayOf(out, [&](auto& field) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::vector<double>>) field = std::move(doubles[next++]);
+    else field = std::move(dofs);
+  });
+  return out;
 }
 
 void ParticleStore::resize(std::size_t n) {

@@ -42,6 +42,11 @@ struct ParticleStore {
   /// Keeps only the particles with keep[k] != 0, in order; returns old index -> new index (-1 if removed).
   std::vector<std::int32_t> compact(const std::vector<std::uint8_t>& keep);
 
+  /// The particles with keep[k] != 0, in order, each of their arrays copied (an array still empty
+  /// stays empty); this store is unchanged. A sub-domain's particles, cut without a copy of the
+  /// whole sample (distributed/subdomain.hpp).
+  ParticleStore subset(const std::vector<std::uint8_t>& keep) const;
+
   /// Grows or shrinks every per-particle array to n (the arrays still empty stay empty); new
   /// particles are zero, with identity orientation. For a sub-domain's ghosts by distance, which
   /// come and go after the particles its bonds know (distributed/contact_halo.hpp).
@@ -59,14 +64,20 @@ struct ParticleStore {
   /// The arrays a step changes (kinematics, loads); the constant ones are the set-up's.
   void exchangeState(StateArchive& archive);
 
+  /// Calls f on every per-particle array of s (all but dimension), a store or a const store: the
+  /// one list that compact, permute, subset and a sub-domain's transfer share.
+  template <class Store, class F>
+  static void forEachArrayOf(Store& s, F&& f) {
+    for (auto* v : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz, &s.qw, &s.qx, &s.qy, &s.qz, &s.wx,
+                    &s.wy, &s.wz, &s.tx, &s.ty, &s.tz, &s.radius, &s.mass, &s.inertia, &s.volume})
+      f(*v);
+    f(s.fixedDofs);
+  }
+
 private:
-  /// Calls f on every per-particle array (all but dimension): the one list compact and permute share.
   template <class F>
   void forEachArray(F&& f) {
-    for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &qw, &qx, &qy, &qz, &wx, &wy, &wz, &tx, &ty, &tz,
-                    &radius, &mass, &inertia, &volume})
-      f(*v);
-    f(fixedDofs);
+    forEachArrayOf(*this, f);
   }
 };
 

@@ -7,12 +7,18 @@
 #ifdef RUPTURE_HAVE_MPI
 #include <mpi.h>
 #endif
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace rupture {
 
 #ifdef RUPTURE_HAVE_MPI
 
 namespace {
+
+/// Blocks this large or larger get their own mapping on several ranks (MpiSession).
+constexpr int kOwnMappingBytes = 1 << 20;
 
 bool mpiRunning() {
   int initialised = 0, finalised = 0;
@@ -38,6 +44,22 @@ std::vector<T> gatherConcatenated(const std::vector<T>& mine, MPI_Datatype type,
   std::vector<T> all(total);
   check(MPI_Allgatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, MPI_COMM_WORLD),
         "MPI_Allgatherv");
+  return all;
+}
+
+template <class T>
+std::vector<T> gatherConcatenatedToFirst(const std::vector<T>& mine, MPI_Datatype type, int rank, int size) {
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(rank == 0 ? size : 0), offsets(rank == 0 ? size : 0);
+  check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<T> all(total);
+  check(MPI_Gatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, MPI_COMM_WORLD),
+        "MPI_Gatherv");
   return all;
 }
 
@@ -117,6 +139,23 @@ std::vector<double> Communicator::allGather(const std::vector<double>& mine, con
   return all;
 }
 
+std::vector<double> Communicator::gatherToFirst(const std::vector<double>& mine) const {
+  if (m_size == 1) return mine;
+  return gatherConcatenatedToFirst(mine, MPI_DOUBLE, m_rank, m_size);
+}
+
+std::vector<std::int64_t> Communicator::gatherToFirst(const std::vector<std::int64_t>& mine) const {
+  if (m_size == 1) return mine;
+  return gatherConcatenatedToFirst(mine, MPI_INT64_T, m_rank, m_size);
+}
+
+bool Communicator::broadcastFromFirst(bool value) const {
+  if (m_size == 1) return value;
+  int flag = value ? 1 : 0;
+  check(MPI_Bcast(&flag, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  return flag != 0;
+}
+
 void Communicator::barrier() const {
   if (m_size > 1) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
@@ -128,6 +167,17 @@ MpiSession::MpiSession(int& argc, char**& argv) {
     MPI_Finalize();
     throw std::runtime_error("MPI: this MPI library does not let one thread at a time call it (MPI_THREAD_SERIALIZED)");
   }
+#ifdef __GLIBC__
+  // Under an MPI launcher, every block of 1 MiB or more in its own mapping (glibc's threshold fixed
+  // instead of its dynamic one, which rises as large blocks are freed and then serves them from the
+  // heap). Two reasons, both measured (docs/distributed.md): the whole sample a rank drops once its
+  // sub-domain is cut goes back to the system at once (from the heap it stayed resident), and the
+  // sub-domain's per-bond arrays all start 16 bytes into a page, so that the vectorised bond loop
+  // peels once to align all its streams (from the heap, at scattered offsets, W1's steps on two
+  // ranks took 14.0 s instead of 11.0 s). On one rank too, so that a one-rank reference is cut and
+  // placed as each of several ranks is.
+  mallopt(M_MMAP_THRESHOLD, kOwnMappingBytes);
+#endif
 }
 
 MpiSession::~MpiSession() {
@@ -151,6 +201,9 @@ double Communicator::max(double value) const { return value; }
 std::vector<double> Communicator::allGather(const std::vector<double>& mine) const { return mine; }
 std::vector<double> Communicator::allGather(const std::vector<double>& mine, const std::vector<int>&) const { return mine; }
 std::vector<std::int64_t> Communicator::allGather(const std::vector<std::int64_t>& mine) const { return mine; }
+std::vector<double> Communicator::gatherToFirst(const std::vector<double>& mine) const { return mine; }
+std::vector<std::int64_t> Communicator::gatherToFirst(const std::vector<std::int64_t>& mine) const { return mine; }
+bool Communicator::broadcastFromFirst(bool value) const { return value; }
 void Communicator::barrier() const {}
 MpiSession::MpiSession(int&, char**&) {
   // N copies of a one-rank run would each write the whole result to the same file.

@@ -42,6 +42,13 @@ public:
   /// every rank): one collective instead of two.
   std::vector<double> allGather(const std::vector<double>& mine, const std::vector<int>& counts) const;
 
+  /// Every rank's vector, concatenated in rank order, on the first rank; empty on the others (the
+  /// outputs, which only the first rank computes and writes).
+  std::vector<double> gatherToFirst(const std::vector<double>& mine) const;
+  std::vector<std::int64_t> gatherToFirst(const std::vector<std::int64_t>& mine) const;
+  /// The first rank's value, on every rank (a decision only the first rank can take).
+  bool broadcastFromFirst(bool value) const;
+
   /// Waits until every rank has come here.
   void barrier() const;
 
@@ -52,7 +59,9 @@ private:
 
 /// Initialises MPI for the life of the object and finalises it; does nothing without MPI. One per
 /// process, in main. Serialized: one thread at a time calls MPI (the CLI runs a spec on a worker
-/// thread while its main thread draws the progress; OpenMP threads never call MPI).
+/// thread while its main thread draws the progress; OpenMP threads never call MPI). It also gives
+/// every block of 1 MiB or more its own mapping (glibc's mmap threshold), so that memory a rank
+/// frees goes back to the system and large arrays start alike within a page.
 class MpiSession {
 public:
   MpiSession(int& argc, char**& argv);

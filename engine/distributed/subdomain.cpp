@@ -18,17 +18,13 @@ void sortUnique(std::vector<std::int32_t>& v) {
 
 }  // namespace
 
-Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm) : m_comm(comm) {
-  const int me = comm.rank();
+SubdomainPiece SubdomainPiece::cut(const BondedSystem& whole, const std::vector<int>& owner, int me) {
   const std::size_t n = whole.particles.size();
   if (owner.size() != n)
     throw std::invalid_argument("Subdomain: " + std::to_string(owner.size()) + " owners for " + std::to_string(n) +
                                 " particles");
-  if (whole.bondDamping > 0 && comm.size() > 1)
-    throw std::invalid_argument("material.local_damping: " + std::to_string(whole.bondDamping) +
-                                " is not supported on more than one rank yet (it reads the partners' damage "
-                                "index); set it to 0 or run on one rank");
-  m_wholeSize = n;
+  SubdomainPiece piece;
+  piece.wholeSize = n;
 
   // Owned particles, ghosts, and what each neighbour sends and receives (global indices).
   std::vector<std::uint8_t> keep(n, 0);
@@ -50,54 +46,75 @@ Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, C
     }
   }
 
-  system = whole;
-  system.prescribe = nullptr;
-  system.externalLoads = nullptr;
-  const std::vector<std::int32_t> local = system.particles.compact(keep);
-  system.bonds.remap(local);
-  m_global.reserve(system.particles.size());
+  // Only the kept particles and bonds are copied: a rank never holds a second whole sample.
+  std::vector<std::int32_t> local(n, -1);
   for (std::size_t k = 0; k < n; ++k)
-    if (local[k] >= 0) m_global.push_back(static_cast<std::int32_t>(k));
-  m_owned.resize(m_global.size());
-  for (std::size_t k = 0; k < m_global.size(); ++k) m_owned[k] = owner[m_global[k]] == me;
-  m_ownedCount = static_cast<std::size_t>(std::count(m_owned.begin(), m_owned.end(), 1));
-  // A bond between two ghosts is their owners' to evaluate.
-  std::vector<std::uint8_t> keepBond(system.bonds.size());
-  for (std::size_t b = 0; b < keepBond.size(); ++b)
-    keepBond[b] = m_owned[system.bonds.i[b]] || m_owned[system.bonds.j[b]];
-  system.bonds.filter(keepBond);
-  m_gatheredIntact = system.bonds.intact;
-  // The same selection in the whole sample's bond order: remap kept the bonds with both ends here, in order.
-  for (std::size_t b = 0, kept = 0; b < wb.size(); ++b) {
-    if (!keep[wb.i[b]] || !keep[wb.j[b]]) continue;
-    if (keepBond[kept++]) m_globalBond.push_back(static_cast<std::int64_t>(b));
-  }
+    if (keep[k]) {
+      local[k] = static_cast<std::int32_t>(piece.global.size());
+      piece.global.push_back(static_cast<std::int32_t>(k));
+    }
+  piece.owned.resize(piece.global.size());
+  for (std::size_t k = 0; k < piece.global.size(); ++k) piece.owned[k] = owner[piece.global[k]] == me;
+  // The bonds with an owned end (a bond between two ghosts is their owners' to evaluate), in the
+  // whole sample's order.
+  std::vector<std::uint8_t> keepBond(wb.size(), 0);
+  for (std::size_t b = 0; b < wb.size(); ++b)
+    if (owner[wb.i[b]] == me || owner[wb.j[b]] == me) {
+      keepBond[b] = 1;
+      piece.globalBond.push_back(static_cast<std::int64_t>(b));
+    }
+  piece.particles = whole.particles.subset(keep);
+  piece.bonds = whole.bonds.subset(keepBond, local);
 
-  std::vector<Halo::Neighbour> neighbours;
   for (auto& [rank, nb] : lists) {
     nb.rank = rank;
     for (auto* v : {&nb.send, &nb.receive}) {
       sortUnique(*v);
       for (std::int32_t& k : *v) k = local[k];
     }
-    neighbours.push_back(std::move(nb));
+    piece.neighbours.push_back(std::move(nb));
   }
+  // For contact: the pre-cracked pairs with an owned end, in the whole sample's indices (their other
+  // end may come and go as a ghost by distance), and the radii the one-process search takes its skin from.
+  for (const BondStore::CutPair& c : wb.cutPairs)
+    if (owner[c.i] == me || owner[c.j] == me) piece.cutPairs.push_back(c);
+  const HertzContact::Radii radii = HertzContact::radiiOf(whole.particles);
+  piece.meanRadius = radii.mean;
+  piece.maxRadius = radii.max;
+  return piece;
+}
+
+Subdomain::Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm)
+    : Subdomain(whole.withoutElements(), SubdomainPiece::cut(whole, owner, comm.rank()), comm) {}
+
+Subdomain::Subdomain(BondedSystem configuration, SubdomainPiece piece, Communicator comm) : m_comm(comm) {
+  if (configuration.bondDamping > 0 && comm.size() > 1)
+    throw std::invalid_argument("material.local_damping: " + std::to_string(configuration.bondDamping) +
+                                " is not supported on more than one rank yet (it reads the partners' damage "
+                                "index); set it to 0 or run on one rank");
+  m_wholeSize = piece.wholeSize;
+  m_global = std::move(piece.global);
+  m_owned = std::move(piece.owned);
+  m_globalBond = std::move(piece.globalBond);
+  m_ownedCount = static_cast<std::size_t>(std::count(m_owned.begin(), m_owned.end(), 1));
+  system = std::move(configuration);
+  system.prescribe = nullptr;
+  system.externalLoads = nullptr;
+  system.particles = std::move(piece.particles);
+  system.bonds = std::move(piece.bonds);
+  m_gatheredIntact = system.bonds.intact;
+
   const bool rotations =
-      whole.visitModel([](const auto& law, const auto&) { return std::decay_t<decltype(law)>::kRotational; });
-  m_halo = std::make_shared<Halo>(comm, std::move(neighbours), rotations);
-  if (!whole.contact.parameters().enabled) {
+      system.visitModel([](const auto& law, const auto&) { return std::decay_t<decltype(law)>::kRotational; });
+  m_halo = std::make_shared<Halo>(comm, std::move(piece.neighbours), rotations);
+  if (!system.contact.parameters().enabled) {
     system.refreshGhosts = [halo = m_halo](ParticleStore& p, std::vector<double>& nodalMinimum) {
       halo->refresh(p, nodalMinimum);
     };
     return;
   }
-  // Contact: the pre-cracked pairs with an owned end, in the whole sample's indices (their other end
-  // may come and go as a ghost by distance), and the radii the one-process search takes its skin from.
-  std::vector<BondStore::CutPair> cutPairs;
-  for (const BondStore::CutPair& c : wb.cutPairs)
-    if (owner[c.i] == me || owner[c.j] == me) cutPairs.push_back(c);
-  const HertzContact::Radii radii = HertzContact::radiiOf(whole.particles);
-  m_contactHalo = std::make_shared<ContactHalo>(comm, system, m_global, m_owned, std::move(cutPairs), radii.mean, radii.max);
+  m_contactHalo = std::make_shared<ContactHalo>(comm, system, m_global, m_owned, std::move(piece.cutPairs),
+                                                piece.meanRadius, piece.maxRadius);
   system.contact.setDomain(m_contactHalo);
   system.refreshGhosts = [halo = m_halo, contact = m_contactHalo](ParticleStore& p, std::vector<double>& nodalMinimum) {
     halo->refresh(p, nodalMinimum);
@@ -135,9 +152,10 @@ std::vector<double> Subdomain::gather(const std::vector<double>& local) const {
 }
 
 void Subdomain::gatherInto(BondedSystem& whole) const {
+  const bool first = m_comm.rank() == 0;
   ParticleStore& w = whole.particles;
   const ParticleStore& p = system.particles;
-  if (w.size() != m_wholeSize || whole.bonds.size() < m_globalBond.size())
+  if (first && (w.size() != m_wholeSize || whole.bonds.size() < m_globalBond.size()))
     throw std::logic_error("Subdomain::gatherInto: not the sample this sub-domain was cut from");
   constexpr std::size_t kArrays = 13;
   const std::array<std::vector<double>*, kArrays> wholeArrays{&w.x,  &w.y,  &w.z,  &w.vx, &w.vy, &w.vz, &w.qw,
@@ -154,8 +172,8 @@ void Subdomain::gatherInto(BondedSystem& whole) const {
     ids.push_back(m_global[k]);
     for (const auto* a : localArrays) values.push_back((*a)[k]);
   }
-  const std::vector<std::int64_t> allIds = m_comm.allGather(ids);
-  const std::vector<double> allValues = m_comm.allGather(values);
+  const std::vector<std::int64_t> allIds = m_comm.gatherToFirst(ids);
+  const std::vector<double> allValues = m_comm.gatherToFirst(values);
   for (std::size_t t = 0; t < allIds.size(); ++t)
     for (std::size_t a = 0; a < kArrays; ++a) (*wholeArrays[a])[allIds[t]] = allValues[kArrays * t + a];
   gatherBondsInto(whole);
@@ -168,15 +186,17 @@ void Subdomain::gatherInto(BondedSystem& whole) const {
     pairs.insert(pairs.end(), {t.first, t.second});
     energies.push_back(t.energy);
   }
-  const std::vector<std::int64_t> allPairs = m_comm.allGather(pairs);
-  const std::vector<double> allEnergies = m_comm.allGather(energies);
+  const std::vector<std::int64_t> allPairs = m_comm.gatherToFirst(pairs);
+  const std::vector<double> allEnergies = m_comm.gatherToFirst(energies);
+  if (!first) return;
   std::vector<HertzContact::EnergyTerm> terms(allEnergies.size());
   for (std::size_t t = 0; t < terms.size(); ++t) terms[t] = {allPairs[2 * t], allPairs[2 * t + 1], allEnergies[t]};
   whole.contact.adoptGatheredEnergy(HertzContact::sumEnergy(std::move(terms)));
 }
 
 void Subdomain::gatherBondsInto(BondedSystem& whole) const {
-  if (whole.bonds.size() < m_globalBond.size())
+  const bool first = m_comm.rank() == 0;
+  if (first && whole.bonds.size() < m_globalBond.size())
     throw std::logic_error("Subdomain::gatherBondsInto: not the sample this sub-domain was cut from");
   std::vector<std::int64_t> bondIds;
   std::vector<double> intact;
@@ -187,8 +207,9 @@ void Subdomain::gatherBondsInto(BondedSystem& whole) const {
       intact.push_back(b.intact[t]);
       m_gatheredIntact[t] = b.intact[t];
     }
-  const std::vector<std::int64_t> allBonds = m_comm.allGather(bondIds);
-  const std::vector<double> allIntact = m_comm.allGather(intact);
+  const std::vector<std::int64_t> allBonds = m_comm.gatherToFirst(bondIds);
+  const std::vector<double> allIntact = m_comm.gatherToFirst(intact);
+  if (!first) return;
   for (std::size_t t = 0; t < allBonds.size(); ++t) whole.bonds.intact[allBonds[t]] = allIntact[t];
   whole.brokenLastStep = 0;
   whole.adoptGatheredState(system.time, system.steps);

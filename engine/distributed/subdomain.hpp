@@ -11,7 +11,8 @@
 // contact list (contact_halo.hpp), appended after the particles the bonds know.
 //
 // Set up on every rank from the same whole sample (every rank builds it: the sample builders are
-// deterministic), then only the sub-domain is kept. What the decomposition does not carry yet, it
+// deterministic) and cut from it without a copy of it; only the first rank keeps the whole, into
+// which the outputs are gathered. What the decomposition does not carry yet, it
 // refuses by name: Silling's bond damping (it reads the partners' damage index).
 #include <array>
 #include <cstdint>
@@ -22,6 +23,7 @@
 #include "distributed/communicator.hpp"
 #include "distributed/contact_halo.hpp"
 #include "distributed/halo.hpp"
+#include "distributed/subdomain_piece.hpp"
 #include "rupture/state_archive.hpp"
 
 namespace rupture {
@@ -33,6 +35,10 @@ public:
   /// initialised or not; the sub-domain's system is not: set its `prescribe` and `externalLoads` in
   /// local indices (globalIndex, localOf) and call system.initialize() on every rank.
   Subdomain(const BondedSystem& whole, const std::vector<int>& owner, Communicator comm);
+  /// The same from this rank's piece (SubdomainPiece::cut, or scatterSubdomainPieces where only the
+  /// first rank built the sample) and the whole system's configuration (BondedSystem::withoutElements,
+  /// or broadcastConfiguration).
+  Subdomain(BondedSystem configuration, SubdomainPiece piece, Communicator comm);
   // The contact's ghosts refer to `system` in place.
   Subdomain(const Subdomain&) = delete;
   Subdomain& operator=(const Subdomain&) = delete;
@@ -67,10 +73,12 @@ public:
     return m_comm.sum(s);
   }
   /// Writes every rank's owned particles (kinematics and orientations) and the bonds whose end i it
-  /// owns and whose integrity changed since the last gather into `whole` (the sample this sub-domain was cut from, on every rank),
-  /// which then reads as the one-process system would at this step (BondedSystem::adoptGatheredState).
-  /// With contact, `whole` takes the contact energy of the ranks, summed in the one-process order.
-  /// Collective. Scenarios call it before each output and compute their observables on `whole`.
+  /// owns and whose integrity changed since the last gather into `whole` on the first rank (the
+  /// sample this sub-domain was cut from), which then reads as the one-process system would at this
+  /// step (BondedSystem::adoptGatheredState). With contact, `whole` takes the contact energy of the
+  /// ranks, summed in the one-process order. The other ranks only send: their `whole` is not read
+  /// or written, and may hold no elements (BondedSystem::withoutElements). Collective. Scenarios
+  /// call it before each output, which the first rank alone computes on `whole` and writes.
   void gatherInto(BondedSystem& whole) const;
   /// Only the bonds' part of gatherInto: the integrity of the bonds that changed since the last
   /// gather (for a connectivity check between outputs; the kinematics are not sent). Collective.

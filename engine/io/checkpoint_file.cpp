@@ -65,8 +65,8 @@ std::uintmax_t writeCheckpoint(ResultFile& partial, const std::string& path, con
                                const std::function<void(StateArchive&)>& save) {
   const std::string temporary = path + ".tmp";
   try {
-    // A discarded result (a rank of a decomposed run but the first) is the first rank's result,
-    // which the first rank's checkpoint holds: this one holds the rank's state alone.
+    // A discarded result (a rank of a decomposed run but the first) is empty: the first rank's
+    // checkpoint holds the result, this one the rank's state alone.
     if (!partial.discarded()) partial.copyTo(temporary);
     Hdf5File copy = partial.discarded() ? Hdf5File::create(temporary) : Hdf5File::openReadWrite(temporary);
     copy.remove(kCheckpointGroup);

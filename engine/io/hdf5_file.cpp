@@ -2,12 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <set>
 #include <string_view>
 #include <type_traits>
@@ -372,23 +368,6 @@ std::int64_t createOnCoreDriver(const std::string& path, bool backingStore) {
 Hdf5File Hdf5File::createBuffered(const std::string& path) { return Hdf5File(createOnCoreDriver(path, true), path); }
 
 Hdf5File Hdf5File::createInMemory(const std::string& name) { return Hdf5File(createOnCoreDriver(name, false), name); }
-
-Hdf5File Hdf5File::openInMemory(const std::string& path) {
-  silenceAutoPrint();
-  // Read here and handed over as an image: the file on disk is never opened by HDF5, so it takes no
-  // lock on it (other processes read it at the same time).
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<char> image((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw Hdf5Error("HDF5: cannot read file '" + path + "': " + std::strerror(errno));
-  if (image.empty()) throw Hdf5Error("HDF5: file '" + path + "' is empty or missing");
-  Handle fapl = writerFapl(path);
-  checkRc(H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, 0), path, "", "cannot select the in-memory driver");
-  checkRc(H5Pset_file_image(fapl.get(), const_cast<char*>(image.data()), image.size()), path, "", "cannot hand over the file's image");
-  // Named apart from the file: the core driver refuses to open an image under an existing name.
-  const std::string name = path + " (in memory)";
-  const hid_t id = H5Fopen(name.c_str(), H5F_ACC_RDWR, fapl.get());
-  return Hdf5File(checkId(id, path, "", "cannot open the file's image in memory"), name);
-}
 
 Hdf5File Hdf5File::openReadOnly(const std::string& path) {
   silenceAutoPrint();

@@ -32,9 +32,6 @@ public:
   /// A file held in memory only and never written (HDF5's core driver without a backing store):
   /// `name` only names it in error messages.
   static Hdf5File createInMemory(const std::string& name);
-  /// The file at `path` read into memory and changed there only (the core driver without a
-  /// backing store): a rank's discarded result continuing from its checkpoint.
-  static Hdf5File openInMemory(const std::string& path);
   static Hdf5File openReadOnly(const std::string& path);
   static Hdf5File openReadWrite(const std::string& path);
 

@@ -30,15 +30,6 @@ Hdf5File openPartial(const std::string& partPath, const std::string& continueFro
   }
 }
 
-/// A rank's checkpoint read into memory, for a discarded result that continues it.
-Hdf5File openInMemory(const std::string& checkpoint) {
-  try {
-    return Hdf5File::openInMemory(checkpoint);
-  } catch (const std::exception& e) {
-    throw CheckpointError("the checkpoint " + checkpoint + " cannot be read (" + e.what() + ")");
-  }
-}
-
 }  // namespace
 
 ResultFile::ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom)
@@ -59,9 +50,8 @@ ResultFile::ResultFile(std::string resultPath, const std::string& scenario, Dest
       m_partPath(destination == Destination::kDisk && !isCallersTemporary(m_resultPath) ? m_resultPath + ".part"
                                                                                        : m_resultPath),
       m_file(destination == Destination::kDisk ? openPartial(m_partPath, continueFrom)
-             : continueFrom.empty()            ? Hdf5File::createInMemory(m_resultPath + " (in memory)")
-                                               : openInMemory(continueFrom)),
-      m_continued(!continueFrom.empty()),
+                                               : Hdf5File::createInMemory(m_resultPath + " (in memory)")),
+      m_continued(destination == Destination::kDisk && !continueFrom.empty()),
       m_discarded(destination == Destination::kDiscarded) {
   if (m_continued) return;
   m_file.setAttribute("/", "scenario", scenario);

@@ -26,10 +26,10 @@ public:
   /// continues: copied onto RESULT.part and opened, nothing written; "" starts a new file.
   ResultFile(std::string resultPath, const std::string& scenario, const std::string& continueFrom = "");
   /// Where the file goes: on disk, or (kDiscarded) in memory only, never written: the ranks of a
-  /// decomposed run but the first run the same output code on the same gathered state.
+  /// decomposed run but the first, which write nothing into it (the first writes the outputs), keep
+  /// one for their checkpoints' sake.
   enum class Destination { kDisk, kDiscarded };
-  /// continueFrom: for kDiscarded, the first rank's checkpoint, whose copy of the result (the same
-  /// as every rank's) is read into memory and continued there; "" starts a new one.
+  /// continueFrom: as above, for kDisk; a kDiscarded result always starts empty.
   ResultFile(std::string resultPath, const std::string& scenario, Destination destination,
              const std::string& continueFrom = "");
   ~ResultFile();

@@ -38,7 +38,7 @@ public:
 
   bool resuming() const { return m_control.resume; }
   /// The checkpoint the result file continues from (ResultFile's continueFrom), "" for a new run.
-  /// On several ranks, every rank continues the first rank's copy (the result is the same on all).
+  /// On several ranks, the first rank's (only the first writes the result).
   std::string continueFrom() const { return resuming() ? m_firstRankPath : std::string(); }
 
   /// The result file and the function naming the run's state; call before restore() and poll().

@@ -84,8 +84,9 @@ Outcome runDecomposed(const BondedSystem& whole, const Loading& load, int steps,
     BondedSystem gathered = whole;
     load(gathered);
     gathered.initialize();
-    d.gatherInto(gathered);
-    o.contactEnergy = gathered.contact.energy(gathered.particles);
+    d.gatherInto(gathered);  // into the first rank's whole only: its energy sent to every rank
+    const double energy = comm.rank() == 0 ? gathered.contact.energy(gathered.particles) : 0.0;
+    o.contactEnergy = comm.sum(energy);  // one term and zeros: exact
     o.contactGhosts = static_cast<std::size_t>(comm.sum(static_cast<std::uint64_t>(d.contactHalo()->ghostCount())));
   }
   return o;
@@ -261,6 +262,72 @@ TEST(Subdomain, MomentumIsConservedToRoundOffThroughContactsAcrossTheRanks) {
   for (std::size_t k = 0; k < whole.particles.size(); ++k) scale += whole.particles.mass[k] * 5.0;
   const Outcome many = runDecomposed(whole, kHalvesTogether, 300, dt);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(many.momentum[a], 0.0, 1e-13 * scale) << "axis " << a;
+}
+
+TEST(Subdomain, IsCutFromTheWholeSampleWithEveryBondOfItsOwnedParticles) {
+  // The sub-domain copies only its particles and bonds (no copy of the whole sample): each is the
+  // whole's, with every array, and each bond with an owned end is there once, in the whole's order.
+  const BondedSystem whole = testing::pmbBlock(0.25);
+  const Communicator comm = Communicator::world();
+  const std::vector<int> owner = bisectCoordinates(whole.particles, whole.bonds, comm.size());
+  const Subdomain d(whole, owner, comm);
+  const ParticleStore &w = whole.particles, &p = d.system.particles;
+  const std::vector<std::int32_t>& g = d.globalIndex();
+  ASSERT_EQ(p.size(), g.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const auto wk = static_cast<std::size_t>(g[k]);
+    ASSERT_EQ(d.owns(k), owner[wk] == comm.rank()) << "particle " << wk;
+    EXPECT_EQ(p.x[k], w.x[wk]); EXPECT_EQ(p.y[k], w.y[wk]); EXPECT_EQ(p.z[k], w.z[wk]);
+    EXPECT_EQ(p.radius[k], w.radius[wk]); EXPECT_EQ(p.mass[k], w.mass[wk]); EXPECT_EQ(p.volume[k], w.volume[wk]);
+    EXPECT_EQ(p.fixedDofs[k], w.fixedDofs[wk]);
+  }
+  // The whole's bonds with an owned end, in order, against the sub-domain's mapped back.
+  std::vector<std::size_t> expected;
+  for (std::size_t b = 0; b < whole.bonds.size(); ++b)
+    if (owner[whole.bonds.i[b]] == comm.rank() || owner[whole.bonds.j[b]] == comm.rank()) expected.push_back(b);
+  const BondStore& bonds = d.system.bonds;
+  ASSERT_EQ(bonds.size(), expected.size());
+  for (std::size_t t = 0; t < expected.size(); ++t) {
+    const std::size_t b = expected[t];
+    ASSERT_EQ(g[bonds.i[t]], whole.bonds.i[b]) << "bond " << b;
+    ASSERT_EQ(g[bonds.j[t]], whole.bonds.j[b]) << "bond " << b;
+    EXPECT_EQ(bonds.restLength[t], whole.bonds.restLength[b]);
+    EXPECT_EQ(bonds.n0x[t], whole.bonds.n0x[b]);
+    EXPECT_EQ(bonds.stiffness[t], whole.bonds.stiffness[b]);
+    EXPECT_EQ(bonds.threshold[t], whole.bonds.threshold[b]);
+    EXPECT_EQ(bonds.strength[t], whole.bonds.strength[b]);
+    EXPECT_EQ(bonds.intact[t], whole.bonds.intact[b]);
+  }
+}
+
+TEST(Subdomain, GathersTheOutputsIntoTheFirstRanksWholeOnlyAndTheOthersNeedNone) {
+  // The outputs are the first rank's: it gathers the ranks' state into its whole sample, while the
+  // other ranks send theirs and may have dropped the whole (BondedSystem::withoutElements).
+  const BondedSystem whole = testing::pmbBlock(0.25);
+  const double dt = 0.5 * whole.criticalTimeStep();
+  const Outcome one = runWhole(whole, kStretchAlongX, 150, dt);
+  const Communicator comm = Communicator::world();
+  Subdomain d(whole, bisectCoordinates(whole.particles, whole.bonds, comm.size()), comm);
+  kStretchAlongX(d.system);
+  d.system.initialize();
+  for (int t = 0; t < 150; ++t) d.system.step(dt);
+  BondedSystem gathered = comm.rank() == 0 ? whole : whole.withoutElements();
+  if (comm.rank() == 0) {
+    kStretchAlongX(gathered);
+    gathered.initialize();
+  }
+  d.gatherInto(gathered);
+  if (comm.rank() != 0) {
+    EXPECT_EQ(gathered.particles.size(), 0u);
+    EXPECT_EQ(gathered.bonds.size(), 0u);
+    return;
+  }
+  EXPECT_EQ(gathered.time, d.system.time);
+  EXPECT_EQ(gathered.steps, 150u);
+  EXPECT_EQ(testing::firstDifference(gathered.particles.x, one.x), -1);
+  EXPECT_EQ(testing::firstDifference(gathered.particles.vy, one.vy), -1);
+  EXPECT_EQ(gathered.bonds.size() - gathered.bonds.intactCount(), one.broken);
+  EXPECT_GT(one.broken, 0u);  // it tore
 }
 
 }  // namespace

@@ -260,11 +260,12 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
                    " bonds, time step " + formatQuantity(dt, "s"));
 
   // A resumed run continues the checkpoint's copy of the file, which holds all of this already.
-  // Every rank writes the same file from the same gathered state; only the first keeps it.
+  // Only the first rank writes it; the others hold an empty file in memory, for their checkpoints.
   const Communicator comm = Communicator::world();
-  TensionRecorder recorder(resultPath, checkpoints.continueFrom(),
-                           comm.rank() == 0 ? io::ResultFile::Destination::kDisk : io::ResultFile::Destination::kDiscarded);
-  if (!checkpoints.resuming()) {
+  const bool writes = comm.rank() == 0;
+  TensionRecorder recorder(resultPath, writes ? checkpoints.continueFrom() : std::string(),
+                           writes ? io::ResultFile::Destination::kDisk : io::ResultFile::Destination::kDiscarded);
+  if (writes && !checkpoints.resuming()) {
     recorder.writeSpec(toJson(spec), json);
     recorder.writeSample(system, report, geometry);
   }
@@ -274,7 +275,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   // On several ranks, every rank takes the same outcome (a cancel included) at the same step.
   PreliminaryOutcome pre = obtainPreliminary(spec, system, geometry, dt, resultPath, control, comm);
   const PreliminaryResult* preliminary = pre.result ? &*pre.result : nullptr;
-  if (!checkpoints.resuming())
+  if (writes && !checkpoints.resuming())
     recorder.writeAttributes("/preliminary", preliminaryAttributes(preliminary, pre.fromCache, pre.cacheFile),
                              preliminaryUnits());
 
@@ -290,9 +291,10 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   // On several ranks (mpirun -np N, engine/distributed): each rank steps its sub-domain, cut from
   // the sample at rest, whose loads at t = 0 it evaluates as the builder evaluated the whole
   // sample's (at rest); then both take the initial field and the faces' prescription. The whole
-  // system, on every rank, takes the ranks' gathered state before each output, and each step's
+  // system, on the first rank, takes the ranks' gathered state before each output, and each step's
   // observables are gathered in the whole sample's order (tension_step_observables.hpp):
   // everything that reads `system` reads it as on one process, bit for bit (docs/distributed.md).
+  // The other ranks drop the whole once their part has its start, and leave the outputs to the first.
   std::optional<Subdomain> part;
   if (comm.size() > 1 && !pre.cancelled) {
     if (spec.material.localDamping > 0)
@@ -341,10 +343,13 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   std::string stopReason = pre.cancelled ? "cancelled" : "";
   FaceStresses stress = loading.stresses(system.particles);
   double strain = 0;
+  const std::size_t elementCount = system.particles.size();
+  if (part && !writes) system = system.withoutElements();
   const TensionStepObservables stepObservables(loading, part ? &*part : nullptr);
   auto record = [&] {
     gatherWhole();
     lastRowStep = system.steps;
+    if (!writes) return;
     recorder.appendRow({system.time, strain, stress.xmin, stress.xmax, stress.mean, observed.brokenFraction(),
                         system.kineticEnergy(), system.elasticEnergy(), system.particles.vx[geometry.xmax.front()]});
   };
@@ -352,8 +357,9 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     if (nextSnapshot >= snapshotStrains.size() || strain < snapshotStrains[nextSnapshot]) return;
     const auto began = Clock::now();
     gatherWhole();
-    recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
-                           "strain " + formatNumber(snapshotStrains[nextSnapshot]));
+    if (writes)
+      recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain,
+                             "strain " + formatNumber(snapshotStrains[nextSnapshot]));
     control.phases.charge("writing snapshots", seconds(began));
     while (nextSnapshot < snapshotStrains.size() && strain >= snapshotStrains[nextSnapshot]) ++nextSnapshot;
   };
@@ -370,7 +376,7 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
     now.headlineUnit = "Pa";
     now.headline = stress.mean;
     now.brokenBonds = static_cast<std::int64_t>(observed.broken());
-    now.particles = static_cast<double>(system.particles.size());
+    now.particles = static_cast<double>(elementCount);
     reportStatus(control, now);
   };
 
@@ -425,8 +431,11 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
           system.steps - lastCheckStep >= kSeparationCheckSteps) {
         brokenAtLastCheck = observed.broken();
         lastCheckStep = system.steps;
+        // The first rank decides on the gathered bonds, and every rank takes its decision.
         if (part) part->gatherBondsInto(system);
-        if (!groupsConnected(system.bonds, system.particles.size(), geometry.xmin, geometry.xmax)) {
+        bool connected = !writes || groupsConnected(system.bonds, system.particles.size(), geometry.xmin, geometry.xmax);
+        if (part) connected = comm.broadcastFromFirst(connected);
+        if (!connected) {
           observed.markSeparated(system.time, strain);
           logStage(control, "faces separated at strain " + formatQuantity(strain, "1"));
         }
@@ -462,11 +471,16 @@ RunOutcome runDynamicTension(const DynamicTensionSpec& spec, const nlohmann::jso
   }
   enterPhase(control, "final snapshot and fragments");
   gatherWhole();
-  recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
   const bool completed = stopReason != "cancelled";
+  if (!writes) {  // the first rank writes the final state and the summary
+    RunOutcome outcome = finishRun(recorder, {{"completed", completed ? 1 : 0}, {"stop_reason", stopReason}}, {},
+                                   completed, stopReason, control);
+    checkpoints.finished(completed);
+    return outcome;
+  }
+  recorder.writeSnapshot(system, report.packingFraction, report.thickness, strain, "final");
 
   // The pieces of the final state: macroscopic fragments apart from debris, cracks across the section.
-  const std::size_t elementCount = system.particles.size();
   const std::size_t minFragment = std::max<std::size_t>(
       2, static_cast<std::size_t>(std::ceil(spec.output.fragmentMinFraction * static_cast<double>(elementCount))));
   const FragmentAnalysis pieces = analyseFragments(system.bonds, elementCount, minFragment);

@@ -116,8 +116,8 @@ DynamicTensionSpec parseDynamicTensionSpec(const nlohmann::json& json) {
 RunEstimate estimateDynamicTension(const DynamicTensionSpec& s) {
   RunEstimate e = io::estimateBondedSpec(s);
   e.ranks = s.run.ranks;
-  // Each rank builds the whole sample, then its sub-domain (docs/distributed.md), as impact's.
-  if (s.run.ranks > 1) e.memoryBytes *= 2.0 * s.run.ranks;
+  // Each rank builds the whole sample, then cuts its sub-domain from it (docs/distributed.md), as impact's.
+  if (s.run.ranks > 1) e.memoryBytes *= s.run.ranks + 2.0;
   const double dt = s.run.timeStepSafety * io::estimatedCriticalStep(s.sample, s.material);
   const double gauge = s.sample.size[0];
   const double waveSpeed = s.loading.waveSpeed ? *s.loading.waveSpeed : s.material.dampingWaveSpeed;

@@ -39,7 +39,8 @@ struct SeriesRow {
 class TensionRecorder {
 public:
   /// continueFrom: a checkpoint whose partial result this run continues (io::ResultFile).
-  /// kDiscarded: the same file in memory, dropped (the ranks of a decomposed run after the first).
+  /// kDiscarded: an empty file in memory, dropped (the ranks of a decomposed run after the first,
+  /// which record nothing: the first writes the outputs).
   explicit TensionRecorder(std::string resultPath, const std::string& continueFrom = "",
                            io::ResultFile::Destination destination = io::ResultFile::Destination::kDisk);
   io::ResultFile& result() { return m_result; }

@@ -136,9 +136,11 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   }
 
   // On several ranks (mpirun -np N, engine/distributed): each rank steps its sub-domain, and the
-  // whole system, on every rank, takes the ranks' gathered state before each output; everything
-  // that reads `system` below reads it as on one process, bit for bit (docs/distributed.md).
+  // whole system, on the first rank, takes the ranks' gathered state before each output; everything
+  // that reads `system` below reads it as on one process, bit for bit (docs/distributed.md). The
+  // other ranks drop the whole once their part is cut, and leave the outputs to the first.
   const Communicator comm = Communicator::world();
+  const bool writes = comm.rank() == 0;
   std::optional<Subdomain> part;
   if (comm.size() > 1) {
     if (spec.material.localDamping > 0)
@@ -201,20 +203,23 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   };
   stepped.prescribe(stepped.particles, 0.0);
   stepped.initialize();
-  if (part) {  // the whole system, for the outputs: its velocities at t = 0 and its bond arrays
+  // Bonds broken since the start: counted step by step on one rank, from the gathered bonds on several.
+  const std::size_t brokenAtStart = system.bonds.size() - system.bonds.intactCount();
+  const std::size_t wholeCount = p.size();
+  if (part && writes) {  // the whole system, for the outputs: its velocities at t = 0 and its bond arrays
     system.prescribe = prescriber(driven);
     system.prescribe(p, 0.0);
     system.initialize();
+  } else if (part) {
+    system = system.withoutElements();
   }
-  // Bonds broken since the start: counted step by step on one rank, from the gathered bonds on several.
-  const std::size_t brokenAtStart = system.bonds.size() - system.bonds.intactCount();
   std::size_t broken = 0;
   std::size_t gatheredAtStep = system.steps;
   auto gatherWhole = [&] {
     if (!part || gatheredAtStep == part->system.steps) return;
     part->gatherInto(system);
     gatheredAtStep = system.steps;
-    broken = system.bonds.size() - system.bonds.intactCount() - brokenAtStart;
+    if (writes) broken = system.bonds.size() - system.bonds.intactCount() - brokenAtStart;
   };
 
   // Crack origin: the end of the first notch, else where the load is applied.
@@ -237,15 +242,12 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   };
 
   // A resumed run continues the checkpoint's copy of the file, which holds the set-up's groups.
-  // Every rank writes the same file from the same gathered state; only the first keeps it (each
-  // rank's checkpoint holds its own copy).
-  io::ResultFile result = comm.rank() == 0
-                              ? io::ResultFile(resultPath, "impact", checkpoints.continueFrom())
-                              : io::ResultFile(resultPath, "impact", io::ResultFile::Destination::kDiscarded,
-                                               checkpoints.continueFrom());
+  // Only the first rank writes it; the others hold an empty file in memory, for their checkpoints.
+  io::ResultFile result = writes ? io::ResultFile(resultPath, "impact", checkpoints.continueFrom())
+                                 : io::ResultFile(resultPath, "impact", io::ResultFile::Destination::kDiscarded);
   io::Hdf5File& file = result.file();
   const std::size_t n = p.size();
-  if (!checkpoints.resuming()) {
+  if (writes && !checkpoints.resuming()) {
     result.writeSpec(toJson(spec), json);
     file.createGroup("/sample");
     file.writeDataset("/sample/initial_position", io::interleave(p.x, p.y, p.z), {n, 3}, "m");
@@ -257,6 +259,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   std::size_t snapshots = 0;
   auto snapshot = [&](const std::string& trigger, const std::vector<double>& damage) {
     gatherWhole();
+    if (!writes) return;
     char name[32];
     std::snprintf(name, sizeof name, "/snapshots/%06zu", snapshots++);
     const std::string base = name;
@@ -289,6 +292,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   std::vector<double> damage = elementDamage(system.bonds, n, &p.volume);
   auto record = [&] {
     gatherWhole();
+    if (!writes) return;
     damage = elementDamage(system.bonds, n, &p.volume);
     const double speed = tracker.observe(system.time, p, damage);
     const CrackTip& tip = tracker.tip();
@@ -336,7 +340,7 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
     now.headlineUnit = "m";
     now.headline = tracker.tip().distance;
     now.brokenBonds = static_cast<std::int64_t>(broken);
-    now.particles = static_cast<double>(system.particles.size());
+    now.particles = static_cast<double>(wholeCount);
     reportStatus(control, now);
   };
   enterPhase(control, kSteppingPhase);
@@ -385,11 +389,17 @@ RunOutcome runImpact(const ImpactSpec& spec, const nlohmann::json& json, const s
   gatherWhole();
   if (series[0].empty() || series[0].back() != system.time) record();
   snapshot("final", damage);
+  const bool completed = stopReason != "cancelled";
+  if (!writes) {  // the first rank writes the summary
+    RunOutcome outcome = finishRun(result, {{"completed", completed ? 1 : 0}, {"stop_reason", stopReason}}, {},
+                                   completed, stopReason, control);
+    checkpoints.finished(completed);
+    return outcome;
+  }
   file.createGroup("/series");
   for (std::size_t c = 0; c < columns.size(); ++c)
     file.writeDataset("/series/" + columns[c], series[c], {series[c].size()}, units[c]);
 
-  const bool completed = stopReason != "cancelled";
   const double* v = projectile ? projectile->v : nullptr;
   nlohmann::json summary = {
       {"completed", completed ? 1 : 0},
