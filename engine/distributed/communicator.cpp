@@ -31,17 +31,23 @@ void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed (error " + std::to_string(code) + ")");
 }
 
-template <class T>
-std::vector<T> gatherConcatenated(const std::vector<T>& mine, MPI_Datatype type, int size) {
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(size), offsets(size);
-  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+/// Each rank's offset in the concatenation of counts[r] items from every rank r; returns the total.
+std::size_t offsetsOf(const std::vector<int>& counts, std::vector<int>& offsets) {
+  offsets.resize(counts.size());
   std::size_t total = 0;
-  for (int r = 0; r < size; ++r) {
+  for (std::size_t r = 0; r < counts.size(); ++r) {
     offsets[r] = static_cast<int>(total);
     total += static_cast<std::size_t>(counts[r]);
   }
-  std::vector<T> all(total);
+  return total;
+}
+
+template <class T>
+std::vector<T> gatherConcatenated(const std::vector<T>& mine, MPI_Datatype type, int size) {
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(size), offsets;
+  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+  std::vector<T> all(offsetsOf(counts, offsets));
   check(MPI_Allgatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, MPI_COMM_WORLD),
         "MPI_Allgatherv");
   return all;
@@ -50,14 +56,9 @@ std::vector<T> gatherConcatenated(const std::vector<T>& mine, MPI_Datatype type,
 template <class T>
 std::vector<T> gatherConcatenatedToFirst(const std::vector<T>& mine, MPI_Datatype type, int rank, int size) {
   const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(rank == 0 ? size : 0), offsets(rank == 0 ? size : 0);
+  std::vector<int> counts(rank == 0 ? size : 0), offsets;  // the counts only where they arrive
   check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
-  std::size_t total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    offsets[r] = static_cast<int>(total);
-    total += static_cast<std::size_t>(counts[r]);
-  }
-  std::vector<T> all(total);
+  std::vector<T> all(offsetsOf(counts, offsets));
   check(MPI_Gatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, MPI_COMM_WORLD),
         "MPI_Gatherv");
   return all;
@@ -126,13 +127,8 @@ std::vector<double> Communicator::allGather(const std::vector<double>& mine, con
   if (m_size == 1) return mine;
   if (counts.size() != static_cast<std::size_t>(m_size) || counts[static_cast<std::size_t>(m_rank)] != static_cast<int>(mine.size()))
     throw std::logic_error("Communicator::allGather: the counts do not match the ranks' vectors");
-  std::vector<int> offsets(counts.size());
-  std::size_t total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    offsets[r] = static_cast<int>(total);
-    total += static_cast<std::size_t>(counts[r]);
-  }
-  std::vector<double> all(total);
+  std::vector<int> offsets;
+  std::vector<double> all(offsetsOf(counts, offsets));
   check(MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
                        MPI_DOUBLE, MPI_COMM_WORLD),
         "MPI_Allgatherv");

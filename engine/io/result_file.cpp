@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string_view>
 #include <system_error>
 
@@ -53,6 +54,8 @@ ResultFile::ResultFile(std::string resultPath, const std::string& scenario, Dest
                                                : Hdf5File::createInMemory(m_resultPath + " (in memory)")),
       m_continued(destination == Destination::kDisk && !continueFrom.empty()),
       m_discarded(destination == Destination::kDiscarded) {
+  if (m_discarded && !continueFrom.empty())
+    throw std::logic_error("ResultFile: a discarded result starts empty; it cannot continue " + continueFrom);
   if (m_continued) return;
   m_file.setAttribute("/", "scenario", scenario);
   m_file.setAttribute("/", "rupture_version", std::string(RUPTURE_VERSION));
